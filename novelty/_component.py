@@ -1,0 +1,126 @@
+"""The small base shared by every component: parameters and learned state.
+
+Parameters follow scikit-learn's contract (``__init__`` stores its arguments
+unchanged; :meth:`get_params` reads the signature). Learned state is every
+public attribute whose name ends in ``_``; :meth:`Component._export_state`
+and :meth:`Component._import_state` move it in and out as plain arrays and
+JSON values, which is what model files hold (never pickle).
+"""
+
+from __future__ import annotations
+
+import numbers
+from typing import Any
+
+import numpy as np
+from sklearn.base import BaseEstimator
+
+from ._validation import validate_parameters
+
+__all__ = ["Component", "StateError"]
+
+_JSON_SCALARS = (str, bool, int, float, type(None))
+
+
+class StateError(ValueError):
+    """Learned state that is missing, inconsistent or of the wrong type."""
+
+
+def _is_state_name(name: str) -> bool:
+    return name.endswith("_") and not name.startswith("_") and name.isidentifier()
+
+
+class Component(BaseEstimator):
+    """Base of clusterers, synapses and detectors.
+
+    Subclasses declare ``_parameter_rules`` (see :mod:`novelty._validation`)
+    and may override :meth:`_check_state` (called after a model file is read)
+    and :meth:`_rebuild_scratch` (recomputes private caches from the state).
+    """
+
+    _parameter_rules: dict = {}
+
+    def _validate_params(self) -> None:
+        validate_parameters(self)
+
+    # ------------------------------------------------------------ fitted state
+    def _state_names(self) -> list[str]:
+        return sorted(name for name in vars(self) if _is_state_name(name))
+
+    def _export_state(self) -> tuple[dict[str, np.ndarray], dict[str, Any], dict[str, "Component"]]:
+        """Split learned state into arrays, JSON values and nested components."""
+        arrays: dict[str, np.ndarray] = {}
+        values: dict[str, Any] = {}
+        children: dict[str, Component] = {}
+        for name in self._state_names():
+            value = getattr(self, name)
+            if isinstance(value, Component):
+                children[name] = value
+            elif isinstance(value, np.ndarray) and value.dtype != object:
+                arrays[name] = value
+            elif isinstance(value, np.ndarray):  # e.g. feature_names_in_ (strings)
+                values[name] = {"__strings__": [str(v) for v in value.tolist()]}
+            elif isinstance(value, np.generic):
+                values[name] = value.item()
+            elif isinstance(value, _JSON_SCALARS) or (
+                isinstance(value, (list, tuple)) and all(isinstance(v, _JSON_SCALARS) for v in value)
+            ):
+                values[name] = list(value) if isinstance(value, tuple) else value
+            else:
+                raise StateError(
+                    f"{type(self).__name__}.{name} is a {type(value).__name__}, which a model "
+                    "file cannot hold (arrays, numbers, strings and components only)."
+                )
+        return arrays, values, children
+
+    def _import_state(
+        self,
+        arrays: dict[str, np.ndarray],
+        values: dict[str, Any],
+        children: dict[str, "Component"],
+    ) -> None:
+        """Set learned state read from a file, then check it is consistent."""
+        for name in list(arrays) + list(values) + list(children):
+            if not _is_state_name(name):
+                raise StateError(f"'{name}' is not a learned-state attribute name.")
+        for name, value in values.items():
+            if isinstance(value, dict) and set(value) == {"__strings__"}:
+                value = np.asarray(value["__strings__"], dtype=object)
+            setattr(self, name, value)
+        for name, value in arrays.items():
+            setattr(self, name, np.array(value))  # own, writable copy
+        for name, value in children.items():
+            setattr(self, name, value)
+        self._check_state()
+        self._rebuild_scratch()
+
+    def _check_state(self) -> None:
+        """Raise :class:`StateError` if the learned state is inconsistent."""
+
+    def _rebuild_scratch(self) -> None:
+        """Recompute private caches (names starting with ``_``) from the state."""
+
+
+def check_array_state(owner: Component, name: str, ndim: int, dtype_kind: str = "f",
+                      shape: tuple | None = None) -> np.ndarray:
+    """Check one state array read from a file: presence, rank, kind, shape, finiteness."""
+    value = getattr(owner, name, None)
+    if not isinstance(value, np.ndarray):
+        raise StateError(f"{type(owner).__name__} state is missing the array '{name}'.")
+    if value.ndim != ndim or value.dtype.kind not in dtype_kind:
+        raise StateError(
+            f"{type(owner).__name__}.{name} must be a {ndim}-D array of kind {dtype_kind!r}; "
+            f"got {value.ndim}-D {value.dtype}."
+        )
+    if shape is not None and any(s is not None and s != v for s, v in zip(shape, value.shape)):
+        raise StateError(f"{type(owner).__name__}.{name} has shape {value.shape}; expected {shape}.")
+    if value.dtype.kind == "f" and not np.all(np.isfinite(value)):
+        raise StateError(f"{type(owner).__name__}.{name} contains NaN or infinity.")
+    return value
+
+
+def check_int_state(owner: Component, name: str, low: int = 0) -> int:
+    value = getattr(owner, name, None)
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+        raise StateError(f"{type(owner).__name__}.{name} must be an int >= {low}; got {value!r}.")
+    return int(value)

@@ -1,0 +1,190 @@
+"""Checks of parameters and inputs, with one message form for the whole project.
+
+Parameter messages follow scikit-learn's form::
+
+    The 'max_age' parameter of GrowingNeuralGas must be an int in [1, inf). Got 0 instead.
+
+Input checks translate to ``ValueError`` (or ``TypeError`` for sparse input,
+as scikit-learn does) *before* any state changes, so a rejected call leaves a
+model exactly as it was.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "Interval",
+    "Options",
+    "Instance",
+    "validate_parameters",
+    "check_batch",
+    "check_one",
+    "check_timestamps",
+]
+
+
+def _type_name(value: Any) -> str:
+    return type(value).__name__
+
+
+@dataclass(frozen=True)
+class Interval:
+    """A real or integer range; ``None`` bounds are infinite."""
+
+    kind: type  # numbers.Integral or numbers.Real
+    low: float | None = None
+    high: float | None = None
+    closed: str = "both"  # "both", "left", "right", "neither"
+    allow_none: bool = False
+
+    def accepts(self, value: Any) -> bool:
+        if value is None:
+            return self.allow_none
+        if isinstance(value, bool) or not isinstance(value, self.kind):
+            return False
+        if isinstance(value, numbers.Real) and not math.isfinite(value) and value == value:
+            # +-inf is only acceptable as an unbounded side, never as a value
+            return False
+        if value != value:  # NaN
+            return False
+        left_ok = self.low is None or (value >= self.low if self.closed in ("both", "left") else value > self.low)
+        right_ok = self.high is None or (value <= self.high if self.closed in ("both", "right") else value < self.high)
+        return left_ok and right_ok
+
+    def describe(self) -> str:
+        what = "an int" if self.kind is numbers.Integral else "a float"
+        lo = "-inf" if self.low is None else f"{self.low:g}"
+        hi = "inf" if self.high is None else f"{self.high:g}"
+        lb = "[" if self.closed in ("both", "left") and self.low is not None else "("
+        rb = "]" if self.closed in ("both", "right") and self.high is not None else ")"
+        text = f"{what} in {lb}{lo}, {hi}{rb}"
+        return text + (" or None" if self.allow_none else "")
+
+
+@dataclass(frozen=True)
+class Options:
+    """One of a fixed set of values."""
+
+    values: tuple
+
+    def accepts(self, value: Any) -> bool:
+        return isinstance(value, (str, bool, numbers.Number, type(None))) and value in self.values
+
+    def describe(self) -> str:
+        return "one of " + ", ".join(repr(v) for v in self.values)
+
+
+@dataclass(frozen=True)
+class Instance:
+    """An instance of one of the given types (strings name registry entries)."""
+
+    types: tuple
+    description: str
+
+    def accepts(self, value: Any) -> bool:
+        return isinstance(value, self.types)
+
+    def describe(self) -> str:
+        return self.description
+
+
+def validate_parameters(owner: Any) -> None:
+    """Check every parameter of ``owner`` against ``owner._parameter_rules``.
+
+    Each rule is an :class:`Interval`, :class:`Options`, :class:`Instance` or a
+    tuple of them (any may accept).
+    """
+    rules = getattr(owner, "_parameter_rules", {})
+    for name, rule in rules.items():
+        value = getattr(owner, name)
+        alternatives = rule if isinstance(rule, tuple) else (rule,)
+        if not any(alt.accepts(value) for alt in alternatives):
+            expected = " or ".join(alt.describe() for alt in alternatives)
+            raise ValueError(
+                f"The '{name}' parameter of {type(owner).__name__} must be {expected}. "
+                f"Got {value!r} instead."
+            )
+
+
+# --------------------------------------------------------------------- inputs
+def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray:
+    """Validate a batch of scans: a finite, numeric, non-empty 2-D array.
+
+    Returns a C-contiguous float64 array (a copy only when needed; the caller's
+    array is never written to).
+    """
+    from sklearn.utils import check_array  # deferred: keeps ``import novelty`` light
+
+    X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
+                    ensure_all_finite=False)
+    if not np.isfinite(X.sum()) and not np.all(np.isfinite(X)):
+        bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
+        raise ValueError(
+            f"Input X contains NaN or infinity (first in row {bad}); "
+            f"{type(owner).__name__} expects finite numbers."
+        )
+    if n_features is not None and X.shape[1] != n_features:
+        raise ValueError(
+            f"X has {X.shape[1]} features, but {type(owner).__name__} is expecting "
+            f"{n_features} features as input."
+        )
+    return X
+
+
+def check_one(x: Any, owner: Any, n_features: int | None) -> np.ndarray:
+    """Validate one scan cheaply (the robot's hot path): a finite 1-D vector."""
+    if type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1:
+        arr = x
+    else:
+        if isinstance(x, dict):
+            x = list(x.values())
+        try:
+            arr = np.asarray(x, dtype=np.float64)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(
+                f"{type(owner).__name__} expects one scan as a 1-D sequence of numbers; "
+                f"got values that are not numeric ({exc})."
+            ) from None
+        if arr.ndim != 1:
+            raise ValueError(
+                f"{type(owner).__name__} expects one scan as a 1-D array of shape "
+                f"(n_features,); got an array of shape {arr.shape}. "
+                "Use the batch methods for 2-D input."
+            )
+    if arr.shape[0] == 0:
+        raise ValueError(f"{type(owner).__name__} got an empty scan; expected at least one feature.")
+    if n_features is not None and arr.shape[0] != n_features:
+        raise ValueError(
+            f"x has {arr.shape[0]} features, but {type(owner).__name__} is expecting "
+            f"{n_features} features as input."
+        )
+    if not np.isfinite(arr.sum()):  # one reduction instead of an elementwise mask
+        raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
+    return arr
+
+
+def check_timestamps(timestamps: Any, n_samples: int, last_time: float | None) -> np.ndarray:
+    """Validate timestamps and return the elapsed time before each scan.
+
+    The first scan of a model's life has dt = 1 (one step), as without
+    timestamps; afterwards dt is the time since the previous scan.
+    """
+    t = np.asarray(timestamps, dtype=np.float64)
+    if t.ndim != 1 or t.shape[0] != n_samples:
+        raise ValueError(
+            f"timestamps must be a 1-D array with one value per scan ({n_samples}); "
+            f"got shape {t.shape}."
+        )
+    if not np.all(np.isfinite(t)):
+        raise ValueError("timestamps contain NaN or infinity.")
+    previous = t[0] - 1.0 if last_time is None else last_time
+    dt = np.diff(t, prepend=previous)
+    if np.any(dt < 0):
+        raise ValueError("timestamps must not decrease (each scan is at or after the previous one).")
+    return dt

@@ -1,0 +1,203 @@
+"""The detector API every novelty detector offers: streaming and scikit-learn.
+
+One sign convention inside the project: **higher novelty = more novel**.
+scikit-learn's outlier conventions are translated here, at the edge:
+
+- ``score_samples(X) = -novelty(X)`` (higher = more normal);
+- ``decision_function(X) = score_samples(X) - offset_`` with
+  ``offset_ = -threshold``, so it is negative exactly where
+  ``novelty(X) > threshold``;
+- ``predict(X)`` is -1 (novel) where ``novelty(X) > threshold``, else +1.
+
+A subclass implements four hooks on validated float64 arrays:
+:meth:`~NoveltyDetector._start` (fresh state shaped by the first batch),
+:meth:`~NoveltyDetector._learn` (learn a batch in order, returning the novelty
+each scan had before it was learned), :meth:`~NoveltyDetector._novelty` (pure
+scoring) and optionally :meth:`~NoveltyDetector._novelty_one`.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Any
+
+import numpy as np
+from sklearn.base import OutlierMixin
+from sklearn.exceptions import NotFittedError
+
+from ._component import Component
+from ._validation import check_batch, check_one, check_timestamps
+
+__all__ = ["NoveltyDetector"]
+
+
+class NoveltyDetector(OutlierMixin, Component):
+    """Base class of novelty detectors (abstract).
+
+    Subclasses have a ``threshold`` parameter (on the novelty scale) and may
+    have ``n_epochs`` (passes over the data in :meth:`fit`).
+
+    Attributes
+    ----------
+    n_features_in_ : int
+        Number of features seen in the first batch.
+    last_time_ : float or None
+        Timestamp of the last scan learned, when timestamps were given.
+    """
+
+    #: whether ``partial_fit`` / ``learn_one`` keep learning after ``fit``
+    supports_online = True
+
+    # ------------------------------------------------------------- to implement
+    @abstractmethod
+    def _start(self, X: np.ndarray) -> None:
+        """Create fresh learned state for inputs like ``X`` (parameters are valid)."""
+
+    @abstractmethod
+    def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        """Learn ``X`` in order; return the novelty of each row before learning it."""
+
+    @abstractmethod
+    def _novelty(self, X: np.ndarray) -> np.ndarray:
+        """Novelty of each row of ``X``; must not change any state."""
+
+    def _novelty_one(self, x: np.ndarray) -> float:
+        return float(self._novelty(x[None, :])[0])
+
+    # ------------------------------------------------------------------ helpers
+    def _is_fitted(self) -> bool:
+        return hasattr(self, "n_features_in_")
+
+    def _check_fitted(self) -> None:
+        if not self._is_fitted():
+            raise NotFittedError(
+                f"This {type(self).__name__} instance is not fitted yet. Call 'fit', "
+                "'partial_fit' or 'learn_one' with some data first."
+            )
+
+    def _elapsed(self, n: int, timestamps: Any) -> np.ndarray:
+        if timestamps is None:
+            return np.ones(n)
+        return check_timestamps(timestamps, n, getattr(self, "last_time_", None))
+
+    def _advance_clock(self, n: int, timestamps: Any) -> None:
+        if timestamps is not None:
+            self.last_time_ = float(np.asarray(timestamps, dtype=np.float64)[-1])
+        elif getattr(self, "last_time_", None) is not None:
+            self.last_time_ += float(n)
+
+    def _begin(self, X: np.ndarray) -> None:
+        self._start(X)
+        self.n_features_in_ = X.shape[1]
+        self.last_time_ = None
+
+    def _check_online(self) -> None:
+        if not self.supports_online:
+            raise TypeError(
+                f"{type(self).__name__} learns in batch only; call 'fit' with all the data."
+            )
+
+    # -------------------------------------------------------------- batch (sklearn)
+    def fit(self, X, y=None, timestamps=None):
+        """Learn ``X`` from scratch (``n_epochs`` passes, in order).
+
+        Parameters
+        ----------
+        X : array-like of shape (n_samples, n_features)
+            Scans, in the order they were perceived.
+        y : ignored
+        timestamps : array-like of shape (n_samples,), optional
+            Time of each scan; the synapses then integrate over the elapsed
+            time instead of one step per scan.
+        """
+        X = check_batch(X, self)
+        self._validate_params()
+        # a refit starts a new life: no previous timestamp
+        dt = np.ones(X.shape[0]) if timestamps is None else check_timestamps(timestamps, X.shape[0], None)
+        self._begin(X)
+        for _ in range(getattr(self, "n_epochs", 1)):
+            self._learn(X, dt)
+        self._advance_clock(X.shape[0], timestamps)
+        return self
+
+    def partial_fit(self, X, y=None, timestamps=None):
+        """Learn ``X`` in order, continuing from the current state (one pass)."""
+        self.stream(X, timestamps=timestamps, learn=True)
+        return self
+
+    def stream(self, X, timestamps=None, learn=True) -> np.ndarray:
+        """Novelty of each scan of ``X`` as the robot sees it, learning as it goes.
+
+        The novelty of a scan is computed before the scan is learned. With
+        ``learn=False`` nothing is learned and this equals :meth:`novelty`.
+        """
+        if not learn:
+            return self.novelty(X)
+        fitted = self._is_fitted()
+        if fitted:
+            self._check_online()
+        X = check_batch(X, self, self.n_features_in_ if fitted else None)
+        dt = self._elapsed(X.shape[0], timestamps)
+        if not fitted:
+            self._validate_params()
+            self._begin(X)
+        out = self._learn(X, dt)
+        self._advance_clock(X.shape[0], timestamps)
+        return out
+
+    def novelty(self, X) -> np.ndarray:
+        """Novelty of each scan (higher = more novel), without learning."""
+        self._check_fitted()
+        X = check_batch(X, self, self.n_features_in_)
+        return self._novelty(X)
+
+    def score_samples(self, X) -> np.ndarray:
+        """scikit-learn convention: ``-novelty(X)`` (higher = more normal)."""
+        return -self.novelty(X)
+
+    @property
+    def offset_(self) -> float:
+        """scikit-learn's offset: ``decision_function = score_samples - offset_``."""
+        return -float(self.threshold)
+
+    def decision_function(self, X) -> np.ndarray:
+        """``threshold - novelty(X)``: negative for novel scans, positive for normal."""
+        return self.score_samples(X) - self.offset_
+
+    def predict(self, X) -> np.ndarray:
+        """+1 for normal scans, -1 for novel ones (novelty above ``threshold``)."""
+        return np.where(self.novelty(X) > self.threshold, -1, 1)
+
+    # ----------------------------------------------------------- streaming (robot)
+    def score_one(self, x) -> float:
+        """Novelty of one scan, without learning."""
+        self._check_fitted()
+        return self._novelty_one(check_one(x, self, self.n_features_in_))
+
+    def learn_one(self, x, t=None):
+        """Learn one scan (``t``: its timestamp, optional)."""
+        self.score_learn_one(x, t)
+        return self
+
+    def score_learn_one(self, x, t=None) -> float:
+        """Novelty of one scan before learning it, then learn it (the robot's loop)."""
+        fitted = self._is_fitted()
+        if fitted:
+            self._check_online()
+        x = check_one(x, self, self.n_features_in_ if fitted else None)
+        timestamps = None if t is None else (t,)
+        dt = self._elapsed(1, timestamps)
+        if not fitted:
+            self._validate_params()
+            self._begin(x[None, :])
+        out = float(self._learn(x[None, :], dt)[0])
+        self._advance_clock(1, timestamps)
+        return out
+
+    # ------------------------------------------------------------------ files
+    def save(self, path) -> None:
+        """Write the detector to ``path`` (npz arrays + JSON metadata; no pickle)."""
+        from .persistence import save
+
+        save(self, path)
+

@@ -1,0 +1,6 @@
+"""Habituating synapse models: one module per model, all behind :class:`Synapse`."""
+
+from .base import Synapse
+from .stanley import StanleySynapse
+
+__all__ = ["Synapse", "StanleySynapse"]

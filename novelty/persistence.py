@@ -1,0 +1,234 @@
+"""Model files: numpy arrays in an ``.npz`` archive plus JSON metadata. Never pickle.
+
+A file holds one entry ``meta`` (UTF-8 JSON, stored as a uint8 array) and one
+array per learned array attribute, named by its path (``root/clusterer_/weights_``).
+The metadata names every component by its *registry name* and gives its
+parameters and scalar state::
+
+    {"format": "novelty-model", "format_version": 1, "novelty_version": "...",
+     "root": {"kind": "detector", "name": "habituating",
+              "params": {...}, "values": {...}, "arrays": ["n_features_in_", ...],
+              "children": {"clusterer_": {...}, "synapse_": {...}}}}
+
+Reading uses ``numpy.load(allow_pickle=False)`` and builds classes only from
+the registries, so a crafted file can neither unpickle objects nor import
+arbitrary modules: it can only name components that are already registered.
+Whatever is wrong with a file (not a zip, truncated, newer format, unknown
+names, inconsistent shapes) raises :class:`ModelFileError` and runs nothing.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import zipfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ._component import Component, StateError
+
+__all__ = ["save", "load", "ModelFileError", "FORMAT", "FORMAT_VERSION"]
+
+FORMAT = "novelty-model"
+FORMAT_VERSION = 1
+_KINDS = ("detector", "clusterer", "synapse")
+
+
+class ModelFileError(ValueError):
+    """A file that is not a readable novelty model."""
+
+
+def _registry(kind: str):
+    from . import registry
+
+    return {"detector": registry.detectors, "clusterer": registry.clusterers,
+            "synapse": registry.synapses}[kind]
+
+
+def _kind_of(component: Component) -> str:
+    from .clusterers.base import Clusterer
+    from .detector import NoveltyDetector
+    from .habituation.base import Synapse
+
+    for kind, base in (("detector", NoveltyDetector), ("clusterer", Clusterer), ("synapse", Synapse)):
+        if isinstance(component, base):
+            return kind
+    raise StateError(f"{type(component).__name__} is not a detector, clusterer or synapse.")
+
+
+def _name_of(component: Component) -> tuple[str, str]:
+    kind = _kind_of(component)
+    name = _registry(kind).name_of(component)
+    if name is None:
+        raise StateError(
+            f"{type(component).__name__} is not registered as a {kind}, so a model file "
+            f"cannot name it. Register it (novelty.register_{kind}) before saving."
+        )
+    return kind, name
+
+
+# ------------------------------------------------------------------- writing
+def _encode_value(value: Any) -> Any:
+    if isinstance(value, Component):
+        kind, name = _name_of(value)
+        return {"__component__": {"kind": kind, "name": name,
+                                  "params": _encode_params(value.get_params(deep=False))}}
+    if isinstance(value, tuple):
+        return {"__tuple__": [_encode_value(v) for v in value]}
+    if isinstance(value, list):
+        return [_encode_value(v) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (str, bool, int, float, type(None))):
+        return value
+    raise StateError(
+        f"A parameter of type {type(value).__name__} cannot be written to a model file "
+        "(use numbers, strings, tuples, or registered components; an int seed for random_state)."
+    )
+
+
+def _encode_params(params: dict) -> dict:
+    return {name: _encode_value(value) for name, value in params.items()}
+
+
+def _encode(component: Component, prefix: str, arrays_out: dict) -> dict:
+    kind, name = _name_of(component)
+    arrays, values, children = component._export_state()
+    for attr, arr in arrays.items():
+        arrays_out[f"{prefix}/{attr}"] = arr
+    return {
+        "kind": kind,
+        "name": name,
+        "params": _encode_params(component.get_params(deep=False)),
+        "values": {k: _encode_value(v) if not isinstance(v, dict) else v for k, v in values.items()},
+        "arrays": sorted(arrays),
+        "children": {attr: _encode(child, f"{prefix}/{attr}", arrays_out) for attr, child in children.items()},
+    }
+
+
+def save(detector: Component, path: str | os.PathLike) -> None:
+    """Write ``detector`` to ``path`` (written whole, then moved into place)."""
+    from . import __version__
+
+    if not hasattr(detector, "n_features_in_"):
+        raise StateError(f"This {type(detector).__name__} is not fitted; there is nothing to save.")
+    arrays: dict[str, np.ndarray] = {}
+    root = _encode(detector, "root", arrays)
+    meta = {"format": FORMAT, "format_version": FORMAT_VERSION, "novelty_version": __version__, "root": root}
+    arrays["meta"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=path.name, suffix=".tmp", dir=path.parent or ".")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            np.savez(fh, **arrays)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+# ------------------------------------------------------------------- reading
+def _decode_value(value: Any) -> Any:
+    if isinstance(value, dict):
+        if set(value) == {"__component__"}:
+            spec = value["__component__"]
+            cls = _class_for(spec.get("kind"), spec.get("name"))
+            return _construct(cls, spec.get("params", {}))
+        if set(value) == {"__tuple__"}:
+            return tuple(_decode_value(v) for v in value["__tuple__"])
+        if set(value) == {"__strings__"}:
+            return value
+        raise ModelFileError(f"Unexpected object in model metadata: keys {sorted(value)}.")
+    if isinstance(value, list):
+        return [_decode_value(v) for v in value]
+    return value
+
+
+def _class_for(kind: Any, name: Any) -> type:
+    if kind not in _KINDS or not isinstance(name, str):
+        raise ModelFileError(f"Model file names an invalid component ({kind!r}, {name!r}).")
+    from .registry import UnknownNameError
+
+    try:
+        cls = _registry(kind).get(name)
+    except UnknownNameError as exc:
+        raise ModelFileError(f"Model file needs the {kind} {name!r}, which is not registered: {exc}") from None
+    if not (isinstance(cls, type) and issubclass(cls, Component)):
+        raise ModelFileError(f"Model file names {kind} {name!r}, which is not a component class.")
+    return cls
+
+
+def _construct(cls: type, params: Any) -> Component:
+    if not isinstance(params, dict):
+        raise ModelFileError(f"Parameters of {cls.__name__} in the model file are not a mapping.")
+    valid = cls._get_param_names()
+    unknown = sorted(set(params) - set(valid))
+    if unknown:
+        raise ModelFileError(f"Model file gives {cls.__name__} unknown parameters {unknown}.")
+    obj = cls(**{k: _decode_value(v) for k, v in params.items()})
+    try:
+        obj._validate_params()
+    except ValueError as exc:
+        raise ModelFileError(f"Model file has invalid parameters: {exc}") from None
+    return obj
+
+
+def _decode(spec: Any, prefix: str, npz) -> Component:
+    if not isinstance(spec, dict):
+        raise ModelFileError("Model metadata is malformed (a component is not an object).")
+    obj = _construct(_class_for(spec.get("kind"), spec.get("name")), spec.get("params", {}))
+    values = spec.get("values", {})
+    names = spec.get("arrays", [])
+    children = spec.get("children", {})
+    if not (isinstance(values, dict) and isinstance(names, list) and isinstance(children, dict)):
+        raise ModelFileError("Model metadata is malformed (state lists).")
+    arrays = {}
+    for attr in names:
+        key = f"{prefix}/{attr}"
+        if not isinstance(attr, str) or key not in npz.files:
+            raise ModelFileError(f"Model file lacks the array {key!r}.")
+        arrays[attr] = npz[key]
+    decoded_children = {attr: _decode(child, f"{prefix}/{attr}", npz) for attr, child in children.items()}
+    obj._import_state(arrays, {k: _decode_value(v) for k, v in values.items()}, decoded_children)
+    return obj
+
+
+def load(path: str | os.PathLike) -> Component:
+    """Read a detector written by :func:`save` (or ``detector.save``)."""
+    try:
+        npz = np.load(path, allow_pickle=False)
+    except FileNotFoundError:
+        raise
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+        raise ModelFileError(f"{path} is not a novelty model file ({exc}).") from None
+    if not isinstance(npz, np.lib.npyio.NpzFile):
+        raise ModelFileError(f"{path} is a single numpy array, not a novelty model file.")
+    with npz:
+        try:
+            if "meta" not in npz.files:
+                raise ModelFileError(f"{path} has no 'meta' entry; it is not a novelty model file.")
+            raw = npz["meta"]
+            if raw.dtype != np.uint8 or raw.ndim != 1:
+                raise ModelFileError(f"{path}: the 'meta' entry is not JSON text.")
+            meta = json.loads(raw.tobytes().decode("utf-8"))
+            if not isinstance(meta, dict) or meta.get("format") != FORMAT:
+                raise ModelFileError(f"{path} is not a novelty model file (format {meta.get('format')!r}).")
+            version = meta.get("format_version")
+            if not isinstance(version, int) or version < 1:
+                raise ModelFileError(f"{path} has an invalid format version {version!r}.")
+            if version > FORMAT_VERSION:
+                raise ModelFileError(
+                    f"{path} was written in model format {version} (novelty "
+                    f"{meta.get('novelty_version')}); this version reads format {FORMAT_VERSION} "
+                    "or older. Upgrade novelty to read it."
+                )
+            return _decode(meta.get("root"), "root", npz)
+        except ModelFileError:
+            raise
+        except (StateError, ValueError, TypeError, KeyError, AttributeError, EOFError,
+                zipfile.BadZipFile, UnicodeDecodeError, json.JSONDecodeError, OSError) as exc:
+            raise ModelFileError(f"{path} is not a valid novelty model file: {exc}") from None
