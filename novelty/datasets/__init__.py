@@ -8,8 +8,9 @@ builds one. Third-party datasets register through the entry-point group
 from __future__ import annotations
 
 from ..registry import Registry
+from .base import Dataset
 
-__all__ = ["registry", "available", "load", "register"]
+__all__ = ["Dataset", "registry", "available", "load", "register"]
 
 registry = Registry("dataset", group="novelty.datasets", builtins={})
 
