@@ -1,0 +1,10 @@
+"""Tools for testing components: the conformance suite plugin authors run.
+
+>>> from novelty.testing import check_conformance
+>>> from novelty.clusterers import SOM
+>>> check_conformance(SOM(n_rows=3, n_columns=3))
+"""
+
+from .conformance import check_conformance, conformance_checks
+
+__all__ = ["check_conformance", "conformance_checks"]

@@ -1,0 +1,47 @@
+"""Every registered clusterer, synapse and detector passes the conformance suite.
+
+The components are found through the registries, so a newly registered one
+is checked here without new test code.
+"""
+
+import pytest
+
+import novelty
+from novelty.registry import clusterers, detectors, synapses
+from novelty.testing import conformance_checks
+
+
+def _cases():
+    cases = []
+    for registry in (clusterers, synapses):
+        for name in registry.names():
+            component = registry.make(name)
+            cases += [pytest.param(check, id=f"{registry.kind}:{name}:{check.__name__}")
+                      for check in conformance_checks(component)]
+    for name in detectors.names():
+        det = novelty.make(name)
+        cases += [pytest.param(check, id=f"detector:{name}:{check.__name__}")
+                  for check in conformance_checks(det)]
+    return cases
+
+
+@pytest.mark.parametrize("check", _cases())
+def test_conformance(check):
+    check()
+
+
+def test_every_clusterer_with_every_synapse():
+    """The whole cross-product composes and streams through the habituating filter."""
+    import numpy as np
+
+    from novelty.testing.conformance import _data
+
+    X = _data()
+    for c in clusterers.names():
+        for s in synapses.names():
+            det = novelty.make("habituating", clusterer=c, synapse=s)
+            out = det.stream(X)
+            rest = det.synapse_.resting_efficacy
+            assert out.shape == (len(X),), (c, s)
+            assert np.all((out >= rest - 1e-9) & (out <= det.synapse_.y0 + 1e-9)), (c, s)
+            assert out[0] == det.synapse_.y0, f"{c}+{s}: the first scan is fully novel"

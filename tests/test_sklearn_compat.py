@@ -1,0 +1,51 @@
+"""Every registered detector passes scikit-learn's own estimator checks.
+
+Checks that cannot apply to a detector are listed in ``EXPECTED_FAILURES``
+with the reason; nothing else is skipped.
+"""
+
+import numpy as np
+import pytest
+from sklearn.base import clone
+from sklearn.model_selection import GridSearchCV
+from sklearn.pipeline import make_pipeline
+from sklearn.preprocessing import MinMaxScaler
+from sklearn.utils.estimator_checks import parametrize_with_checks
+
+import novelty
+from novelty.registry import detectors
+
+#: {detector name: {check name: reason}}
+EXPECTED_FAILURES: dict[str, dict[str, str]] = {}
+
+
+def _detectors():
+    return [novelty.make(name) for name in detectors.names()]
+
+
+def _expected_failures(estimator):
+    name = detectors.name_of(estimator) or ""
+    return EXPECTED_FAILURES.get(name, {})
+
+
+@parametrize_with_checks(_detectors(), expected_failed_checks=_expected_failures)
+def test_sklearn_compatible(estimator, check):
+    check(estimator)
+
+
+def test_clone_pipeline_and_grid_search():
+    rng = np.random.default_rng(0)
+    X = rng.random((200, 16))
+    det = novelty.make("hsom", n_rows=4, n_columns=4)
+    twin = clone(det)
+    assert twin.get_params()["clusterer__n_rows"] == 4 and twin is not det
+    pipe = make_pipeline(MinMaxScaler(), det).fit(X)
+    assert set(np.unique(pipe.predict(X))) <= {-1, 1}
+
+    def neg_mean_novelty(estimator, X, y=None):
+        return float(np.mean(estimator.score_samples(X)))
+
+    search = GridSearchCV(det, {"clusterer__learning_rate": [0.1, 0.25], "synapse__tau_winner": [3.33, 5.0]},
+                          scoring=neg_mean_novelty, cv=2).fit(X)
+    assert search.best_params_["clusterer__learning_rate"] in (0.1, 0.25)
+    assert search.best_estimator_.clusterer_.learning_rate == search.best_params_["clusterer__learning_rate"]
