@@ -267,6 +267,9 @@ clusterers = Registry(
     group="novelty.clusterers",
     builtins={
         "som": "novelty.clusterers.som:SOM",
+        "gng": "novelty.clusterers.gng:GrowingNeuralGas",
+        "gwr": "novelty.clusterers.gwr:GrowWhenRequired",
+        "online-kmeans": "novelty.clusterers.kmeans:OnlineKMeans",
     },
 )
 
