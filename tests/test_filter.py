@@ -1,0 +1,363 @@
+"""The habituating novelty filter: the paper's constants, the Euler descent of a
+repeated scan, learning on and off, streaming == batch, scikit-learn conventions,
+parameter routing and determinism."""
+
+import re
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+from sklearn.base import clone
+
+import novelty
+from novelty.clusterers.som import SOM
+from novelty.filter import HabituatingFilter
+from novelty.habituation.stanley import StanleySynapse
+from novelty.registry import InvalidParameterError
+
+TAU, ALPHA = 3.33, 1.05
+REST = 1 - 1 / ALPHA
+
+
+def euler(n):
+    """Efficacy of a synapse that has won n times in a row (closed form of the Euler step)."""
+    return REST + (1 - REST) * (1 - ALPHA / TAU) ** n
+
+
+def data(n=60, d=4, seed=0):
+    return np.random.default_rng(seed).uniform(size=(n, d))
+
+
+def small(**params):
+    return novelty.make("hsom", n_rows=4, n_columns=5, **params)
+
+
+def state(det):
+    """Every learned array and value of a fitted filter, copied."""
+    out = {"n_features_in_": det.n_features_in_, "last_time_": det.last_time_}
+    for part in ("clusterer_", "synapse_"):
+        for name, value in vars(getattr(det, part)).items():
+            out[f"{part}.{name}"] = value.copy() if isinstance(value, np.ndarray) else value
+    return out
+
+
+def assert_same_state(a, b):
+    assert a.keys() == b.keys()
+    for key in a:
+        if isinstance(a[key], np.ndarray):
+            np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+            assert a[key].dtype == b[key].dtype, key
+        elif isinstance(a[key], list):  # SOM neighbour table
+            assert len(a[key]) == len(b[key])
+            for u, v in zip(a[key], b[key]):
+                np.testing.assert_array_equal(u, v, err_msg=key)
+        else:
+            assert a[key] == b[key], key
+
+
+# -------------------------------------------------------- the paper's values
+def test_hsom_without_arguments_carries_every_constant_of_the_paper():
+    det = novelty.make("hsom")
+    assert isinstance(det, HabituatingFilter)
+    som, syn = det.clusterer, det.synapse
+    assert isinstance(som, SOM) and isinstance(syn, StanleySynapse)
+    assert (som.n_rows, som.n_columns) == (10, 10)
+    assert som.learning_rate == 0.25
+    assert som.radius == 1
+    assert som.decay == "constant"
+    assert syn.tau_winner == 3.33 and syn.tau_neighbour == 14.3
+    assert syn.alpha == 1.05 and syn.y0 == 1.0
+    assert syn.method == "euler"
+    assert syn.others == "hold" and syn.tau_forget is None
+    assert det.stimulus == 1.0 and det.n_epochs == 1
+    assert round(det.resting_novelty, 4) == 0.0476
+    det.fit(data(5, 16))
+    assert det.clusterer_.weights_.shape == (100, 16)
+    assert det.synapse_.efficacy_.shape == (100,)
+    assert det.clusterer_.current_radius() == 1 and det.clusterer_.current_learning_rate() == 0.25
+    # the 8 grid neighbours of an inner unit, 3 of a corner
+    assert len(det.clusterer_.match(det.clusterer_.weights_[55]).neighbours) == 8
+    assert len(det.clusterer_.match(det.clusterer_.weights_[0]).neighbours) == 3
+
+
+def test_make_habituating_by_names_equals_hsom():
+    a = novelty.make("habituating", clusterer="som", synapse="stanley")
+    b = novelty.make("hsom")
+    assert a.get_params(deep=True).keys() == b.get_params(deep=True).keys()
+    assert repr(a.get_params(deep=True)) == repr(b.get_params(deep=True))
+
+
+def test_a_repeated_scan_descends_the_euler_sequence_to_0_0476():
+    det = novelty.make("hsom")
+    scan = np.full(16, 0.5)
+    # 100 presentations: after about 120 the winner and its neighbours all sit within
+    # an ulp of the scan (squared distances ~1e-31) and rounding, not the map, picks
+    # the winner (a neighbour, whose efficacy is a little higher); see the next test.
+    out = np.array([det.score_learn_one(scan) for _ in range(100)])
+    assert out[0] == 1.0
+    np.testing.assert_allclose(out, [euler(n) for n in range(100)], rtol=1e-12, atol=1e-15)
+    assert [round(v, 4) for v in out[:4]] == [1.0, 0.6997, 0.4941, 0.3533]
+    assert np.all(np.diff(out) <= 0)
+    assert out.min() >= REST
+    assert round(out[-1], 4) == 0.0476 and out[-1] == pytest.approx(REST, abs=1e-15)
+    assert det.score_one(scan) == pytest.approx(REST, abs=1e-15)
+
+
+def test_a_long_repeated_scan_never_goes_below_the_resting_value():
+    det = novelty.make("hsom")
+    scan = np.full(16, 0.5)
+    out = np.array([det.score_learn_one(scan) for _ in range(400)])
+    assert out.min() >= REST
+    assert np.all(out[40:] < 0.048)  # 0.0476 once habituated, whichever unit wins the tie
+
+
+def test_novelty_is_the_winners_efficacy_before_learning():
+    det = small().fit(data(10))
+    det.synapse_.efficacy_[:] = np.linspace(0.1, 0.9, 20)
+    x = data(1, seed=9)[0]
+    winner = det.clusterer_.match(x).winner
+    before = det.synapse_.efficacy_[winner]
+    assert det.score_one(x) == before
+    assert det.score_learn_one(x) == before
+    assert det.synapse_.efficacy_[winner] < before  # learning happened after scoring
+
+
+def test_neighbours_habituate_others_hold_inside_the_filter():
+    det = novelty.make("hsom", n_rows=3, n_columns=3)
+    det.fit(np.zeros((1, 2)))  # one scan learned; reset the bank for a clean count
+    det.synapse_.efficacy_[:] = 1.0
+    det.clusterer_.weights_[:] = [[r, c] for r in range(3) for c in range(3)]
+    det.score_learn_one(np.array([0.0, 0.0]))  # corner unit 0 wins
+    eff = det.synapse_.efficacy_
+    assert eff[0] == pytest.approx(1 - 1 / 3.33)
+    np.testing.assert_allclose(eff[[1, 3, 4]], 1 - 1 / 14.3)
+    np.testing.assert_array_equal(eff[[2, 5, 6, 7, 8]], 1.0)
+
+
+# ----------------------------------------------------------- learning off
+def test_learning_off_is_a_pure_function_of_the_state():
+    det = small().fit(data())
+    X = data(30, seed=1)
+    before = state(det)
+    a = det.novelty(X)
+    b = det.stream(X, learn=False)
+    c = np.array([det.score_one(x) for x in X])
+    d = det.novelty(X)
+    assert_same_state(before, state(det))
+    np.testing.assert_array_equal(a, b)
+    np.testing.assert_array_equal(a, c)
+    np.testing.assert_array_equal(a, d)
+    rows, _ = det.clusterer_.winners(X)
+    np.testing.assert_array_equal(a, det.synapse_.efficacy_[rows])
+    a[:] = -1.0  # the returned array is the caller's, not the model's
+    np.testing.assert_array_equal(det.novelty(X), d)
+
+
+def test_score_samples_decision_function_predict_change_nothing():
+    det = small().fit(data())
+    before = state(det)
+    X = data(10, seed=2)
+    det.score_samples(X), det.decision_function(X), det.predict(X), det.winners(X)
+    assert_same_state(before, state(det))
+
+
+# ------------------------------------------------- streaming == batch learning
+def test_score_learn_one_equals_stream_row_by_row():
+    X = data(80)
+    a, b = small(), small()
+    out_a = a.stream(X)
+    out_b = np.array([b.score_learn_one(x) for x in X])
+    np.testing.assert_array_equal(out_a, out_b)
+    assert_same_state(state(a), state(b))
+    c = small()
+    for x in X:
+        assert c.learn_one(x) is c
+    assert_same_state(state(a), state(c))
+
+
+def test_partial_fit_equals_stream():
+    X = data(50)
+    a, b = small(), small()
+    assert a.partial_fit(X) is a
+    b.stream(X)
+    assert_same_state(state(a), state(b))
+
+
+def test_fit_resets_and_partial_fit_continues():
+    X1, X2 = data(40, seed=1), data(40, seed=2)
+    refit = small().fit(X1).fit(X2)
+    fresh = small().fit(X2)
+    assert_same_state(state(refit), state(fresh))
+    continued = small().fit(X1).partial_fit(X2)
+    at_once = small().partial_fit(np.vstack([X1, X2]))
+    assert_same_state(state(continued), state(at_once))
+    assert continued.clusterer_.n_updates_ == 80
+    assert not np.array_equal(continued.clusterer_.weights_, fresh.clusterer_.weights_)
+
+
+def test_fit_with_another_feature_count_starts_afresh():
+    det = small().fit(data(10, d=4))
+    det.fit(data(10, d=7))
+    assert det.n_features_in_ == 7 and det.clusterer_.weights_.shape == (20, 7)
+
+
+def test_n_epochs_is_repeated_passes():
+    X = data(30)
+    a = small(n_epochs=3).fit(X)
+    b = small().fit(X).partial_fit(X).partial_fit(X)
+    assert_same_state(state(a), state(b))
+    assert a.clusterer_.n_updates_ == 90
+
+
+def test_fit_does_not_touch_the_users_component_instances():
+    som, syn = SOM(n_rows=3, n_columns=3), StanleySynapse()
+    det = HabituatingFilter(clusterer=som, synapse=syn).fit(data(10))
+    assert not hasattr(som, "weights_") and not hasattr(syn, "efficacy_")
+    assert det.clusterer_ is not som and det.synapse_ is not syn
+
+
+def test_timestamps_integrate_the_elapsed_time():
+    scan = np.full((1, 3), 0.5)
+    a = novelty.make("hsom", n_rows=2, n_columns=2)
+    a.stream(scan, timestamps=[10.0])  # the first scan of a life is one step
+    a.stream(scan, timestamps=[12.0])  # two steps' worth
+    b = novelty.make("hsom", n_rows=2, n_columns=2)
+    b.stream(np.vstack([scan, scan]))
+    winner = b.clusterer_.match(scan[0]).winner
+    assert a.synapse_.efficacy_[winner] == pytest.approx(euler(3), rel=1e-13)
+    assert b.synapse_.efficacy_[winner] == pytest.approx(euler(2), rel=1e-13)
+    assert a.last_time_ == 12.0
+
+
+# ---------------------------------------------------- scikit-learn conventions
+def test_score_samples_decision_function_and_predict_at_the_threshold():
+    det = novelty.make("hsom", n_rows=1, n_columns=4, threshold=0.5).fit(np.zeros((1, 1)))
+    det.clusterer_.weights_[:] = [[0.0], [1.0], [2.0], [3.0]]
+    det.synapse_.efficacy_[:] = [0.2, 0.5, 0.5000001, 0.9]
+    X = np.array([[0.0], [1.0], [2.0], [3.0]])
+    nov = det.novelty(X)
+    np.testing.assert_array_equal(nov, [0.2, 0.5, 0.5000001, 0.9])
+    np.testing.assert_array_equal(det.score_samples(X), -nov)
+    np.testing.assert_allclose(det.decision_function(X), 0.5 - nov)
+    assert det.offset_ == -0.5
+    np.testing.assert_array_equal(np.sign(det.decision_function(X)), [1, 0, -1, -1])
+    np.testing.assert_array_equal(det.predict(X), [1, 1, -1, -1])  # at the threshold: normal
+    det.set_params(threshold=0.1)
+    np.testing.assert_array_equal(det.predict(X), [-1, -1, -1, -1])
+
+
+def test_fit_predict_and_clone():
+    det = small(threshold=0.8)
+    labels = det.fit_predict(data(20))
+    assert set(np.unique(labels)) <= {-1, 1}
+    twin = clone(det)
+    assert not hasattr(twin, "n_features_in_")
+    assert repr(twin.get_params(deep=True)) == repr(det.get_params(deep=True))
+
+
+# ---------------------------------------------------------- from_params
+def test_from_params_routes_flat_names():
+    det = novelty.make("hsom", n_rows=5, alpha=1.2, threshold=0.3, method="exact", random_state=4)
+    assert det.clusterer.n_rows == 5 and det.clusterer.n_columns == 10
+    assert det.synapse.alpha == 1.2 and det.synapse.method == "exact"
+    assert det.threshold == 0.3 and det.random_state == 4
+    assert det.synapse.tau_winner == 3.33  # untouched
+
+
+def test_from_params_routes_prefixed_names():
+    det = novelty.make("habituating", clusterer="som", synapse="stanley",
+                       clusterer__radius=2, synapse__tau_winner=5.0)
+    assert det.clusterer.radius == 2 and det.synapse.tau_winner == 5.0
+
+
+class RateSynapse(StanleySynapse):
+    """A synapse that (oddly) also has a learning rate, to make a name ambiguous."""
+
+    def __init__(self, tau_winner=3.33, learning_rate=0.5):
+        super().__init__(tau_winner=tau_winner)
+        self.learning_rate = learning_rate
+
+
+def test_from_params_refuses_an_ambiguous_name_and_accepts_the_prefixed_one():
+    with pytest.raises(InvalidParameterError, match=r"'learning_rate' is taken by both .*clusterer__learning_rate"):
+        HabituatingFilter.from_params(clusterer="som", synapse=RateSynapse(), learning_rate=0.3)
+    det = HabituatingFilter.from_params(clusterer="som", synapse=RateSynapse(), synapse__learning_rate=0.3)
+    assert det.synapse.learning_rate == 0.3 and det.clusterer.learning_rate == 0.25
+
+
+def test_from_params_with_an_instance_clones_it():
+    som = SOM(n_rows=3)
+    det = HabituatingFilter.from_params(clusterer=som, n_columns=2)
+    assert (det.clusterer.n_rows, det.clusterer.n_columns) == (3, 2)
+    assert som.n_columns == 10
+
+
+@pytest.mark.parametrize(
+    "params, expected",
+    [
+        ({"n_row": 5}, [r"'n_row' \(did you mean 'n_rows'\?\)", "n_rows", "tau_winner", "threshold"]),
+        ({"bogus": 1}, [r"Unknown parameter 'bogus'", "learning_rate", "alpha", "n_epochs"]),
+        ({"clusterer__tau_winner": 5}, [r"'tau_winner'", r"clusterer 'som'", "n_rows", "radius"]),
+        ({"synapse__n_rows": 5}, [r"'n_rows'", r"synapse 'stanley'", "tau_winner", "alpha"]),
+    ],
+)
+def test_unknown_names_list_the_valid_ones(params, expected):
+    with pytest.raises(InvalidParameterError) as info:
+        novelty.make("hsom", **params)
+    for pattern in expected:
+        assert re.search(pattern, str(info.value)), (pattern, str(info.value))
+    assert isinstance(info.value, TypeError) and isinstance(info.value, ValueError)
+
+
+# ---------------------------------------------------------- determinism
+def test_same_seed_same_outputs_different_seed_different_weights():
+    X = data(50)
+    a = novelty.make("hsom", random_state=11)
+    b = novelty.make("hsom", random_state=11)
+    c = novelty.make("hsom", random_state=12)
+    np.testing.assert_array_equal(a.stream(X), b.stream(X))
+    c.stream(X)
+    assert_same_state(state(a), state(b))
+    assert not np.array_equal(a.clusterer_.weights_, c.clusterer_.weights_)
+
+
+def test_default_seed_makes_fit_reproducible():
+    X = data(30)
+    np.testing.assert_array_equal(small().fit(X).novelty(X), small().fit(X).novelty(X))
+
+
+# ---------------------------------------------------------- properties
+@st.composite
+def filters_and_data(draw):
+    params = {
+        "n_rows": draw(st.integers(1, 4)),
+        "n_columns": draw(st.integers(1, 4)),
+        "learning_rate": draw(st.floats(0.0, 1.0)),
+        "radius": draw(st.integers(0, 2)),
+        "alpha": draw(st.floats(1.0, 3.0)),  # y0 = 1, alpha >= 1: rest = 1 - 1/alpha >= 0
+        "others": draw(st.sampled_from(["hold", "forget"])),
+        "method": draw(st.sampled_from(["euler", "exact"])),
+        "stimulus": draw(st.floats(0.0, 1.0)),
+        "random_state": draw(st.integers(0, 2**16)),
+    }
+    low = params["alpha"] if params["method"] == "euler" else 0.1
+    params["tau_winner"] = draw(st.floats(low, 30.0))
+    params["tau_neighbour"] = draw(st.floats(low, 30.0))
+    n_features = draw(st.integers(1, 4))
+    X = draw(hnp.arrays(np.float64, (draw(st.integers(1, 40)), n_features),
+                        elements=st.floats(-5, 5, allow_nan=False)))
+    return novelty.make("hsom", **params), X
+
+
+@settings(max_examples=40, deadline=None)
+@given(filters_and_data())
+def test_novelty_lies_in_0_1(case):
+    det, X = case
+    out = det.stream(X)
+    out2 = det.stream(X[::-1])
+    nov = det.novelty(X)
+    for values in (out, out2, nov):
+        assert np.all((values >= 0.0) & (values <= 1.0))
+    assert out[0] == 1.0  # the first scan of a fresh filter is fully novel
