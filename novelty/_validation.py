@@ -121,8 +121,17 @@ def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray
     """
     from sklearn.utils import check_array  # deferred: keeps ``import novelty`` light
 
-    X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
-                    ensure_all_finite=False)
+    try:
+        X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
+                        ensure_all_finite=False)
+    except ValueError as exc:
+        # numpy's own conversion errors name neither the model nor what it expects
+        if not str(exc).startswith(("could not convert", "setting an array element")):
+            raise
+        raise ValueError(
+            f"{type(owner).__name__} expects X as a 2-D array of numbers of shape "
+            f"(n_samples, n_features); got values that are not numeric ({exc})."
+        ) from None
     if not np.isfinite(X.sum()) and not np.all(np.isfinite(X)):
         bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
         raise ValueError(
