@@ -278,6 +278,7 @@ synapses = Registry(
     group="novelty.synapses",
     builtins={
         "stanley": "novelty.habituation.stanley:StanleySynapse",
+        "wang-hsu": "novelty.habituation.wang_hsu:WangHsuSynapse",
     },
 )
 

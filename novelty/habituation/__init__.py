@@ -2,5 +2,6 @@
 
 from .base import Synapse
 from .stanley import StanleySynapse
+from .wang_hsu import WangHsuSynapse
 
-__all__ = ["Synapse", "StanleySynapse"]
+__all__ = ["Synapse", "StanleySynapse", "WangHsuSynapse"]
