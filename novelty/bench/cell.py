@@ -1,0 +1,258 @@
+"""One benchmark cell: train a detector on a task as the robot does, then score.
+
+:func:`run_cell` is a pure function of the cell (detector spec, task spec,
+seed): every backend (serial, joblib, Dask) calls it the same way and gets the
+same numbers, apart from the measured times and memory. Whatever goes wrong
+inside a cell is caught and returned as a row with ``status = "error"``, so one
+failing cell never stops a run.
+
+The procedure, for a task whose scans are split into a training and a test
+part:
+
+1. Training. An online detector streams the training scans, in order,
+   ``train_passes`` times (``partial_fit``, novelty computed before each scan
+   is learned, exactly as a robot repeating its route). A batch-only detector
+   (``supports_online = False``) is ``fit`` once on the training scans.
+2. Threshold. The training scans are scored without learning; the alarm
+   threshold is their maximum (or the suite's quantile): see
+   :func:`novelty.bench.metrics.training_threshold`. Nothing of the test part
+   is used to set it.
+3. Test. The test scans are scored without learning (``novelty(X)``) and the
+   metrics of :mod:`novelty.bench.metrics` computed against the labels.
+4. False alarms. If the task's metadata holds a clean test pass
+   (``metadata["clean_test"]``: scans of the familiar route, as a Dataset or an
+   array), the alarms on it; otherwise the alarms on the normal test scans.
+5. Memory. Peak memory (``tracemalloc``) is measured by a second, identical run
+   of steps 1 and 3, so that the tracer's overhead does not distort the times.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import threading
+import time
+import traceback
+import tracemalloc
+import warnings
+from typing import Any
+
+import numpy as np
+
+from . import metrics
+from .suite import Cell
+
+__all__ = ["run_cell", "train_detector", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
+
+#: columns that depend only on the cell: identical across backends and reruns
+METRIC_COLUMNS = [
+    "n_train", "n_test", "n_novel", "train_passes",
+    "roc_auc", "average_precision", "tpr_at_1pct_fpr", "tpr_at_5pct_fpr",
+    "threshold", "detection_delay", "false_alarms", "false_alarm_rate", "false_alarm_source",
+    "integrated_novelty", "max_novelty", "resting_novelty", "n_units",
+]
+#: columns measured on the machine (times, memory): they vary from run to run
+MEASURED_COLUMNS = [
+    "train_time_s", "score_time_s", "train_scans_per_s", "score_scans_per_s", "peak_memory_mb",
+]
+
+_TRACE_LOCK = threading.Lock()  # tracemalloc is process-wide: one traced run at a time
+
+
+def _registries() -> dict:
+    from .. import registry
+    from ..datasets import registry as datasets
+
+    return {"detector": registry.detectors, "clusterer": registry.clusterers,
+            "synapse": registry.synapses, "dataset": datasets}
+
+
+def _ensure_registered(components) -> None:
+    """Register, in this (worker) process, the objects the parent resolved."""
+    registries = _registries()
+    for kind, name, obj in components:
+        registry = registries[kind]
+        try:
+            if name in registry and registry.get(name) is obj:
+                continue
+        except Exception:  # noqa: BLE001 - a broken entry is replaced below
+            pass
+        registry.register(name, obj, replace=True)
+
+
+@functools.lru_cache(maxsize=4)
+def _load_task_cached(name: str, options_json: str, seed: int):
+    from ..datasets import load, registry
+
+    options = json.loads(options_json)
+    valid = registry.parameters(name)
+    if "seed" not in options and (valid is None or "seed" in valid):
+        options["seed"] = seed
+    return load(name, **options)
+
+
+def load_task(cell: Cell):
+    """The cell's task (cached per process: datasets are immutable)."""
+    return _load_task_cached(cell.task.name, json.dumps(cell.task.options, sort_keys=True), cell.seed)
+
+
+def make_detector(cell: Cell):
+    """The cell's detector, seeded with the cell's seed unless the suite set one."""
+    from ..registry import detectors
+
+    det = detectors.make(cell.detector.name, **cell.detector.params)
+    if "random_state" not in cell.detector.params and hasattr(det, "get_params") \
+            and "random_state" in det.get_params(deep=False):
+        det.set_params(random_state=cell.seed)
+    return det
+
+
+def train_detector(det, X: np.ndarray, passes: int = 1):
+    """Train as the robot does: stream ``X`` ``passes`` times, or ``fit`` a batch-only detector."""
+    if getattr(det, "supports_online", True):
+        for _ in range(passes):
+            det.partial_fit(X)
+    else:
+        det.fit(X)
+    return det
+
+
+def _clean_pass(data) -> np.ndarray | None:
+    clean = data.metadata.get("clean_test")
+    if clean is None:
+        return None
+    return np.asarray(getattr(clean, "X", clean), dtype=np.float64)
+
+
+def _resting(det) -> float:
+    try:
+        value = getattr(det, "resting_novelty", None)
+    except Exception:  # noqa: BLE001 - a detector without a defined resting level
+        value = None
+    return 0.0 if value is None else float(value)
+
+
+def _n_units(det) -> float:
+    for owner in (getattr(det, "clusterer_", None), det):
+        n = getattr(owner, "n_units_", None) if owner is not None else None
+        if n is not None:
+            return int(n)
+    return float("nan")
+
+
+def _evaluate(cell: Cell) -> tuple[dict, dict]:
+    data = load_task(cell)
+    train, test = data.train(), data.test()
+    if test.y is None:
+        raise ValueError(f"Task {cell.task.name!r} has no labels (y) for its test part.")
+    if len(train) == 0 or len(test) == 0:
+        raise ValueError(f"Task {cell.task.name!r} has an empty training or test part.")
+    y = np.asarray(test.y).astype(bool)
+    passes = data.train_passes
+
+    det = make_detector(cell)
+    start = time.perf_counter()
+    train_detector(det, train.X, passes)
+    train_time = time.perf_counter() - start
+    start = time.perf_counter()
+    novelty = np.asarray(det.novelty(test.X), dtype=np.float64)
+    score_time = time.perf_counter() - start
+
+    threshold = metrics.training_threshold(det.novelty(train.X), cell.threshold)
+    clean = _clean_pass(data)
+    if clean is not None:
+        alarm_scores, source = det.novelty(clean), "clean pass"
+    else:
+        alarm_scores, source = novelty[~y], "normal test scans"
+    resting = _resting(det)
+    row = {
+        "n_train": len(train), "n_test": len(test), "n_novel": int(y.sum()), "train_passes": passes,
+        "roc_auc": metrics.roc_auc(novelty, y),
+        "average_precision": metrics.average_precision(novelty, y),
+        "tpr_at_1pct_fpr": metrics.tpr_at_fpr(novelty, y, 0.01),
+        "tpr_at_5pct_fpr": metrics.tpr_at_fpr(novelty, y, 0.05),
+        "threshold": threshold,
+        "detection_delay": metrics.detection_delay(novelty, y, threshold),
+        "false_alarms": metrics.count_alarms(alarm_scores, threshold),
+        "false_alarm_rate": metrics.count_alarms(alarm_scores, threshold) / max(len(alarm_scores), 1),
+        "false_alarm_source": source,
+        "integrated_novelty": metrics.integrated_novelty(novelty, resting),
+        "max_novelty": float(novelty.max()),
+        "resting_novelty": resting,
+        "n_units": _n_units(det),
+        "train_time_s": train_time,
+        "score_time_s": score_time,
+        "train_scans_per_s": len(train) * (passes if getattr(det, "supports_online", True) else 1)
+        / max(train_time, 1e-12),
+        "score_scans_per_s": len(test) / max(score_time, 1e-12),
+        "peak_memory_mb": _peak_memory(cell, train.X, passes, test.X) if cell.memory else float("nan"),
+    }
+    distance = test.distance if test.distance is not None else np.arange(len(test), dtype=float)
+    arrays = {"novelty": novelty, "y": y.astype(np.int8), "distance": np.asarray(distance, float),
+              "threshold": np.float64(threshold), "resting": np.float64(resting)}
+    if test.run is not None:
+        arrays["run"] = np.asarray(test.run)
+    return row, arrays
+
+
+def _peak_memory(cell: Cell, X_train: np.ndarray, passes: int, X_test: np.ndarray) -> float:
+    """Peak traced memory (MiB) of building, training and scoring the detector again."""
+    with _TRACE_LOCK:
+        was_tracing = tracemalloc.is_tracing()
+        if not was_tracing:
+            tracemalloc.start()
+        tracemalloc.reset_peak()
+        base = tracemalloc.get_traced_memory()[0]
+        try:
+            det = train_detector(make_detector(cell), X_train, passes)
+            det.novelty(X_test)
+            peak = tracemalloc.get_traced_memory()[1]
+        finally:
+            if not was_tracing:
+                tracemalloc.stop()
+    return (peak - base) / 2**20
+
+
+def cell_header(cell: Cell) -> dict:
+    """The columns that name a cell (written for failed cells too)."""
+    return {
+        "cell_id": cell.id,
+        "detector": cell.detector.label,
+        "detector_name": cell.detector.name,
+        "params": json.dumps(cell.detector.params, sort_keys=True, default=str),
+        "task": cell.task.label,
+        "task_name": cell.task.name,
+        "task_options": json.dumps(cell.task.options, sort_keys=True, default=str),
+        "seed": cell.seed,
+        "threshold_rule": cell.threshold,
+    }
+
+
+def run_cell(cell: Cell) -> tuple[dict, dict]:
+    """Run one cell; return its results row and its per-scan arrays (for plots).
+
+    Never raises for a failure inside the cell: the row then has
+    ``status = "error"`` and ``error`` (the exception, one line), and the
+    arrays are empty.
+    """
+    from threadpoolctl import threadpool_limits
+
+    row: dict[str, Any] = cell_header(cell)
+    arrays: dict = {}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            # One BLAS thread per cell: same arithmetic in every backend, no oversubscription.
+            with threadpool_limits(1):
+                _ensure_registered(cell.components)
+                values, arrays = _evaluate(cell)
+            row.update(values)
+            row["status"], row["error"] = "ok", ""
+        except Exception as exc:  # noqa: BLE001 - a failing cell is a result, not a crash
+            frame = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+            where = f" (at {frame.filename.rsplit('/', 1)[-1]}:{frame.lineno})" if frame else ""
+            message = " ".join(str(exc).split())
+            row["status"], row["error"] = "error", f"{type(exc).__name__}: {message}{where}"
+    messages = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
+    row["warnings"] = " | ".join(m[:200] for m in messages[:3])
+    return row, arrays

@@ -1,0 +1,159 @@
+"""Plots of a run (matplotlib, optional): ROC curves, novelty along the route, ranking.
+
+Every function returns the paths it wrote. Without matplotlib,
+:func:`matplotlib_missing` gives the one line to print instead.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections import defaultdict
+from pathlib import Path
+from typing import Callable, Sequence
+
+import numpy as np
+
+from . import metrics
+from .summary import per_task, rank_detectors
+
+__all__ = ["matplotlib_missing", "plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route"]
+
+
+def matplotlib_missing() -> str | None:
+    """``None`` if matplotlib is importable, else the line to tell the user."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return "Plots skipped: matplotlib is not installed (pip install 'novelty[plot]')."
+    return None
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _slug(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9_.-]+", "-", text).strip("-") or "task"
+
+
+def _first_seed_cells(rows: Sequence[dict]) -> dict[str, dict[str, dict]]:
+    """``{task: {detector: row}}`` for the lowest seed of each successful (task, detector)."""
+    chosen: dict[str, dict[str, dict]] = defaultdict(dict)
+    for row in sorted(rows, key=lambda r: r["seed"]):
+        if row.get("status") == "ok" and row["detector"] not in chosen[row["task"]]:
+            chosen[row["task"]][row["detector"]] = row
+    return chosen
+
+
+def _grid(n: int):
+    cols = min(n, 3)
+    return math.ceil(n / cols), cols
+
+
+def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:
+    """One panel a task, one ROC curve a detector (lowest seed)."""
+    plt = _pyplot()
+    chosen = _first_seed_cells(rows)
+    if not chosen:
+        return []
+    n_rows, n_cols = _grid(len(chosen))
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(4.2 * n_cols, 4 * n_rows), squeeze=False)
+    for ax, (task, cells) in zip(axes.flat, chosen.items()):
+        for detector, row in cells.items():
+            a = arrays(row["cell_id"])
+            if a is None or not 0 < a["y"].sum() < a["y"].size:
+                continue
+            fpr, tpr, _ = metrics.roc_points(a["novelty"], a["y"])
+            ax.plot(fpr, tpr, drawstyle="steps-post", label=f"{detector} ({row['roc_auc']:.2f})")
+        ax.plot([0, 1], [0, 1], color="0.7", linewidth=0.8, linestyle=":")
+        ax.set(title=task, xlabel="false-positive rate", ylabel="true-positive rate", xlim=(0, 1), ylim=(0, 1.01))
+        ax.legend(fontsize=7, loc="lower right")
+    for ax in list(axes.flat)[len(chosen):]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    path = out / "roc.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
+def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, resting=None) -> None:
+    """Novelty along the route on ``ax``, novel scans shaded, threshold dashed."""
+    novelty = np.asarray(novelty, dtype=float)
+    x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
+    if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
+        x = np.arange(novelty.size)
+    if y is not None and np.any(y):
+        ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
+        ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
+                        step="mid", linewidth=0, label="novel scans")
+    ax.plot(x, novelty, linewidth=1.0, label=label)
+    if threshold is not None and np.isfinite(threshold):
+        ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8, label="threshold")
+    if resting:
+        ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting")
+
+
+def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:
+    """One figure a task: the test novelty along the route, one panel a detector."""
+    plt = _pyplot()
+    paths = []
+    for task, cells in _first_seed_cells(rows).items():
+        fig, axes = plt.subplots(len(cells), 1, figsize=(9, 1.7 * len(cells) + 0.6), squeeze=False,
+                                 sharex=True)
+        for ax, (detector, row) in zip(axes[:, 0], cells.items()):
+            a = arrays(row["cell_id"])
+            if a is None:
+                continue
+            has_distance = bool(np.any(a["distance"] != np.arange(a["distance"].size)))
+            plot_route(ax, a["novelty"], a["y"], a["distance"] if has_distance else None,
+                       float(a["threshold"]), resting=float(a["resting"]))
+            ax.set_ylabel("novelty", fontsize=8)
+            ax.set_title(detector, fontsize=9, loc="left")
+        axes[-1, 0].set_xlabel("distance along the route (m) or scan")
+        fig.suptitle(f"{task}: novelty of the test scans (shaded: novel)", fontsize=10)
+        fig.tight_layout()
+        path = out / f"route-{_slug(task)}.png"
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        paths.append(path)
+    return paths
+
+
+def plot_ranking(rows: Sequence[dict], out: Path) -> list[Path]:
+    """Mean ROC AUC per task and detector, with the spread over seeds."""
+    plt = _pyplot()
+    order = [r["detector"] for r in rank_detectors(rows)]
+    table = per_task(rows)
+    tasks = list(dict.fromkeys(r["task"] for r in rows))
+    if not order or not tasks:
+        return []
+    fig, ax = plt.subplots(figsize=(max(6, 1.1 * len(order) + 3), 4.5))
+    width = 0.8 / len(tasks)
+    for j, task in enumerate(tasks):
+        means = [table.get(d, {}).get(task, (np.nan, np.nan))[0] for d in order]
+        sds = [table.get(d, {}).get(task, (np.nan, np.nan))[1] for d in order]
+        xs = np.arange(len(order)) + (j - (len(tasks) - 1) / 2) * width
+        ax.bar(xs, means, width, yerr=np.nan_to_num(sds), capsize=2, label=task)
+    ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+    ax.set_xticks(np.arange(len(order)), order, rotation=30, ha="right", fontsize=8)
+    ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05), title="Detectors ranked by mean ROC AUC")
+    ax.legend(fontsize=7, ncols=min(len(tasks), 4))
+    fig.tight_layout()
+    path = out / "ranking.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
+def plot_run(rows: Sequence[dict], arrays: Callable[[str], dict | None], out) -> list[Path]:
+    """Every plot of a run into ``out``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    return plot_roc(rows, arrays, out) + plot_routes(rows, arrays, out) + plot_ranking(rows, out)

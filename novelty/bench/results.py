@@ -1,0 +1,155 @@
+"""Results on disk: ``results.jsonl`` (the record), ``results.csv``, per-cell arrays.
+
+``results.jsonl`` is appended one line per finished cell, flushed at once, so
+an interrupted run loses at most the cells that were running; it is the resume
+record. A cell whose ``cell_id`` is there with ``status = "ok"`` is not run
+again; a failed cell is run again (its new line supersedes the old one).
+``results.csv`` is rewritten from it after every run. The novelty of every
+test scan of a cell goes to ``cells/<cell_id>.npz`` for the plots.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+from datetime import datetime, timezone
+from importlib import metadata as importlib_metadata
+from pathlib import Path
+from typing import Iterable
+
+import numpy as np
+
+__all__ = ["ResultsStore", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_CSV"]
+
+RESULTS_JSONL = "results.jsonl"
+RESULTS_CSV = "results.csv"
+_VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "joblib", "dask", "distributed")
+
+
+def _version(dist: str) -> str | None:
+    try:
+        return importlib_metadata.version(dist)
+    except importlib_metadata.PackageNotFoundError:
+        if dist == "novelty":
+            from .. import __version__
+
+            return __version__
+        return None
+
+
+def git_revision() -> str | None:
+    """The git commit of the novelty source tree, if it is a checkout (``+dirty`` if modified)."""
+    root = Path(__file__).resolve().parents[2]
+    if not (root / ".git").exists():
+        return None
+    try:
+        rev = subprocess.run(["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True,
+                             text=True, timeout=10, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, timeout=10).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        return None
+    return rev + ("+dirty" if dirty else "")
+
+
+def provenance() -> dict:
+    """Columns recording where a row came from: versions, git revision, machine, time."""
+    versions = {name: v for name in _VERSIONED if (v := _version(name)) is not None}
+    versions["python"] = platform.python_version()
+    return {
+        "versions": json.dumps(versions, sort_keys=True),
+        "git_revision": git_revision() or "",
+        "host": platform.node(),
+        "platform": f"{sys.platform}-{platform.machine()}",
+        "finished_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    }
+
+
+def _jsonable(value):
+    if isinstance(value, (np.integer,)):
+        return int(value)
+    if isinstance(value, (np.floating, float)):
+        value = float(value)
+        return None if math.isnan(value) else value
+    if isinstance(value, np.bool_):
+        return bool(value)
+    return value
+
+
+def read_rows(path) -> list[dict]:
+    """Rows of a ``results.jsonl`` (later rows of the same cell win; torn lines skipped)."""
+    path = Path(path)
+    if path.is_dir():
+        path = path / RESULTS_JSONL
+    rows: dict[str, dict] = {}
+    if not path.exists():
+        return []
+    with open(path, encoding="utf-8") as fh:
+        for line in fh:
+            line = line.strip()
+            if not line:
+                continue
+            try:
+                row = json.loads(line)
+            except ValueError:  # the last line of an interrupted run
+                continue
+            if isinstance(row, dict) and "cell_id" in row:
+                rows.pop(row["cell_id"], None)
+                rows[row["cell_id"]] = row
+    return list(rows.values())
+
+
+class ResultsStore:
+    """The output folder of a benchmark run."""
+
+    def __init__(self, out):
+        self.out = Path(out)
+        self.jsonl = self.out / RESULTS_JSONL
+        self.csv = self.out / RESULTS_CSV
+        self.cells_dir = self.out / "cells"
+
+    def prepare(self) -> None:
+        if self.out.exists() and not self.out.is_dir():
+            raise FileExistsError(f"--out {self.out} exists and is not a folder.")
+        self.cells_dir.mkdir(parents=True, exist_ok=True)
+
+    def rows(self) -> list[dict]:
+        return read_rows(self.jsonl)
+
+    def done(self) -> set[str]:
+        """Ids of the cells that finished without error."""
+        return {r["cell_id"] for r in self.rows() if r.get("status") == "ok"}
+
+    def append(self, row: dict, arrays: dict | None = None) -> None:
+        if arrays:
+            np.savez(self.cells_dir / f"{row['cell_id']}.npz", **arrays)
+        with open(self.jsonl, "a", encoding="utf-8") as fh:
+            fh.write(json.dumps({k: _jsonable(v) for k, v in row.items()}, default=str) + "\n")
+            fh.flush()
+            os.fsync(fh.fileno())
+
+    def arrays(self, cell_id: str) -> dict | None:
+        path = self.cells_dir / f"{cell_id}.npz"
+        if not path.exists():
+            return None
+        with np.load(path, allow_pickle=False) as npz:
+            return {k: npz[k] for k in npz.files}
+
+    def write_csv(self, rows: Iterable[dict] | None = None) -> Path:
+        rows = list(self.rows() if rows is None else rows)
+        columns: list[str] = []
+        for row in rows:
+            columns.extend(k for k in row if k not in columns)
+        tmp = self.csv.with_suffix(".csv.tmp")
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=columns, restval="")
+            writer.writeheader()
+            for row in rows:
+                writer.writerow({k: "" if v is None else v for k, v in row.items()})
+        os.replace(tmp, self.csv)
+        return self.csv

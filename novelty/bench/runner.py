@@ -1,0 +1,87 @@
+"""A whole run: skip finished cells, execute the rest, record, summarise, plot."""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TextIO
+
+from .backends import execute
+from .progress import Progress
+from .results import ResultsStore, provenance
+from .suite import Suite
+from .summary import ranking_text, summary_markdown
+
+__all__ = ["run_bench", "BenchReport"]
+
+
+@dataclass
+class BenchReport:
+    """What a run did and where it wrote it."""
+
+    out: Path
+    rows: list[dict]                    # every cell of the suite, old and new
+    ran: int = 0
+    skipped: int = 0
+    failed: int = 0
+    interrupted: bool = False
+    files: list[Path] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def table(self) -> str:
+        return ranking_text(self.rows)
+
+
+def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, scheduler: str | None = None,
+              plots: bool = True, progress: TextIO | None = None, quiet: bool = False,
+              client=None) -> BenchReport:
+    """Run ``suite`` into the folder ``out`` and return a :class:`BenchReport`.
+
+    Cells already finished in ``out/results.jsonl`` are skipped (resume).
+    ``backend`` is ``"serial"``, ``"joblib"`` (``jobs`` processes) or
+    ``"dask"`` (the scheduler at ``scheduler``, or a local cluster of ``jobs``
+    workers; or an existing ``client``).
+    """
+    store = ResultsStore(out)
+    store.prepare()
+    cells = list({c.id: c for c in suite.cells()}.values())
+    done = store.done()
+    todo = [c for c in cells if c.id not in done]
+    report = BenchReport(store.out, [], skipped=len(cells) - len(todo))
+    stream = progress if progress is not None else sys.stderr
+    if report.skipped and not quiet:
+        print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
+    stamp = provenance()
+    try:
+        with Progress(len(todo), stream=stream, quiet=quiet) as bar:
+            for row, arrays in execute(todo, backend, jobs, scheduler, client=client):
+                row.update(stamp)
+                store.append(row, arrays)
+                report.ran += 1
+                bar.update(row)
+    except KeyboardInterrupt:
+        report.interrupted = True
+    ids = {c.id for c in cells}
+    report.rows = [r for r in store.rows() if r["cell_id"] in ids]
+    report.failed = sum(r.get("status") != "ok" for r in report.rows)
+    report.files.append(store.write_csv())
+    report.files.append(store.jsonl)
+    if suite.skipped:
+        report.notes.append(f"Not registered here, skipped: {', '.join(suite.skipped)}.")
+    if suite.threshold != "max":
+        report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
+    summary = store.out / "summary.md"
+    summary.write_text(summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes),
+                       encoding="utf-8")
+    report.files.append(summary)
+    if plots and report.rows and not report.interrupted:
+        from .plots import matplotlib_missing, plot_run
+
+        missing = matplotlib_missing()
+        if missing:
+            report.notes.append(missing)
+        else:
+            report.files.extend(plot_run(report.rows, store.arrays, store.out / "plots"))
+    return report

@@ -1,0 +1,88 @@
+"""The ``novelty`` command line.
+
+Each command is one module of this package with two functions,
+``add_parser(subparsers)`` and ``run(args) -> int``, listed in
+:data:`COMMANDS`. Adding a command is adding a module and one line here.
+User errors (unknown names, bad parameters, missing or malformed files, bad
+data) are printed as one line on stderr with exit code 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from typing import Sequence
+
+from ._common import NoveltyParser, one_line, user_errors
+
+__all__ = ["main", "COMMANDS", "build_parser"]
+
+#: command name -> module of this package that implements it, in --help order
+COMMANDS = {
+    "list": "novelty.cli.list_",
+    "bench": "novelty.cli.bench",
+    "run": "novelty.cli.run",
+    "score": "novelty.cli.score",
+    "simulate": "novelty.cli.simulate",
+    "plot": "novelty.cli.plot",
+}
+
+_EPILOG = """examples:
+  novelty list
+  novelty bench --quick --out results/quick
+  novelty run hsom --data scans.csv --out novelty.csv --save hsom.npz
+  novelty score --model hsom.npz --data new-scans.csv
+  novelty simulate paper-a --runs 3 --out corridor-a.npz
+  novelty plot novelty.csv --out route.png
+
+run 'novelty COMMAND --help' for the options and examples of each command."""
+
+
+def build_parser() -> NoveltyParser:
+    from .. import __version__
+
+    parser = NoveltyParser(
+        prog="novelty",
+        description="Habituation-based novelty detection: list components, benchmark detectors, "
+        "run and score detectors on scans, simulate sonar corridors.",
+        epilog=_EPILOG,
+    )
+    parser.add_argument("--version", action="version", version=f"novelty {__version__}")
+    parser.add_argument("--traceback", action="store_true",
+                        help="show the full traceback of an unexpected error (for bug reports)")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=NoveltyParser)
+    for name, module in COMMANDS.items():
+        command = importlib.import_module(module)
+        command.add_parser(sub).set_defaults(_run=command.run, _command=name)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``novelty`` command line; return the exit code."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a usage error already printed
+        return exc.code if isinstance(exc.code, int) else 0
+    if getattr(args, "_run", None) is None:
+        parser.print_help(sys.stderr)
+        return 2
+    prog = f"novelty {args._command}"
+    try:
+        return int(args._run(args) or 0)
+    except user_errors() as exc:
+        print(f"{prog}: error: {one_line(exc)}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print(f"{prog}: interrupted.", file=sys.stderr)
+        return 130
+    except Exception as exc:  # noqa: BLE001 - a bug: one line unless asked for details
+        if args.traceback:
+            raise
+        print(f"{prog}: internal error: {type(exc).__name__}: {one_line(exc)} "
+              "(rerun with 'novelty --traceback ...' and report it)", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

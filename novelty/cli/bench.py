@@ -1,0 +1,119 @@
+"""``novelty bench``: run a benchmark suite and print the ranked table."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from ._common import UserError, add_command
+
+DESCRIPTION = """Run detectors x tasks x seeds and rank the detectors.
+
+Each cell streams the task's training scans through the detector (as many
+passes as the task says), sets an alarm threshold from the training novelty,
+then scores the test scans without learning. Results go to --out:
+results.csv and results.jsonl (one row a cell, with provenance), summary.md
+(the ranking) and plots/. Rerunning the same command resumes: finished cells
+are skipped. A suite is a TOML file (see benchmarks/suites/), the embedded
+--quick suite, or --detector/--task options."""
+
+EXAMPLES = [
+    "novelty bench --quick --out results/quick",
+    "novelty bench benchmarks/suites/paper.toml --out results/paper --jobs 2",
+    "novelty bench suite.toml --out results --backend dask --scheduler tcp://10.0.0.5:8786",
+    "novelty bench --detector hsom --detector 'habituating clusterer=som n_rows=5' "
+    "--task inspection-easy --seeds 0,1,2 --out results/mine",
+]
+
+
+def add_parser(subparsers):
+    parser = add_command(subparsers, "bench", "run a benchmark suite (detectors x tasks x seeds)",
+                         DESCRIPTION, EXAMPLES)
+    parser.add_argument("suite", nargs="?", metavar="SUITE.toml", help="suite file")
+    parser.add_argument("--out", metavar="DIR", default="novelty-bench",
+                        help="output folder (default: ./novelty-bench)")
+    parser.add_argument("--quick", action="store_true",
+                        help="the embedded default suite (under a minute on 2 cores)")
+    parser.add_argument("--detector", action="append", metavar="'NAME [k=v ...]'",
+                        help="a detector with its parameters (repeatable; replaces the suite's)")
+    parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",
+                        help="a task with its options (repeatable; replaces the suite's)")
+    parser.add_argument("--seeds", metavar="S,S,..|N", help="seeds, as a list '0,1,2' or a count '3'")
+    parser.add_argument("--threshold", metavar="max|Q",
+                        help="alarm threshold: 'max' of the training novelty, or a quantile Q in (0, 1]")
+    parser.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
+                        help="cells run at once (processes or Dask workers; default 1)")
+    parser.add_argument("--backend", choices=("serial", "joblib", "dask"),
+                        help="serial, joblib (processes on this machine) or dask "
+                        "(default: serial, joblib with --jobs > 1, dask with --scheduler)")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="Dask scheduler address (default with --backend dask: a local cluster)")
+    parser.add_argument("--no-plots", action="store_true", help="do not draw plots")
+    parser.add_argument("--no-memory", action="store_true",
+                        help="skip the peak-memory measurement (a second, traced run of each cell)")
+    parser.add_argument("--quiet", "-q", action="store_true", help="no progress output")
+    return parser
+
+
+def _seeds(text: str) -> list[int]:
+    try:
+        if "," not in text and text.strip().isdigit():
+            return list(range(int(text)))
+        return [int(s) for s in text.split(",") if s.strip()]
+    except ValueError:
+        raise UserError(f"--seeds must be a list like 0,1,2 or a count like 3; got {text!r}.") from None
+
+
+def build_suite(args):
+    """The suite the options describe (file, --quick, and command-line overrides)."""
+    from ..bench.suite import (Suite, detector_from_text, load_suite, parse_value, quick_suite_path,
+                               task_from_text)
+
+    if args.suite and args.quick:
+        raise UserError("Give either a suite file or --quick, not both.")
+    if args.suite or args.quick:
+        suite = load_suite(args.suite or quick_suite_path())
+    elif args.detector and args.task:
+        suite = Suite([], [], name="command line")
+    else:
+        raise UserError("Nothing to run: give a suite file, --quick, or both --detector and --task.")
+    if args.detector:
+        suite.detectors = [detector_from_text(t) for t in args.detector]
+    if args.task:
+        suite.tasks = [task_from_text(t) for t in args.task]
+    if args.seeds:
+        suite.seeds = _seeds(args.seeds)
+    if args.threshold:
+        suite.threshold = parse_value(args.threshold)
+    if args.no_memory:
+        suite.memory = False
+    return suite.check()
+
+
+def run(args) -> int:
+    from ..bench.runner import run_bench
+
+    if args.jobs < 1:
+        raise UserError(f"--jobs must be at least 1; got {args.jobs}.")
+    backend = args.backend or ("dask" if args.scheduler else "joblib" if args.jobs > 1 else "serial")
+    if args.scheduler and backend != "dask":
+        raise UserError("--scheduler is for --backend dask.")
+    suite = build_suite(args)
+    n_cells = len(suite.detectors) * len(suite.tasks) * len(suite.seeds)
+    if not args.quiet:
+        print(f"Suite {suite.name!r}: {len(suite.detectors)} detectors x {len(suite.tasks)} tasks x "
+              f"{len(suite.seeds)} seeds = {n_cells} cells, backend {backend}"
+              + (f" ({args.jobs} jobs)" if backend != "serial" else "") + ".", file=sys.stderr)
+    report = run_bench(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
+                       plots=not args.no_plots, quiet=args.quiet)
+    print(report.table)
+    for note in report.notes:
+        print(note)
+    if report.failed:
+        print(f"{report.failed} cell(s) failed; their errors are in {os.path.join(args.out, 'summary.md')}.")
+    print(f"Results in {args.out}: results.csv, results.jsonl, summary.md"
+          + (", plots/" if any(p.suffix == ".png" for p in report.files) else "") + ".")
+    if report.interrupted:
+        print("Interrupted: rerun the same command to resume.", file=sys.stderr)
+        return 130
+    return 0

@@ -1,0 +1,51 @@
+"""``novelty list``: every registered detector, clusterer, synapse and dataset."""
+
+from __future__ import annotations
+
+from ._common import add_command
+
+KINDS = ("detectors", "clusterers", "synapses", "datasets")
+
+
+def add_parser(subparsers):
+    parser = add_command(
+        subparsers, "list", "list detectors, clusterers, synapses, datasets and tasks",
+        "List every registered component by kind, with its one-line description. Plugins "
+        "installed through the novelty.* entry-point groups are listed too.",
+        ["novelty list", "novelty list detectors", "novelty list datasets"],
+    )
+    parser.add_argument("kind", nargs="?", choices=KINDS, help="list only this kind")
+    return parser
+
+
+def _registries():
+    from .. import registry
+    from ..datasets import registry as datasets
+
+    return {"detectors": registry.detectors, "clusterers": registry.clusterers,
+            "synapses": registry.synapses, "datasets": datasets}
+
+
+def _describe(registry, name: str) -> str:
+    try:
+        return registry.describe(name) or ""
+    except Exception as exc:  # noqa: BLE001 - a broken plugin must not hide the others
+        return f"(cannot be loaded: {type(exc).__name__}: {' '.join(str(exc).split())})"
+
+
+def run(args) -> int:
+    registries = _registries()
+    kinds = [args.kind] if args.kind else list(KINDS)
+    for i, kind in enumerate(kinds):
+        registry = registries[kind]
+        names = registry.names()
+        title = "datasets and tasks" if kind == "datasets" else kind
+        if i:
+            print()
+        print(f"{title.capitalize()} ({len(names)}):")
+        width = max((len(n) for n in names), default=0)
+        for name in names:
+            print(f"  {name.ljust(width)}  {_describe(registry, name)}")
+        if not names:
+            print("  (none registered)")
+    return 0

@@ -1,0 +1,134 @@
+"""``novelty plot``: novelty along the route, from a benchmark or a 'novelty run' output."""
+
+from __future__ import annotations
+
+import csv
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ._common import UserError, add_command
+
+DESCRIPTION = """Plot the novelty along the route.
+
+RESULTS is either the output folder of 'novelty bench' (or its results.jsonl
+or results.csv): one panel a detector, for one task and seed, with the novel
+scans shaded and the alarm threshold dashed; or the output of 'novelty run' /
+'novelty score' (.csv or .npz with a 'novelty' column, and optionally
+'distance' and 'y')."""
+
+EXAMPLES = [
+    "novelty plot novelty.csv --out route.png",
+    "novelty plot results/quick --task inspection-easy --seed 0 --out easy.png",
+]
+
+
+def add_parser(subparsers):
+    parser = add_command(subparsers, "plot", "plot novelty along the route from a results file",
+                         DESCRIPTION, EXAMPLES)
+    parser.add_argument("results", metavar="RESULTS", help="bench folder, results.jsonl/.csv, or run output")
+    parser.add_argument("--out", required=True, metavar="PNG", help="image to write")
+    parser.add_argument("--task", help="task to plot (bench results; default: the first)")
+    parser.add_argument("--seed", type=int, help="seed to plot (bench results; default: the lowest)")
+    parser.add_argument("--detector", action="append", help="detectors to plot (default: all)")
+    return parser
+
+
+def _pyplot():
+    from ..bench.plots import _pyplot, matplotlib_missing
+
+    missing = matplotlib_missing()
+    if missing:
+        raise UserError("novelty plot needs matplotlib: pip install 'novelty[plot]'.")
+    return _pyplot()
+
+
+def _bench_folder(path: Path) -> Path | None:
+    if path.is_dir():
+        return path if (path / "results.jsonl").exists() else None
+    if path.name == "results.jsonl":
+        return path.parent
+    if path.suffix.lower() == ".csv":
+        with open(path, newline="", encoding="utf-8") as fh:
+            header = next(csv.reader(fh), [])
+        if "cell_id" in header:
+            return path.parent
+    return None
+
+
+def _read_run_output(path: Path) -> dict:
+    if path.suffix.lower() == ".npz":
+        with np.load(path, allow_pickle=False) as npz:
+            data = {k: npz[k] for k in npz.files}
+    else:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.DictReader(fh))
+        if not rows:
+            raise UserError(f"{path} has no rows.")
+        try:
+            data = {k: np.array([float(r[k]) for r in rows]) for k in rows[0] if k in ("novelty", "distance", "y")}
+        except (TypeError, ValueError):
+            raise UserError(f"{path}: the novelty, distance and y columns must be numbers.") from None
+    if "novelty" not in data:
+        raise UserError(f"{path} has no 'novelty' column; expected the output of 'novelty run' or a bench folder.")
+    return data
+
+
+def _plot_bench(folder: Path, args, plt):
+    from ..bench.plots import plot_route
+    from ..bench.results import ResultsStore
+
+    store = ResultsStore(folder)
+    rows = [r for r in store.rows() if r.get("status") == "ok"]
+    if not rows:
+        raise UserError(f"{folder} holds no successful cells to plot.")
+    tasks = list(dict.fromkeys(r["task"] for r in rows))
+    task = args.task or tasks[0]
+    if task not in tasks:
+        raise UserError(f"No task {task!r} in {folder}; it has {', '.join(tasks)}.")
+    rows = [r for r in rows if r["task"] == task]
+    seed = min(r["seed"] for r in rows) if args.seed is None else args.seed
+    rows = [r for r in rows if r["seed"] == seed]
+    if args.detector:
+        unknown = sorted(set(args.detector) - {r["detector"] for r in rows})
+        if unknown:
+            raise UserError(f"No detector {unknown[0]!r} for task {task!r}, seed {seed} in {folder}.")
+        rows = [r for r in rows if r["detector"] in args.detector]
+    if not rows:
+        raise UserError(f"No cells for task {task!r} with seed {seed} in {folder}.")
+    fig, axes = plt.subplots(len(rows), 1, figsize=(9, 1.7 * len(rows) + 0.6), squeeze=False, sharex=True)
+    for ax, row in zip(axes[:, 0], rows):
+        a = store.arrays(row["cell_id"])
+        if a is None:
+            raise UserError(f"The per-scan novelty of {row['detector']} is missing from {folder}/cells.")
+        plot_route(ax, a["novelty"], a["y"], a["distance"], float(a["threshold"]), resting=float(a["resting"]))
+        ax.set_title(row["detector"], fontsize=9, loc="left")
+        ax.set_ylabel("novelty", fontsize=8)
+    axes[-1, 0].set_xlabel("distance along the route (m) or scan")
+    fig.suptitle(f"{task}, seed {seed}: novelty of the test scans", fontsize=10)
+    return fig
+
+
+def run(args) -> int:
+    path = Path(args.results)
+    if not path.exists():
+        raise UserError(f"Results not found: {path}")
+    plt = _pyplot()
+    folder = _bench_folder(path)
+    if folder is not None:
+        fig = _plot_bench(folder, args, plt)
+    elif path.is_dir():
+        raise UserError(f"{path} is not a benchmark output folder (no results.jsonl).")
+    else:
+        from ..bench.plots import plot_route
+
+        data = _read_run_output(path)
+        fig, ax = plt.subplots(figsize=(9, 3))
+        plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
+        ax.set(xlabel="distance (m)" if "distance" in data else "scan", ylabel="novelty", title=path.name)
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=110)
+    plt.close(fig)
+    print(f"Wrote {args.out}.", file=sys.stderr)
+    return 0

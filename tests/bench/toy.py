@@ -1,0 +1,45 @@
+"""A tiny synthetic task and a detector that fails, for the harness tests.
+
+Importable by worker processes (joblib, Dask), which get the test folder on
+their path from the parent.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from novelty.datasets import Dataset
+
+TASK = "bench-toy-task"
+BROKEN = "bench-broken-detector"
+
+
+def toy_task(seed=0, n_train=40, n_test=30, n_sensors=4, novel_at=12, novel_len=6, fail=False):
+    """Normal scans near 0.3, a block of novel scans near 0.8 in the test part."""
+    if fail:
+        raise RuntimeError("the toy task was asked to fail")
+    rng = np.random.default_rng(seed)
+    train = 0.3 + 0.03 * rng.standard_normal((n_train, n_sensors))
+    test = 0.3 + 0.03 * rng.standard_normal((n_test, n_sensors))
+    y_test = np.zeros(n_test, dtype=int)
+    y_test[novel_at:novel_at + novel_len] = 1
+    test[y_test == 1] += 0.5
+    X = np.vstack([train, test])
+    y = np.r_[np.zeros(n_train, dtype=int), y_test]
+    split = np.array(["train"] * n_train + ["test"] * n_test)
+    distance = np.r_[np.arange(n_train), np.arange(n_test)] * 0.1
+    return Dataset(TASK, X, y=y, split=split, distance=distance,
+                   metadata={"train_passes": 2, "seed": seed})
+
+
+def broken_detector(**params):
+    """A detector whose training always fails."""
+    import novelty
+
+    det = novelty.make("hsom", **params)
+
+    def fail(*args, **kwargs):
+        raise FloatingPointError("this detector always fails")
+
+    det.partial_fit = fail
+    return det
