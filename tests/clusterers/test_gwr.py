@@ -1,0 +1,193 @@
+"""The Grow-When-Required network against steps computed by hand (Marsland et al. 2002)."""
+
+import math
+
+import numpy as np
+import pytest
+from sklearn.base import clone
+
+from novelty._component import StateError
+from novelty.clusterers.gwr import GrowWhenRequired
+from novelty.habituation.stanley import StanleySynapse
+
+ALPHA, TAU_B, TAU_N = 1.05, 3.33, 14.3
+
+
+def exact_step(h, tau, stimulus=1.0):
+    """One firing of Stanley's equation solved exactly (the paper's closed form, one step)."""
+    h_inf = 1.0 - stimulus / ALPHA
+    return h_inf + (h - h_inf) * math.exp(-ALPHA / tau)
+
+
+def closed_form(t, tau):
+    """The paper's h(t) = h0 - S/alpha (1 - exp(-alpha t / tau)) with h0 = S = 1."""
+    return 1.0 - (1.0 - math.exp(-ALPHA * t / tau)) / ALPHA
+
+
+def gwr_by_hand(weights, edges=(), counters=None, unit_ids=None, **params):
+    """A network with the given units, edges ({(i, j): age}) and firing counters, via the model-file path."""
+    weights = np.asarray(weights, dtype=np.float64)
+    n = len(weights)
+    ages = np.full((n, n), -1, dtype=np.int32)
+    for (i, j), age in dict(edges).items():
+        ages[i, j] = ages[j, i] = age
+    ids = np.arange(n) if unit_ids is None else np.asarray(unit_ids)
+    net = GrowWhenRequired(**params)
+    net._validate_params()
+    firing = net._new_firing_counters().initialize(n)
+    if counters is not None:
+        firing.efficacy_[:] = counters
+    net._import_state(
+        {"weights_": weights, "edge_ages_": ages, "unit_ids_": ids.astype(np.int64)},
+        {"next_unit_id_": int(ids.max()) + 1},
+        {"firing_": firing},
+    )
+    return net
+
+
+def edge_dict(net):
+    pairs, ages = net.edges()
+    return {(int(i), int(j)): int(a) for (i, j), a in zip(pairs, ages)}
+
+
+# ---------------------------------------------------------------- defaults
+def test_defaults():
+    net = GrowWhenRequired()
+    assert (net.habituation_threshold, net.epsilon_b, net.epsilon_n, net.max_age) == (0.1, 0.1, 0.01, 50)
+    assert net.activity_threshold == 0.85 and net.max_units is None
+    net.initialize(np.random.default_rng(0).random((10, 3)), random_state=0)
+    assert net.n_units_ == 2 and net.edges()[0].shape == (0, 2)
+    assert isinstance(net.firing_, StanleySynapse)
+    counter = net.firing_
+    assert (counter.method, counter.tau_winner, counter.tau_neighbour, counter.alpha, counter.y0) == (
+        "exact", TAU_B, TAU_N, ALPHA, 1.0)
+    np.testing.assert_array_equal(counter.efficacy_, [1.0, 1.0])
+
+
+def test_the_firing_counter_is_configurable():
+    by_name = GrowWhenRequired(firing="stanley").initialize(np.zeros((2, 2)))
+    assert isinstance(by_name.firing_, StanleySynapse) and by_name.firing_.method == "euler"
+    mine = StanleySynapse(tau_winner=5.0, method="exact")
+    net = GrowWhenRequired(firing=mine).initialize(np.zeros((2, 2)))
+    assert net.firing_ is not mine and net.firing_.tau_winner == 5.0
+    assert not hasattr(mine, "efficacy_"), "the parameter instance is cloned, never fitted"
+    with pytest.raises(ValueError, match="'firing' parameter of GrowWhenRequired"):
+        GrowWhenRequired(firing=3).initialize(np.zeros((2, 2)))
+
+
+# ------------------------------------------------------------ steps by hand
+def test_a_far_input_adds_a_unit_halfway_when_the_winner_has_fired_often():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]], counters=[0.0625, 0.5], unit_ids=[4, 7])
+    x = np.array([0.0, 1.0])
+    m = net.match(x)
+    assert (m.winner, m.runner_up, m.distance) == (0, 1, 1.0)
+    assert m.neighbours.tolist() == [1]   # t learns with s once connected (step 5)
+    growth = net.adapt(x, m)
+    # step 6: a = exp(-1) < 0.85 and h_s = 0.0625 < 0.1, so step 7 adds r = (w_s + x) / 2
+    assert growth.added == 1 and growth.removed.size == 0
+    np.testing.assert_array_equal(net.weights_, [[0, 0], [1, 0], [0, 0.5]])   # s and t do not move
+    assert edge_dict(net) == {(0, 2): 1, (1, 2): 0}     # s-t replaced by r-s (aged in step 9) and r-t
+    np.testing.assert_array_equal(net.unit_ids_, [4, 7, 8])
+    # step 10: s habituates with tau_b, its neighbour r (new, h = 1) with tau_n; t is no longer a neighbour
+    np.testing.assert_allclose(net.firing_.efficacy_, [exact_step(0.0625, TAU_B), 0.5, exact_step(1.0, TAU_N)],
+                               rtol=1e-15)
+
+
+def test_a_far_input_adapts_while_the_winner_is_fresh():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]], counters=[0.5, 0.75])
+    x = np.array([0.0, 1.0])
+    growth = net.adapt(x, net.match(x))
+    assert growth.added == 0   # h_s = 0.5 >= h_T: the winner has not learned yet
+    np.testing.assert_allclose(net.weights_, [[0.0, 0.1 * 0.5], [1.0 - 0.01 * 0.75, 0.01 * 0.75]], rtol=1e-15)
+
+
+def test_a_near_input_moves_the_winner_by_eps_b_h_s_and_neighbours_by_eps_n_h_i():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [3.0, 3.0]],
+                      edges={(0, 2): 5, (1, 3): 2}, counters=[0.5, 0.75, 0.25, 1.0])
+    x = np.array([0.125, 0.0])
+    m = net.match(x)
+    assert (m.winner, m.runner_up, m.neighbours.tolist()) == (0, 1, [1, 2])
+    growth = net.adapt(x, m)
+    assert growth.added == 0 and growth.removed.size == 0   # a = exp(-1/8) = 0.88 >= a_T
+    expected = np.array([
+        [0.1 * 0.5 * 0.125, 0.0],                       # s: eps_b * h_s * (x - w_s)
+        [1.0 + 0.01 * 0.75 * -0.875, 0.0],              # t, connected in step 5
+        [0.01 * 0.25 * 0.125, 1.0 + 0.01 * 0.25 * -1.0],  # an old neighbour
+        [3.0, 3.0],                                      # not a neighbour
+    ])
+    np.testing.assert_allclose(net.weights_, expected, rtol=1e-15)
+    assert edge_dict(net) == {(0, 1): 1, (0, 2): 6, (1, 3): 2}
+    np.testing.assert_allclose(
+        net.firing_.efficacy_,
+        [exact_step(0.5, TAU_B), exact_step(0.75, TAU_N), exact_step(0.25, TAU_N), 1.0], rtol=1e-15)
+
+
+def test_firing_counters_follow_the_papers_closed_form():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]])
+    x = np.zeros(2)   # on unit 0: activity 1, nothing is ever added and nothing moves
+    for t in range(1, 31):
+        net.learn_one(x)
+        assert net.firing_.efficacy_[0] == pytest.approx(closed_form(t, TAU_B), rel=1e-12)
+        assert net.firing_.efficacy_[1] == pytest.approx(closed_form(t, TAU_N), rel=1e-12)
+    assert net.n_units_ == 2
+
+
+def test_the_counters_are_the_projects_synapse_not_a_copy(monkeypatch):
+    """Changing StanleySynapse changes the GWR's counters: the network holds no equation of its own."""
+    def flat(self, rows, stimulus, tau, dt):
+        self.efficacy_[rows] = 0.25
+
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0], [5.0, 5.0]], edges={(0, 1): 0})
+    monkeypatch.setattr(StanleySynapse, "_advance", flat)
+    net.learn_one(np.zeros(2))
+    np.testing.assert_array_equal(net.firing_.efficacy_, [0.25, 0.25, 1.0])
+
+
+def test_euler_counters_by_name_take_the_2000_papers_values():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]], firing="stanley")
+    for expected in (0.6997, 0.4941, 0.3533):   # Marsland et al. (2000), Table 1
+        net.learn_one(np.zeros(2))
+        assert round(float(net.firing_.efficacy_[0]), 4) == expected
+
+
+def test_an_old_edge_and_the_unit_it_leaves_alone_are_removed_ids_stable():
+    net = gwr_by_hand([[0, 0], [1, 1], [0.25, 0], [0.5, 0]], edges={(0, 1): 3, (0, 2): 0, (2, 3): 0},
+                      counters=[0.5, 0.5, 0.5, 0.5], unit_ids=[10, 11, 12, 13], max_age=3)
+    x = np.array([0.0625, 0.0])
+    growth = net.adapt(x, net.match(x))
+    assert growth.added == 0 and growth.removed.tolist() == [1]
+    np.testing.assert_array_equal(net.unit_ids_, [10, 12, 13])
+    assert edge_dict(net) == {(0, 1): 1, (1, 2): 0}
+    assert net.firing_.n_units_ == 3
+    # the removed unit was a neighbour when the counters habituated (step 10 comes before step 11)
+    np.testing.assert_allclose(net.firing_.efficacy_, [exact_step(0.5, TAU_B), exact_step(0.5, TAU_N), 0.5])
+
+
+def test_max_units_stops_growth():
+    net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]], counters=[0.0625, 0.0625], max_units=2)
+    x = np.array([0.0, 1.0])
+    growth = net.adapt(x, net.match(x))
+    assert growth.added == 0 and net.n_units_ == 2
+    assert net.weights_[0, 1] == pytest.approx(0.1 * 0.0625)   # adapts instead
+
+
+# ---------------------------------------------------------------- validation
+def test_parameter_messages():
+    with pytest.raises(ValueError, match=r"The 'activity_threshold' parameter of GrowWhenRequired must be "
+                                         r"a float in \[0, 1\]\. Got 1.5 instead\."):
+        GrowWhenRequired(activity_threshold=1.5).initialize(np.zeros((2, 2)))
+    with pytest.raises(ValueError, match="'max_units'"):
+        GrowWhenRequired(max_units=1).initialize(np.zeros((2, 2)))
+
+
+def test_inconsistent_state_is_refused():
+    net = gwr_by_hand([[0, 0], [1, 0], [0, 1]], edges={(0, 1): 0, (1, 2): 2})
+    arrays, values, children = net._export_state()
+    short = clone(children["firing_"]).initialize(2)
+    with pytest.raises(StateError, match="firing_"):
+        clone(net)._import_state(arrays, values, {"firing_": short})
+    with pytest.raises(StateError, match="firing_"):
+        clone(net)._import_state(arrays, values, {})
+    bad = dict(arrays, edge_ages_=np.triu(arrays["edge_ages_"] + 1) - 1)
+    with pytest.raises(StateError, match="symmetric"):
+        clone(net)._import_state(bad, values, children)
