@@ -177,6 +177,8 @@ class GrowingNeuralGas(Clusterer):
     # ---------------------------------------------------------------- steps 3-9
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
         s1, s2 = match.winner, match.runner_up
+        if s2 < 0:  # a Match made elsewhere, without the runner-up this network needs
+            s2 = self.match(x).runner_up
         W, A = self.weights_, self.edge_ages_
         nb = _graph.neighbours(A, s1)
         _graph.age_edges(A, s1)                                          # step 3

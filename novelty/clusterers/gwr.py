@@ -8,7 +8,8 @@ something new and stops when they do not.
 Every unit has a weight vector ``w`` and a firing counter ``h`` that starts
 at ``h0 = 1`` and habituates each time the unit or one of its neighbours
 wins; units are joined by edges that carry an age. For each input ``x``
-(steps as listed in the paper, section 3):
+(steps numbered as in the paper's statement of the algorithm; steps 1-3 are
+the initialisation, drawing an input and computing the distances):
 
 4. find the best-matching unit s and the second-best t (squared Euclidean
    distance);
@@ -53,6 +54,9 @@ alpha for each of winner and neighbours (both 1.05); a Synapse bank has one
 alpha for both. Any other synapse (by registry name or instance) can serve as
 the counter; ``others="forget"`` makes counters recover when not stimulated.
 
+The counters count firings, not time: each is one step (dt = 1) whatever
+timestamps the caller gives the filter.
+
 Which units learn with the winner, as reported by
 :meth:`GrowWhenRequired.match`: its neighbours after step 5, that is its
 current neighbours and t. (They do move in step 8 unless a unit is added.)
@@ -60,7 +64,7 @@ current neighbours and t. (They do move in step 8 unless a unit is added.)
 References
 ----------
 Marsland, S., Shapiro, J. & Nehmzow, U. (2002). A self-organising network
-that grows when required. Neural Networks, 15(8-9), 1041-1058, section 3.
+that grows when required. Neural Networks, 15(8-9), 1041-1058.
 
 Stanley, J. C. (1976). Computer simulation of a model of habituation.
 Nature, 261, 146-148.
@@ -99,7 +103,8 @@ class GrowWhenRequired(Clusterer):
         Learning rate of the winner (step 8), scaled by its counter h_s.
     epsilon_n : float, default=0.01
         Learning rate of the neighbours (step 8), scaled by their counters.
-        The paper requires 0 < epsilon_n < epsilon_b < 1.
+        The paper requires 0 < epsilon_n < epsilon_b < 1; 0.1 and 0.01 are
+        the values usual in GWR work.
     max_age : int, default=50
         a_max: edges older than this are removed (step 11).
     max_units : int or None, default=None
@@ -130,7 +135,7 @@ class GrowWhenRequired(Clusterer):
 
     References
     ----------
-    Marsland, Shapiro & Nehmzow (2002), section 3; Stanley (1976).
+    Marsland, Shapiro & Nehmzow (2002), the algorithm's steps 4-11; Stanley (1976).
 
     Examples
     --------
@@ -212,6 +217,8 @@ class GrowWhenRequired(Clusterer):
     # --------------------------------------------------------------- steps 5-11
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
         s, t = match.winner, match.runner_up
+        if t < 0:  # a Match made elsewhere, without the runner-up this network needs
+            t = self.match(x).runner_up
         h = self.firing_.efficacy_
         _graph.connect(self.edge_ages_, s, t)                            # step 5
         activity = np.exp(-np.sqrt(((x - self.weights_[s]) ** 2).sum()))  # step 6

@@ -168,3 +168,16 @@ def test_inconsistent_state_is_refused(corrupt, message):
     corrupt(arrays)
     with pytest.raises(StateError, match=message):
         GrowingNeuralGas()._import_state(arrays, values, {})
+
+
+def test_a_match_without_runner_up_is_completed():
+    from novelty.clusterers.base import Match
+
+    a = gng_by_hand([[0, 0], [1, 0], [0, 1]], edges={(0, 1): 0})
+    b = gng_by_hand([[0, 0], [1, 0], [0, 1]], edges={(0, 1): 0})
+    x = np.array([0.0, 0.75])
+    m = a.match(x)
+    a.adapt(x, m)
+    b.adapt(x, Match(m.winner, m.distance, m.neighbours))
+    np.testing.assert_array_equal(a.edge_ages_, b.edge_ages_)
+    assert edge_dict(b) == {(0, 1): 0, (0, 2): 0}   # winner 2, runner-up 0
