@@ -128,10 +128,20 @@ class ResultsStore:
     def append(self, row: dict, arrays: dict | None = None) -> None:
         if arrays:
             np.savez(self.cells_dir / f"{row['cell_id']}.npz", **arrays)
+        torn = self._ends_torn()
         with open(self.jsonl, "a", encoding="utf-8") as fh:
+            if torn:  # an interrupted write: keep the new row on a line of its own
+                fh.write("\n")
             fh.write(json.dumps({k: _jsonable(v) for k, v in row.items()}, default=str) + "\n")
             fh.flush()
             os.fsync(fh.fileno())
+
+    def _ends_torn(self) -> bool:
+        if not self.jsonl.exists() or self.jsonl.stat().st_size == 0:
+            return False
+        with open(self.jsonl, "rb") as fh:
+            fh.seek(-1, os.SEEK_END)
+            return fh.read(1) != b"\n"
 
     def arrays(self, cell_id: str) -> dict | None:
         path = self.cells_dir / f"{cell_id}.npz"

@@ -1,0 +1,123 @@
+"""Suites from TOML and the command line; bad suites get one clear message."""
+
+import pytest
+
+from novelty.bench.suite import (Cell, DetectorSpec, Suite, SuiteError, TaskSpec, detector_from_text,
+                                 load_suite, parse_value, quick_suite_path)
+
+
+def write(tmp_path, text, name="suite.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_a_suite_with_a_grid_expands_into_cells(tmp_path, toy_registered):
+    path = write(tmp_path, f"""
+[suite]
+name = "grid"
+seeds = [0, 1, 2]
+
+[[detectors]]
+name = "hsom"
+label = "small"
+params = {{ n_rows = 3, n_columns = 3 }}
+grid = {{ alpha = [1.05, 1.2], tau_winner = [3.33, 5.0] }}
+
+[[tasks]]
+name = "{toy_registered.TASK}"
+options = {{ n_test = 20 }}
+""")
+    suite = load_suite(path)
+    assert suite.name == "grid" and suite.seeds == [0, 1, 2]
+    assert [d.label for d in suite.detectors] == [
+        "small[alpha=1.05,tau_winner=3.33]", "small[alpha=1.05,tau_winner=5.0]",
+        "small[alpha=1.2,tau_winner=3.33]", "small[alpha=1.2,tau_winner=5.0]"]
+    assert suite.detectors[3].params == {"n_rows": 3, "n_columns": 3, "alpha": 1.2, "tau_winner": 5.0}
+    cells = suite.cells()
+    assert len(cells) == 4 * 1 * 3
+    assert len({c.id for c in cells}) == 12
+    assert cells[0].task.options == {"n_test": 20}
+
+
+def test_cell_ids_are_stable_and_depend_on_what_is_computed():
+    a = Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 0)
+    b = Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 0)
+    assert a.id == b.id
+    assert a.id != Cell(DetectorSpec("hsom", {"alpha": 1.3}), TaskSpec("t"), 0).id
+    assert a.id != Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 1).id
+
+
+def test_seeds_as_a_count(tmp_path, toy_registered):
+    path = write(tmp_path, f'[suite]\nseeds = 3\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "{toy_registered.TASK}"\n')
+    assert load_suite(path).seeds == [0, 1, 2]
+
+
+def test_optional_entries_are_skipped_when_not_registered(tmp_path, toy_registered):
+    path = write(tmp_path, f"""
+[[detectors]]
+name = "hsom"
+[[detectors]]
+name = "no-such-detector"
+optional = true
+[[tasks]]
+name = "{toy_registered.TASK}"
+[[tasks]]
+name = "no-such-task"
+optional = true
+""")
+    suite = load_suite(path)
+    assert [d.name for d in suite.detectors] == ["hsom"]
+    assert suite.skipped == ["no-such-detector", "no-such-task"]
+
+
+@pytest.mark.parametrize("body, message", [
+    ('[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"\nnope = 1', "unknown key 'nope'"),
+    ('[[detectors]]\nname = "hsomm"\n[[tasks]]\nname = "TASK"', "Unknown detector 'hsomm'. Did you mean 'hsom'"),
+    ('[[detectors]]\nname = "hsom"\nparams = { n_row = 3 }\n[[tasks]]\nname = "TASK"', "did you mean 'n_rows'"),
+    ('[[detectors]]\nname = "hsom"\nparams = { n_rows = 0 }\n[[tasks]]\nname = "TASK"', "must be an int in [1, inf)"),
+    ('[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "no-such-task"', "Unknown dataset 'no-such-task'"),
+    ('[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"\noptions = { n_tset = 3 }', "did you mean 'n_test'"),
+    ('[[detectors]]\nname = "hsom"\ngrid = { alpha = 1.2 }\n[[tasks]]\nname = "TASK"', "must be a non-empty array"),
+    ('[[detectors]]\nname = "hsom"\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "distinct 'label'"),
+    ('[[tasks]]\nname = "TASK"', "has no detectors"),
+    ('[[detectors]]\nname = "hsom"', "has no tasks"),
+    ('[suite]\nseeds = [-1]\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "non-negative integers"),
+    ('[suite]\nthreshold = 2\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "quantile in (0, 1]"),
+    ('detectors = "hsom"', "array of tables"),
+    ('[[detectors]\nname = "hsom"', "not valid TOML"),
+])
+def test_bad_suites_are_refused_with_one_clear_line(tmp_path, toy_registered, body, message):
+    path = write(tmp_path, body.replace("TASK", toy_registered.TASK))
+    with pytest.raises(SuiteError) as info:
+        load_suite(path)
+    text = str(info.value)
+    assert message in text and "\n" not in text.strip()
+
+
+def test_a_missing_suite_file():
+    with pytest.raises(SuiteError, match="Suite file not found"):
+        load_suite("no/such/suite.toml")
+
+
+def test_command_line_specs():
+    spec = detector_from_text("habituating clusterer=gwr alpha=1.2 'name=a b'")
+    assert spec.name == "habituating"
+    assert spec.params == {"clusterer": "gwr", "alpha": 1.2, "name": "a b"}
+    assert parse_value("null") is None and parse_value("[1, 2]") == [1, 2] and parse_value("x=y") == "x=y"
+    with pytest.raises(SuiteError, match="name=value"):
+        detector_from_text("hsom alpha")
+
+
+def test_the_embedded_quick_suite_reads():
+    import tomllib
+
+    from novelty.datasets import registry as datasets
+
+    assert quick_suite_path().is_file()
+    tasks = [t["name"] for t in tomllib.loads(quick_suite_path().read_text())["tasks"]]
+    if not any(t in datasets for t in tasks):
+        pytest.skip(f"none of the quick suite's tasks ({', '.join(tasks)}) is registered yet")
+    suite = load_suite(quick_suite_path())  # optional entries are skipped where absent
+    assert suite.name == "quick"
+    assert isinstance(suite, Suite)
