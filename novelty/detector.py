@@ -18,6 +18,8 @@ scoring) and optionally :meth:`~NoveltyDetector._novelty_one`.
 
 from __future__ import annotations
 
+import math
+import numbers
 from abc import abstractmethod
 from typing import Any
 
@@ -25,7 +27,7 @@ import numpy as np
 from sklearn.base import OutlierMixin
 from sklearn.exceptions import NotFittedError
 
-from ._component import Component
+from ._component import Component, StateError, check_int_state
 from ._validation import check_batch, check_one, check_timestamps
 
 __all__ = ["NoveltyDetector"]
@@ -90,6 +92,13 @@ class NoveltyDetector(OutlierMixin, Component):
         self._start(X)
         self.n_features_in_ = X.shape[1]
         self.last_time_ = None
+
+    def _check_state(self) -> None:
+        # A model file could hold anything here; refuse it now rather than fail later.
+        check_int_state(self, "n_features_in_", low=1)
+        t = getattr(self, "last_time_", None)
+        if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t)):
+            raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number; got {t!r}.")
 
     def _check_online(self) -> None:
         if not self.supports_online:

@@ -1,0 +1,431 @@
+"""Model files: exact round trips, the npz + JSON format, and every kind of bad file
+refused with ModelFileError without running anything."""
+
+import json
+import os
+import pickle
+import tempfile
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import novelty
+from novelty._component import StateError
+from novelty.clusterers.som import SOM
+from novelty.filter import HabituatingFilter
+from novelty.persistence import FORMAT_VERSION, ModelFileError
+
+
+def fitted(**params):
+    det = novelty.make("hsom", n_rows=3, n_columns=4, **params)
+    det.fit(np.random.default_rng(0).uniform(size=(30, 5)))
+    return det
+
+
+@pytest.fixture
+def saved(tmp_path):
+    det = fitted()
+    path = tmp_path / "model.npz"
+    det.save(path)
+    return det, path
+
+
+def read_entries(path):
+    with np.load(path, allow_pickle=False) as npz:
+        return {name: npz[name] for name in npz.files}
+
+
+def meta_of(entries):
+    return json.loads(entries["meta"].tobytes().decode("utf-8"))
+
+
+def with_meta(entries, meta):
+    out = dict(entries)
+    out["meta"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
+    return out
+
+
+def write_entries(path, entries):
+    with open(path, "wb") as fh:
+        np.savez(fh, **entries)  # savez pickles object arrays: the attacker's tool
+    return path
+
+
+def all_state(det):
+    out = {}
+    for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
+        for name, value in vars(obj).items():
+            if name in ("clusterer_", "synapse_"):
+                continue
+            out[owner + name] = value
+    return out
+
+
+def assert_identical(a, b):
+    sa, sb = all_state(a), all_state(b)
+    assert sa.keys() == sb.keys()
+    for key in sa:
+        u, v = sa[key], sb[key]
+        if isinstance(u, np.ndarray):
+            assert u.dtype == v.dtype and u.shape == v.shape, key
+            assert u.tobytes() == v.tobytes(), key  # bit for bit
+        elif isinstance(u, list):
+            assert len(u) == len(v) and all(np.array_equal(p, q) for p, q in zip(u, v)), key
+        elif hasattr(u, "get_params"):
+            assert type(u) is type(v) and repr(u.get_params()) == repr(v.get_params()), key
+        else:
+            assert type(u) is type(v) and u == v, key
+
+
+# ------------------------------------------------------------ round trips
+def test_round_trip_is_exact(saved):
+    det, path = saved
+    loaded = novelty.load(path)
+    assert type(loaded) is HabituatingFilter
+    assert repr(loaded.get_params(deep=True)) == repr(det.get_params(deep=True))
+    assert_identical(det, loaded)
+    Y = np.random.default_rng(1).uniform(size=(40, 5))
+    assert det.novelty(Y).tobytes() == loaded.novelty(Y).tobytes()
+    assert det.stream(Y).tobytes() == loaded.stream(Y).tobytes()
+    assert [det.score_learn_one(y) for y in Y] == [loaded.score_learn_one(y) for y in Y]
+    assert_identical(det, loaded)
+
+
+def test_loaded_model_is_independent_of_the_original(saved):
+    det, path = saved
+    loaded = novelty.load(path)
+    loaded.partial_fit(np.zeros((3, 5)))
+    assert not np.array_equal(det.clusterer_.weights_, loaded.clusterer_.weights_)
+    again = novelty.load(path)
+    assert_identical(det, again)
+    assert again.clusterer_.weights_.flags.writeable and again.synapse_.efficacy_.flags.writeable
+
+
+@st.composite
+def random_models(draw):
+    method = draw(st.sampled_from(["euler", "exact"]))
+    alpha = draw(st.floats(0.5, 2.0))
+    low = alpha if method == "euler" else 0.1
+    params = dict(
+        n_rows=draw(st.integers(1, 4)),
+        n_columns=draw(st.integers(1, 4)),
+        learning_rate=draw(st.floats(0.0, 1.0)),
+        radius=draw(st.sampled_from([0, 1, 2, 1.5])),
+        decay=draw(st.sampled_from(["constant", "linear", "asymptotic"])),
+        decay_steps=draw(st.integers(1, 30)),
+        learning_rate_final=draw(st.floats(0.0, 1.0)),
+        init=draw(st.sampled_from(["uniform", "sample"])),
+        init_range=draw(st.sampled_from([(0.0, 1.0), (-2.5, 3.0)])),
+        alpha=alpha,
+        tau_winner=draw(st.floats(low, 20.0)),
+        tau_neighbour=draw(st.floats(low, 20.0)),
+        y0=draw(st.floats(0.5, 2.0)),
+        others=draw(st.sampled_from(["hold", "forget"])),
+        method=method,
+        threshold=draw(st.floats(-1.0, 1.0)),
+        stimulus=draw(st.floats(0.0, 1.5)),
+        n_epochs=draw(st.integers(1, 2)),
+        random_state=draw(st.integers(0, 2**31 - 1)),
+    )
+    if params["others"] == "forget" and draw(st.booleans()):
+        params["tau_forget"] = draw(st.floats(low, 20.0))
+    seed = draw(st.integers(0, 2**16))
+    n_features = draw(st.integers(1, 4))
+    timestamps = draw(st.booleans())
+    return params, seed, n_features, timestamps
+
+
+@settings(max_examples=25, deadline=None)
+@given(random_models())
+def test_round_trip_on_random_models_is_exact(case):
+    params, seed, n_features, timestamps = case
+    rng = np.random.default_rng(seed)
+    X = rng.normal(size=(rng.integers(1, 25), n_features))
+    Y = rng.normal(size=(15, n_features))
+    det = novelty.make("hsom", **params)
+    if timestamps:
+        det.fit(X, timestamps=np.cumsum(rng.uniform(0, 3, len(X))))
+    else:
+        det.fit(X)
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "m.npz"
+        det.save(path)
+        loaded = novelty.load(path)
+    assert_identical(det, loaded)
+    assert det.novelty(Y).tobytes() == loaded.novelty(Y).tobytes()
+    assert det.predict(Y).tobytes() == loaded.predict(Y).tobytes()
+    t_next = None if not timestamps else det.last_time_ + np.arange(1, 16, dtype=float)
+    assert det.stream(Y, timestamps=t_next).tobytes() == loaded.stream(Y, timestamps=t_next).tobytes()
+    assert_identical(det, loaded)
+
+
+# ----------------------------------------------------------------- format
+def test_file_is_a_zip_of_npy_with_json_meta_and_no_pickle(saved):
+    det, path = saved
+    with zipfile.ZipFile(path) as zf:
+        names = zf.namelist()
+        assert all(name.endswith(".npy") for name in names)
+        assert "meta.npy" in names
+        for name in names:
+            with zf.open(name) as fh:
+                major, _ = np.lib.format.read_magic(fh)
+                read_header = np.lib.format.read_array_header_1_0 if major == 1 else np.lib.format.read_array_header_2_0
+                _, _, dtype = read_header(fh)
+                assert dtype != object and not dtype.hasobject, name
+    entries = read_entries(path)  # loads with allow_pickle=False
+    meta = meta_of(entries)
+    assert meta["format"] == "novelty-model" and meta["format_version"] == FORMAT_VERSION == 1
+    assert meta["novelty_version"] == novelty.__version__
+    root = meta["root"]
+    assert (root["kind"], root["name"]) == ("detector", "habituating")
+    assert root["children"]["clusterer_"]["name"] == "som"
+    assert root["children"]["synapse_"]["name"] == "stanley"
+    assert root["params"]["clusterer"]["__component__"]["params"]["n_rows"] == 3
+    np.testing.assert_array_equal(entries["root/clusterer_/weights_"], det.clusterer_.weights_)
+    np.testing.assert_array_equal(entries["root/synapse_/efficacy_"], det.synapse_.efficacy_)
+
+
+def test_save_leaves_no_temporary_file(tmp_path):
+    fitted().save(tmp_path / "a.npz")
+    assert os.listdir(tmp_path) == ["a.npz"]
+
+
+def test_save_accepts_str_paths_and_overwrites(tmp_path):
+    path = str(tmp_path / "m.npz")
+    fitted().save(path)
+    det = fitted(random_state=3)
+    det.save(path)
+    assert_identical(det, novelty.load(path))
+
+
+def test_unfitted_model_cannot_be_saved(tmp_path):
+    with pytest.raises(StateError, match="not fitted; there is nothing to save"):
+        novelty.make("hsom").save(tmp_path / "m.npz")
+    assert os.listdir(tmp_path) == []
+
+
+class UnregisteredSOM(SOM):
+    """A SOM subclass nobody registered."""
+
+
+def test_unregistered_component_cannot_be_saved(tmp_path):
+    det = HabituatingFilter(clusterer=UnregisteredSOM(n_rows=2, n_columns=2)).fit(np.zeros((2, 3)))
+    with pytest.raises(StateError, match=r"UnregisteredSOM is not registered as a clusterer.*novelty.register_clusterer"):
+        det.save(tmp_path / "m.npz")
+    assert os.listdir(tmp_path) == []  # nothing half-written
+
+
+def test_generator_seed_cannot_be_saved(tmp_path):
+    det = novelty.make("hsom", n_rows=2, n_columns=2, random_state=np.random.default_rng(0))
+    det.fit(np.zeros((2, 3)))
+    with pytest.raises(StateError, match="an int seed for random_state"):
+        det.save(tmp_path / "m.npz")
+
+
+# ---------------------------------------------------------------- bad files
+class Payload:
+    """Unpickling this object creates a directory: proof that code ran."""
+
+    def __init__(self, marker):
+        self.marker = str(marker)
+
+    def __reduce__(self):
+        return (os.mkdir, (self.marker,))
+
+
+def object_array(marker):
+    arr = np.empty(2, dtype=object)
+    arr[0], arr[1] = Payload(marker), 1.0
+    return arr
+
+
+def test_the_payload_works_when_unpickled(tmp_path):
+    # positive control: the crafted entry below really would run code
+    marker = tmp_path / "ran"
+    path = write_entries(tmp_path / "evil.npz", {"x": object_array(marker)})
+    with np.load(path, allow_pickle=True) as npz:
+        npz["x"]
+    assert marker.exists()
+
+
+@pytest.mark.parametrize("entry", ["root/clusterer_/weights_", "root/synapse_/efficacy_", "meta"])
+def test_object_array_is_refused_without_unpickling(saved, tmp_path, entry):
+    _, path = saved
+    marker = tmp_path / "ran"
+    entries = read_entries(path)
+    entries[entry] = object_array(marker)
+    evil = write_entries(tmp_path / "evil.npz", entries)
+    with pytest.raises(ModelFileError):
+        novelty.load(evil)
+    assert not marker.exists()
+
+
+def test_a_plain_pickle_is_refused_without_unpickling(tmp_path):
+    marker = tmp_path / "ran"
+    path = tmp_path / "evil.npz"
+    path.write_bytes(pickle.dumps(Payload(marker)))
+    with pytest.raises(ModelFileError, match="not a novelty model file"):
+        novelty.load(path)
+    path2 = tmp_path / "evil.npy"
+    np.save(path2, object_array(marker), allow_pickle=True)
+    with pytest.raises(ModelFileError):
+        novelty.load(path2)
+    assert not marker.exists()
+
+
+@pytest.mark.parametrize("fraction", [0.0, 0.05, 0.3, 0.5, 0.9, 0.999])
+def test_truncated_file(saved, tmp_path, fraction):
+    _, path = saved
+    data = path.read_bytes()
+    cut = tmp_path / "cut.npz"
+    cut.write_bytes(data[: int(len(data) * fraction)])
+    with pytest.raises(ModelFileError):
+        novelty.load(cut)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_random_bytes(tmp_path, seed):
+    path = tmp_path / "noise.npz"
+    path.write_bytes(np.random.default_rng(seed).bytes(2000))
+    with pytest.raises(ModelFileError):
+        novelty.load(path)
+
+
+def test_zip_with_a_damaged_member(saved, tmp_path):
+    _, path = saved
+    data = bytearray(path.read_bytes())
+    start = data.find(b"\x93NUMPY", 200)  # the second member's array header
+    data[start + 60 : start + 90] = b"\xff" * 30
+    bad = tmp_path / "bad.npz"
+    bad.write_bytes(bytes(data))
+    with pytest.raises(ModelFileError):
+        novelty.load(bad)
+
+
+def test_single_array_and_foreign_npz(tmp_path):
+    np.save(tmp_path / "a.npy", np.zeros(3))
+    with pytest.raises(ModelFileError, match="single numpy array"):
+        novelty.load(tmp_path / "a.npy")
+    write_entries(tmp_path / "b.npz", {"weights": np.zeros(3)})
+    with pytest.raises(ModelFileError, match="no 'meta' entry"):
+        novelty.load(tmp_path / "b.npz")
+
+
+def test_missing_file_is_file_not_found(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        novelty.load(tmp_path / "absent.npz")
+
+
+def test_newer_format_version(saved, tmp_path):
+    _, path = saved
+    entries = read_entries(path)
+    meta = meta_of(entries)
+    meta["format_version"] = FORMAT_VERSION + 1
+    bad = write_entries(tmp_path / "new.npz", with_meta(entries, meta))
+    with pytest.raises(ModelFileError, match=r"model format 2 .*reads format 1 or older\. Upgrade novelty"):
+        novelty.load(bad)
+
+
+def tamper_meta(saved, tmp_path, change):
+    _, path = saved
+    entries = read_entries(path)
+    meta = meta_of(entries)
+    change(meta)
+    return write_entries(tmp_path / "tampered.npz", with_meta(entries, meta))
+
+
+@pytest.mark.parametrize(
+    "change, message",
+    [
+        (lambda m: m["root"]["children"]["clusterer_"].update(name="no-such-net"), r"needs the clusterer 'no-such-net', which is not registered"),
+        (lambda m: m["root"].update(name="os:system"), r"not registered"),
+        (lambda m: m["root"]["children"]["synapse_"].update(kind="module"), r"invalid component"),
+        (lambda m: m["root"]["params"]["clusterer"]["__component__"].update(name="nope"), r"not registered"),
+        (lambda m: m["root"]["children"]["clusterer_"]["params"].update(evil=1), r"unknown parameters \['evil'\]"),
+        (lambda m: m["root"]["children"]["clusterer_"]["params"].update(learning_rate=7.0), r"invalid parameters.*'learning_rate'"),
+        (lambda m: m["root"]["children"]["clusterer_"]["params"].update(n_rows=4), r"units"),
+        (lambda m: m["root"]["params"].update(threshold={"__import__": "os"}), r"Unexpected object"),
+        (lambda m: m["root"]["children"]["clusterer_"]["arrays"].append("ghost_"), r"lacks the array"),
+        (lambda m: m["root"]["values"].update(n_features_in_=7), r"n_features_in_"),
+        (lambda m: m["root"]["values"].update(n_features_in_=5.0), r"n_features_in_ must be an int >= 1"),
+        (lambda m: m["root"]["values"].update(last_time_="abc"), r"last_time_ must be None or a finite number"),
+        (lambda m: m["root"]["values"].update(last_time_=[1, 2]), r"last_time_ must be None or a finite number"),
+        (lambda m: m["root"]["children"]["clusterer_"]["values"].update(n_updates_=1.5), r"n_updates_ must be an int"),
+        (lambda m: m["root"]["children"]["clusterer_"]["values"].update(next_unit_id_=3), r"unique and below next_unit_id_"),
+        (lambda m: m["root"]["values"].update(__class__=1), r"not a learned-state attribute"),
+        (lambda m: m.update(format="other"), r"not a novelty model file"),
+        (lambda m: m.update(format_version="1"), r"invalid format version"),
+        (lambda m: m.update(root=[]), r"malformed"),
+        (lambda m: m["root"]["children"].update(synapse_=None), r"malformed"),
+    ],
+)
+def test_tampered_metadata(saved, tmp_path, change, message):
+    bad = tamper_meta(saved, tmp_path, change)
+    with pytest.raises(ModelFileError, match=message):
+        novelty.load(bad)
+
+
+def test_meta_that_is_not_json(saved, tmp_path):
+    _, path = saved
+    entries = read_entries(path)
+    entries["meta"] = np.frombuffer(b"{not json", dtype=np.uint8)
+    with pytest.raises(ModelFileError):
+        novelty.load(write_entries(tmp_path / "a.npz", entries))
+    entries["meta"] = np.zeros(3)
+    with pytest.raises(ModelFileError, match="not JSON text"):
+        novelty.load(write_entries(tmp_path / "b.npz", entries))
+
+
+@pytest.mark.parametrize(
+    "entry, replace",
+    [
+        ("root/clusterer_/weights_", lambda w: w[:-1]),  # one unit too few
+        ("root/clusterer_/weights_", lambda w: np.vstack([w, w[:1]])),
+        ("root/clusterer_/weights_", lambda w: w[:, :-1]),  # wrong n_features
+        ("root/clusterer_/weights_", lambda w: w.ravel()),
+        ("root/clusterer_/weights_", lambda w: np.where(w > 0.5, np.nan, w)),
+        ("root/clusterer_/weights_", lambda w: w.astype(np.complex128)),
+        ("root/clusterer_/unit_ids_", lambda u: u.astype(np.float64)),
+        ("root/clusterer_/unit_ids_", lambda u: np.zeros_like(u)),  # not unique
+        ("root/synapse_/efficacy_", lambda e: e[:-1]),  # fewer synapses than units
+        ("root/synapse_/efficacy_", lambda e: np.full_like(e, np.inf)),
+        ("root/synapse_/efficacy_", lambda e: e.reshape(1, -1)),
+    ],
+)
+def test_tampered_arrays(saved, tmp_path, entry, replace):
+    _, path = saved
+    entries = read_entries(path)
+    entries[entry] = replace(entries[entry])
+    with pytest.raises(ModelFileError):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+def test_fewer_units_than_the_map_has(saved, tmp_path):
+    _, path = saved
+    entries = read_entries(path)  # weights and ids consistent with each other, not with 3 x 4
+    entries["root/clusterer_/weights_"] = entries["root/clusterer_/weights_"][:-1]
+    entries["root/clusterer_/unit_ids_"] = entries["root/clusterer_/unit_ids_"][:-1]
+    with pytest.raises(ModelFileError, match=r"SOM.weights_ has 11 units; a 3 x 4 map has 12"):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+def test_saved_timestamps_round_trip(tmp_path):
+    det = fitted()
+    det.partial_fit(np.zeros((2, 5)), timestamps=[100.0, 101.5])
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert loaded.last_time_ == 101.5
+    with pytest.raises(ValueError, match="must not decrease"):
+        loaded.learn_one(np.zeros(5), t=100.0)
+
+
+def test_missing_array_entry(saved, tmp_path):
+    _, path = saved
+    entries = read_entries(path)
+    del entries["root/synapse_/efficacy_"]
+    with pytest.raises(ModelFileError, match=r"lacks the array 'root/synapse_/efficacy_'"):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
