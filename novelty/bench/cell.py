@@ -19,9 +19,11 @@ part:
    is used to set it.
 3. Test. The test scans are scored without learning (``novelty(X)``) and the
    metrics of :mod:`novelty.bench.metrics` computed against the labels.
-4. False alarms. If the task's metadata holds a clean test pass
-   (``metadata["clean_test"]``: scans of the familiar route, as a Dataset or an
-   array), the alarms on it; otherwise the alarms on the normal test scans.
+4. False alarms: the alarms on a clean pass over the familiar route. That is
+   the task's ``metadata["clean_test"]`` (a Dataset or an array of scans) if
+   it has one, else the test runs that hold no novel scan (when others do),
+   else the normal scans of the test part; the column
+   ``false_alarm_source`` says which.
 5. Memory. Peak memory (``tracemalloc``) is measured by a second, identical run
    of steps 1 and 3, so that the tracer's overhead does not distort the times.
 """
@@ -117,11 +119,23 @@ def train_detector(det, X: np.ndarray, passes: int = 1):
     return det
 
 
-def _clean_pass(data) -> np.ndarray | None:
+def _clean_pass(data, test, y: np.ndarray) -> tuple[np.ndarray | None, str]:
+    """Scans of a clean pass over the familiar route, and where they come from.
+
+    The task's ``metadata["clean_test"]`` (a Dataset or an array of scans)
+    if it has one; else the test runs without any novel scan, when the test
+    part has several runs and others do hold novelty; else ``None``.
+    """
     clean = data.metadata.get("clean_test")
-    if clean is None:
-        return None
-    return np.asarray(getattr(clean, "X", clean), dtype=np.float64)
+    if clean is not None:
+        return np.asarray(getattr(clean, "X", clean), dtype=np.float64), "clean pass"
+    if test.run is not None:
+        runs = np.asarray(test.run)
+        novel_runs = set(runs[y].tolist())
+        clean_mask = ~np.isin(runs, list(novel_runs))
+        if novel_runs and clean_mask.any():
+            return test.X[clean_mask], "clean test runs"
+    return None, "normal test scans"
 
 
 def _resting(det) -> float:
@@ -159,11 +173,8 @@ def _evaluate(cell: Cell) -> tuple[dict, dict]:
     score_time = time.perf_counter() - start
 
     threshold = metrics.training_threshold(det.novelty(train.X), cell.threshold)
-    clean = _clean_pass(data)
-    if clean is not None:
-        alarm_scores, source = det.novelty(clean), "clean pass"
-    else:
-        alarm_scores, source = novelty[~y], "normal test scans"
+    clean, source = _clean_pass(data, test, y)
+    alarm_scores = det.novelty(clean) if clean is not None else novelty[~y]
     resting = _resting(det)
     row = {
         "n_train": len(train), "n_test": len(test), "n_novel": int(y.sum()), "train_passes": passes,

@@ -149,8 +149,9 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "",
         "Ranked by ROC AUC averaged over tasks, mean ± standard deviation over seeds. Other columns "
         "are means over cells: average precision, true-positive rate at 1% and 5% false-positive "
-        "rate, detection delay in scans (first novel scan to first alarm; threshold = the maximum "
-        "training novelty), false alarms on a clean pass (or the normal test scans), integrated "
+        "rate, detection delay in scans (first novel scan to first alarm, at a threshold set from the "
+        "training novelty only: its maximum unless a note below says otherwise), false alarms on a "
+        "clean pass (or the normal test scans), integrated "
         "novelty over the test part with the resting activity subtracted and its maximum, "
         "training time, model size in units.",
         "",

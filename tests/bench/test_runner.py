@@ -66,6 +66,16 @@ def test_a_cell_trains_as_the_robot_then_scores_without_learning(toy_registered)
     assert row["integrated_novelty"] == pytest.approx(np.sum(expected - det.resting_novelty))
 
 
+@pytest.mark.parametrize("clean, source, n_scans", [
+    ("none", "normal test scans", 24), ("runs", "clean test runs", 10), ("metadata", "clean pass", 10)])
+def test_false_alarms_on_a_clean_pass(toy_registered, clean, source, n_scans):
+    cell = Suite([DetectorSpec("hsom")], [TaskSpec(toy_registered.TASK, {"clean": clean})]).check().cells()[0]
+    row, _ = run_cell(cell)
+    assert row["status"] == "ok", row["error"]
+    assert row["false_alarm_source"] == source
+    assert row["false_alarm_rate"] * n_scans == pytest.approx(row["false_alarms"])
+
+
 def test_a_failing_cell_is_recorded_and_the_run_goes_on(tmp_path, toy_registered):
     suite = Suite([DetectorSpec("hsom"), DetectorSpec(toy_registered.BROKEN)],
                   [TaskSpec(toy_registered.TASK)], seeds=[0]).check()

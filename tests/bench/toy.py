@@ -14,8 +14,13 @@ TASK = "bench-toy-task"
 BROKEN = "bench-broken-detector"
 
 
-def toy_task(seed=0, n_train=40, n_test=30, n_sensors=4, novel_at=12, novel_len=6, fail=False):
-    """Normal scans near 0.3, a block of novel scans near 0.8 in the test part."""
+def toy_task(seed=0, n_train=40, n_test=30, n_sensors=4, novel_at=12, novel_len=6, fail=False,
+             clean="none"):
+    """Normal scans near 0.3, a block of novel scans near 0.8 in the test part.
+
+    ``clean="runs"``: the test part is two runs, the second without novelty;
+    ``clean="metadata"``: the metadata holds a clean pass of 10 scans.
+    """
     if fail:
         raise RuntimeError("the toy task was asked to fail")
     rng = np.random.default_rng(seed)
@@ -28,8 +33,13 @@ def toy_task(seed=0, n_train=40, n_test=30, n_sensors=4, novel_at=12, novel_len=
     y = np.r_[np.zeros(n_train, dtype=int), y_test]
     split = np.array(["train"] * n_train + ["test"] * n_test)
     distance = np.r_[np.arange(n_train), np.arange(n_test)] * 0.1
-    return Dataset(TASK, X, y=y, split=split, distance=distance,
-                   metadata={"train_passes": 2, "seed": seed})
+    metadata = {"train_passes": 2, "seed": seed}
+    run = None
+    if clean == "runs":
+        run = np.r_[np.zeros(n_train, dtype=int), np.where(np.arange(n_test) < novel_at + novel_len + 2, 1, 2)]
+    elif clean == "metadata":
+        metadata["clean_test"] = 0.3 + 0.03 * rng.standard_normal((10, n_sensors))
+    return Dataset(TASK, X, y=y, split=split, distance=distance, run=run, metadata=metadata)
 
 
 def broken_detector(**params):
