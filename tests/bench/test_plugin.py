@@ -47,7 +47,7 @@ def test_the_plugin_clusterer_is_listed_and_benchmarked(plugin_env, tmp_path):
     assert "leader" in listed.stdout and "Hartigan's leader clusterer" in listed.stdout
     out = tmp_path / "bench"
     run = cli(plugin_env, "bench", "--detector", "habituating clusterer=leader radius=0.05",
-              "--detector", "hsom", "--task", "bench-toy-task", "--seeds", "2", "--jobs", "2",
+              "--detector", "hsom", "--task", "bench-toy-task", "--seeds", "2",
               "--out", str(out), "--no-plots")
     assert run.returncode == 0, run.stderr
     assert "habituating[clusterer=leader,radius=0.05]" in run.stdout

@@ -118,7 +118,7 @@ def test_joblib_gives_the_serial_numbers(tmp_path, suite):
 def test_dask_local_cluster_gives_the_serial_numbers(tmp_path, suite):
     distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed")
     serial = run_bench(suite, tmp_path / "serial", quiet=True, plots=False)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, host="127.0.0.1",
                                   dashboard_address=None) as cluster:
         report = run_bench(suite, tmp_path / "dask", backend="dask", scheduler=cluster.scheduler_address,
                            quiet=True, plots=False)
