@@ -133,3 +133,25 @@ def test_progress_lines_when_not_a_terminal(tmp_path, suite, capsys):
     run_bench(suite, tmp_path, plots=False, progress=stream)
     lines = stream.getvalue().splitlines()
     assert len(lines) == 4 and lines[0].startswith("[1/4] ") and "AUC" in lines[0]
+
+
+def test_progress_bar_on_a_terminal_and_lines_in_ci(monkeypatch):
+    import io
+
+    from novelty.bench.progress import Progress, use_bar
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    row = {"detector": "d", "task": "t", "seed": 0, "status": "ok", "roc_auc": 0.9}
+    monkeypatch.delenv("CI", raising=False)
+    assert use_bar(Terminal()) and not use_bar(io.StringIO())
+    monkeypatch.setenv("CI", "true")
+    assert not use_bar(Terminal())
+    stream = Terminal()
+    with Progress(2, stream=stream, bar=True) as bar:
+        bar.update(row)
+        bar.update({**row, "status": "error", "error": "ValueError: x"})
+    text = stream.getvalue()
+    assert "2/2" in text and "FAILED ValueError: x" in text

@@ -1,5 +1,7 @@
 """Suites from TOML and the command line; bad suites get one clear message."""
 
+from pathlib import Path
+
 import pytest
 
 from novelty.bench.suite import (Cell, DetectorSpec, Suite, SuiteError, TaskSpec, detector_from_text,
@@ -121,3 +123,21 @@ def test_the_embedded_quick_suite_reads():
     suite = load_suite(quick_suite_path())  # optional entries are skipped where absent
     assert suite.name == "quick"
     assert isinstance(suite, Suite)
+
+
+def test_the_example_suites_read():
+    """Every suite in benchmarks/suites names registered things (once they are all registered)."""
+    from novelty.datasets import registry as datasets
+
+    root = Path(__file__).resolve().parents[2] / "benchmarks" / "suites"
+    paths = sorted(root.glob("*.toml"))
+    if not paths:
+        pytest.skip("benchmarks/suites is not part of this installation")
+    for path in paths:
+        import tomllib
+
+        tasks = [t["name"] for t in tomllib.loads(path.read_text()).get("tasks", [])]
+        missing = [t for t in tasks if t not in datasets]
+        if missing:  # the tasks of other issues may not be registered yet
+            continue
+        assert load_suite(path).cells(), path.name
