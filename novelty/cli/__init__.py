@@ -2,7 +2,22 @@
 
 Each command is one module of this package with two functions,
 ``add_parser(subparsers)`` and ``run(args) -> int``, listed in
-:data:`COMMANDS`. Adding a command is adding a module and one line here.
+:data:`COMMANDS`. Adding a command is adding a module and one line here;
+for instance ``novelty/cli/reproduce.py``::
+
+    from ._common import add_command
+
+    def add_parser(subparsers):
+        parser = add_command(subparsers, "reproduce", "one-line summary", "Description.",
+                             ["novelty reproduce table1 --out results/table1"])
+        parser.add_argument("what")
+        return parser
+
+    def run(args) -> int:
+        ...            # raise UserError("...") for anything the user can fix
+        return 0
+
+and ``"reproduce": "novelty.cli.reproduce"`` in :data:`COMMANDS`.
 User errors (unknown names, bad parameters, missing or malformed files, bad
 data) are printed as one line on stderr with exit code 2, never a traceback.
 """
