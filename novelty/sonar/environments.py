@@ -24,7 +24,8 @@ from geometry, not from tuning:
 - C: 2.1 m wide, smooth brick on the followed (right) side and glass on the
   other (which side is which is chosen: the robot followed the brick with
   infra-red), a "particularly deeply inset" doorway (0.9 m chosen), low
-  display boards near the end, a crack at about 7 m (stated).
+  display boards near the end, a crack at about 7 m (stated); the glass is
+  held by metal glazing bars every 1.2 m (chosen).
 - control: a 16 m x 10 m hall; the route runs 1.8 m along a wall, turns into
   the middle (about 3 m out), comes back and follows the wall again (stated
   in outline).
@@ -48,7 +49,7 @@ from typing import Any
 import numpy as np
 
 from .controller import WallFollower, WaypointFollower
-from .layout import Board, Crack, Door, corridor_wall
+from .layout import FRAME_EDGE_RANGE, Board, Crack, Door, corridor_wall
 from .world import MapBuilder, WorldMap
 
 __all__ = ["Environment", "get_environment", "environment_names", "corridor_environment",
@@ -194,7 +195,24 @@ def _build_c() -> Environment:
     return corridor_environment(
         "c", 2.1, "brick", "glass", right, [],
         "Corridor C (Marsland et al. 2000): 2.1 m wide, smooth brick (followed, right) and glass "
-        "(left), a deeply inset doorway, low laminated display boards near the end, a crack at 7 m.")
+        "(left), a deeply inset doorway, low laminated display boards near the end, a crack at 7 m.",
+        extra=_glazing_bars(2.1))
+
+
+def _glazing_bars(y: float, spacing: float = 1.2, width: float = 0.05, depth: float = 0.04):
+    """Vertical glazing bars on the corridor side of a glass wall (chosen: every 1.2 m).
+
+    A glazed partition is held by bars between its panes; each stands a few
+    centimetres proud of the glass, so its two front edges scatter and the
+    corners it makes with the glass retro-reflect (Kuc & Siegel, 1987).
+    """
+    def add(b: MapBuilder) -> None:
+        for x in np.arange(-_MARGIN + 0.3, ROUTE_LENGTH + _MARGIN, spacing):
+            a, c = x - width / 2, x + width / 2
+            b.polyline([(a, y), (a, y - depth), (c, y - depth), (c, y)], "metal")
+            b.edge((a, y - depth), FRAME_EDGE_RANGE)
+            b.edge((c, y - depth), FRAME_EDGE_RANGE)
+    return add
 
 
 def _build_control() -> Environment:

@@ -179,7 +179,7 @@ def _cut_item(b: MapBuilder, it, y: float, side: int, material: str) -> None:
             return
         # the doorway seen from the corridor: an aperture (ground truth only),
         # the office behind, and the leaf swung open against the office wall
-        b.wall((a, y), (c, y), "aperture", fid)
+        b.wall((a, y), (c, y), "aperture", fid, stands_for=material)
         half = it.room_width / 2
         far = back + s * it.room_depth
         b.wall((it.x - half, back), (a, back), it.room, fid)
@@ -204,7 +204,7 @@ def _cut_item(b: MapBuilder, it, y: float, side: int, material: str) -> None:
         fid = b.feature(it.id, it.kind, (it.x, y), _label_side(s), it.depth, it.width,
                         it.description or "opening", inserted=it.inserted)
         back = y + s * it.depth
-        b.wall((a, y), (c, y), "aperture", fid)
+        b.wall((a, y), (c, y), "aperture", fid, stands_for=material)
         b.polyline([(a, y), (a, back), (c, back), (c, y)], it.beyond, fid)
         b.edge((a, y), FRAME_EDGE_RANGE, fid)
         b.edge((c, y), FRAME_EDGE_RANGE, fid)

@@ -28,9 +28,10 @@ read as a range longer than the true one; see :mod:`novelty.sonar.ranger`).
 
 The defaults are chosen, approximately, to give the behaviour reported for
 real indoor surfaces: painted breezeblock (open-textured concrete block) is
-heard to about 40 degrees incidence, varnished wood and smooth brick to about
-10-15 degrees, glass and laminated plastic only within a few degrees of
-normal (Kuc & Siegel, 1987, section IV; Leonard & Durrant-Whyte, 1992,
+heard to about 40 degrees incidence; smooth (fair-faced) brick, whose mortar
+joints are grooves about as wide as the wavelength, to about 30 degrees;
+varnished wood to about 13 degrees; glass and laminated plastic only within a
+few degrees of normal (Kuc & Siegel, 1987, section IV; Leonard & Durrant-Whyte, 1992,
 chapter 2, who found smooth walls invisible beyond about 15-20 degrees).
 
 References
@@ -102,8 +103,8 @@ class Material:
 
 
 # Chosen values (approximately; see the module docstring for the sources of
-# the behaviour they reproduce). max_incidence(): breezeblock ~40 deg, wood
-# ~13, brick ~15, glass ~5, laminate ~6.
+# the behaviour they reproduce). max_incidence(): breezeblock ~40 deg, brick ~31,
+# plaster ~22, cardboard ~21, wood ~13, glass ~5, laminate ~6.
 MATERIALS: dict[str, Material] = {
     m.name: m
     for m in (
@@ -114,8 +115,9 @@ MATERIALS: dict[str, Material] = {
         Material("wood", reflectivity=8.0, lobe=13.0, specular=0.8,
                  description="varnished wood (doors, frames): smooth, mostly specular",
                  colour="#a0522d"),
-        Material("brick", reflectivity=8.0, lobe=15.0, specular=0.75,
-                 description="smooth (fair-faced) brick: smooth faces, shallow joints",
+        Material("brick", reflectivity=8.0, lobe=30.0, specular=0.5,
+                 description="smooth (fair-faced) brick: smooth faces, but mortar joints about "
+                             "a wavelength wide scatter at oblique incidence",
                  colour="#b5533c"),
         Material("glass", reflectivity=12.0, lobe=4.5, specular=0.97,
                  description="glass: an acoustic mirror, heard only near normal incidence",

@@ -83,9 +83,11 @@ class RingEchoes:
     ranges : ndarray of shape (n_rings, n_sonars)
         Noiseless first-echo ranges (m); ``inf`` where nothing was heard.
     perceived : ndarray of shape (n_rings, n_features) of bool
-        Whether each map feature lay inside any sonar's footprint: the part
-        of its cone nearer than its echo (plus ``footprint_margin``) and
-        nearer than the perceptual range.
+        Whether each map feature shaped some sonar's reading within the
+        perceptual range: it sent the first echo (directly, as either
+        surface of a multipath echo, or from one of its edges), or it is an
+        opening that the sonar looked through, nearer than its echo (plus
+        ``footprint_margin``), where the missing surface would have echoed.
     source : ndarray of shape (n_rings, n_sonars) of int
         0 no echo, 1 direct, 2 multipath, 3 edge (for tests and figures).
     """
@@ -212,13 +214,6 @@ class _Scene:
         self.half = ranger.beam_half_angle
         self.spans = (world.z[:, 0] <= height) & (world.z[:, 1] >= height)
         self.offsets = ranger.ray_offsets()
-        n_features = len(world.features)
-        self.feature_onehot = np.zeros((world.n_segments, n_features))
-        has = world.feature >= 0
-        self.feature_onehot[np.flatnonzero(has), world.feature[has]] = 1.0
-        self.edge_onehot = np.zeros((world.edges.shape[0], n_features))
-        has = world.edge_feature >= 0
-        self.edge_onehot[np.flatnonzero(has), world.edge_feature[has]] = 1.0
 
     def _near(self, points: np.ndarray) -> np.ndarray:
         """Segments any part of which lies within max_range of the points' bounding box."""
@@ -257,6 +252,8 @@ class _Scene:
         cols = self._near(sensor_pos.reshape(-1, 2))
         best = np.full(n, np.inf)
         src = np.zeros(n, dtype=np.int8)
+        seg = np.full(n, -1, dtype=np.intp)
+        seg2 = np.full(n, -1, dtype=np.intp)
         t_first = np.full(n, np.inf)
         t_vis = np.full((n, cols.size), np.inf)
         if cols.size:
@@ -266,7 +263,7 @@ class _Scene:
             rows = np.arange(n)
             t_first = t_opaque[rows, j]
             hit = np.isfinite(t_first)
-            seg = cols[j]
+            seg = np.where(hit, cols[j], -1)
             normal = self.normals[seg]
             cos_inc = np.clip(np.abs(np.sum(dirs * normal, axis=1)), 0.0, 1.0)
             psi = 2.0 * np.arccos(cos_inc)
@@ -278,29 +275,49 @@ class _Scene:
             if ranger.multipath:
                 todo = np.flatnonzero(hit & ~direct & (self.specular[seg] > 0))
                 if todo.size:
-                    r_mp = self._multipath(todo, origins, dirs, t_first, seg, normal, g1, phi,
-                                           sensor_axis, k, cols)
+                    r_mp, second = self._multipath(todo, origins, dirs, t_first, seg, normal, g1,
+                                                   phi, sensor_axis, k, cols)
                     better = r_mp < best[todo]
                     best[todo[better]] = r_mp[better]
                     src[todo[better]] = 2
+                    seg2[todo[better]] = second[better]
         # per sonar: the first echo over its rays
         best = best.reshape(n_poses * n_sonars, k)
         ray_src = src.reshape(n_poses * n_sonars, k)
         arg = np.argmin(best, axis=1)
-        sonar_range = best[np.arange(best.shape[0]), arg]
-        sonar_src = np.where(np.isfinite(sonar_range), ray_src[np.arange(best.shape[0]), arg], 0)
-        edge_range, edge_seen = self._edges(sensor_pos, sensor_axis)
+        m = np.arange(best.shape[0])
+        sonar_range = best[m, arg]
+        sonar_src = np.where(np.isfinite(sonar_range), ray_src[m, arg], 0)
+        first_seg = seg.reshape(-1, k)[m, arg]
+        second_seg = seg2.reshape(-1, k)[m, arg]
+        edge_range, edge_which = self._edges(sensor_pos, sensor_axis)
         use_edge = edge_range < sonar_range
         sonar_range = np.where(use_edge, edge_range, sonar_range)
         sonar_src = np.where(use_edge, 3, sonar_src)
         ranges = sonar_range.reshape(n_poses, n_sonars)
         source = sonar_src.reshape(n_poses, n_sonars).astype(np.int8)
-        perceived = self._footprint(ranges, t_vis, t_first, cols, edge_seen, perceptual_range,
-                                    n_poses, n_sonars, k)
+        echo_feature = self._echo_features(sonar_src, sonar_range, first_seg, second_seg,
+                                           edge_which, perceptual_range)
+        perceived = self._openings(ranges, t_vis, t_first, cols, dirs, phi, perceptual_range,
+                                   n_poses, n_sonars, k)
+        for column in echo_feature:
+            rows = np.flatnonzero(column >= 0)
+            perceived[rows // n_sonars, column[rows]] = True
         return ranges, source, perceived
 
+    def _echo_features(self, src, rng, first_seg, second_seg, edge_which, perceptual_range):
+        """Feature index (or -1) of each surface that made each sonar's echo: two columns and the edge."""
+        w = self.world
+        near = rng <= perceptual_range
+        seg_feature = np.append(w.feature, -1)  # index -1 (no segment) maps to -1
+        edge_feature = np.append(w.edge_feature, -1)
+        first = np.where(near & ((src == 1) | (src == 2)), seg_feature[first_seg], -1)
+        second = np.where(near & (src == 2), seg_feature[second_seg], -1)
+        edge = np.where(near & (src == 3), edge_feature[edge_which], -1)
+        return first, second, edge
+
     def _multipath(self, todo, origins, dirs, t_first, seg, normal, g1, phi, sensor_axis, k, cols):
-        """Range of the echo of the mirrored part of each ray in ``todo`` (inf when unheard)."""
+        """Range (inf when unheard) and second surface of the mirrored part of each ray in ``todo``."""
         ranger = self.ranger
         d1 = t_first[todo]
         hit1 = origins[todo] + d1[:, None] * dirs[todo]
@@ -329,58 +346,63 @@ class _Scene:
                     * np.exp(-0.5 * (psi2 / self.lobe[seg2]) ** 2) * g1[todo] * ranger.gain(arrival))
         total = 0.5 * (d1 + d2 + d3)
         heard = ok & (strength >= 1.0) & (total <= ranger.max_range) & (total >= ranger.min_range)
-        return np.where(heard, total, np.inf)
+        return np.where(heard, total, np.inf), np.where(heard, seg2, -1)
 
     def _edges(self, sensor_pos, sensor_axis):
-        """First edge echo per sonar, and which edges lie unoccluded in each cone."""
+        """Range and index of the first edge echo per sonar (inf and -1 when none)."""
         w = self.world
         flat_pos = sensor_pos.reshape(-1, 2)
         flat_axis = sensor_axis.reshape(-1)
         m = flat_pos.shape[0]
         if w.edges.shape[0] == 0:
-            return np.full(m, np.inf), np.zeros((m, 0), dtype=bool)
+            return np.full(m, np.inf), np.full(m, -1, dtype=np.intp)
         vec = w.edges[None, :, :] - flat_pos[:, None, :]                      # (m, e, 2)
         r = np.linalg.norm(vec, axis=2)
         bearing = wrap_angle(np.arctan2(vec[..., 1], vec[..., 0]) - flat_axis[:, None])
         elev = elevation_offset(r, w.edge_z[:, 0], w.edge_z[:, 1], self.height)
         off = np.hypot(bearing, elev)
-        in_cone = (off <= self.half) & (r >= self.ranger.min_range) & (r <= self.ranger.max_range)
-        cand = np.argwhere(in_cone)
-        unoccluded = np.zeros_like(in_cone)
+        strength = (w.edge_range[None, :] / np.maximum(r, 1e-9)) ** 2 * self.ranger.gain(off) ** 2
+        cand = np.argwhere((strength >= 1.0) & (r >= self.ranger.min_range)
+                           & (r <= self.ranger.max_range))
+        heard = np.zeros(r.shape, dtype=bool)
         if cand.size:
-            src_pts = flat_pos[cand[:, 0]]
+            # an edge is heard only if no surface stands between it and the sonar
             dist = r[cand[:, 0], cand[:, 1]]
             dirs = vec[cand[:, 0], cand[:, 1]] / dist[:, None]
             cols = self._near(flat_pos)
-            t, _ = self._visible_distances(src_pts, dirs, cols, np.zeros(len(dist)),
+            t, _ = self._visible_distances(flat_pos[cand[:, 0]], dirs, cols, np.zeros(len(dist)),
                                            np.zeros(len(dist)))
             t = np.where(self.transparent[cols][None, :], np.inf, t)
-            clear = t.min(axis=1, initial=np.inf) >= dist - 0.02
-            unoccluded[cand[:, 0], cand[:, 1]] = clear
-        strength = (w.edge_range[None, :] / np.maximum(r, 1e-9)) ** 2 * self.ranger.gain(off) ** 2
-        heard = unoccluded & (strength >= 1.0)
-        rng_heard = np.where(heard, r, np.inf).min(axis=1)
-        seen_r = np.where(unoccluded, r, np.inf)
-        return rng_heard, seen_r
+            heard[cand[:, 0], cand[:, 1]] = t.min(axis=1, initial=np.inf) >= dist - 0.02
+        r_heard = np.where(heard, r, np.inf)
+        which = np.argmin(r_heard, axis=1)
+        first = r_heard[np.arange(m), which]
+        return first, np.where(np.isfinite(first), which, -1)
 
-    def _footprint(self, ranges, t_vis, t_first, cols, edge_seen_r, perceptual_range,
-                   n_poses, n_sonars, k):
-        """Features inside some sonar's footprint, per ring (see :class:`RingEchoes`)."""
-        n_features = self.feature_onehot.shape[1]
-        if n_features == 0:
-            return np.zeros((n_poses, 0), dtype=bool)
+    def _openings(self, ranges, t_vis, t_first, cols, dirs, phi, perceptual_range,
+                  n_poses, n_sonars, k):
+        """Per ring, the openings some sonar looked through where a surface would have echoed."""
+        w = self.world
+        perceived = np.zeros((n_poses, len(w.features)), dtype=bool)
+        if not cols.size:
+            return perceived
+        ap = np.flatnonzero((w.stands_for[cols] >= 0) & (w.feature[cols] >= 0))
+        if not ap.size:
+            return perceived
         limit = np.minimum(np.where(np.isfinite(ranges), ranges + self.ranger.footprint_margin,
-                                    perceptual_range), perceptual_range)     # (p, sonars)
-        ray_limit = np.minimum(np.repeat(limit.reshape(-1), k), t_first + 1e-6)
-        counts = np.zeros((n_poses, n_features))
-        if cols.size:
-            fcols = np.flatnonzero(self.world.feature[cols] >= 0)
-            if fcols.size:
-                inside = t_vis[:, fcols] <= ray_limit[:, None]                 # (n, f_cols)
-                per_ring = inside.reshape(n_poses, n_sonars * k, fcols.size).any(axis=1)
-                counts += per_ring @ self.feature_onehot[cols[fcols]]
-        if edge_seen_r.shape[1]:
-            inside = edge_seen_r <= limit.reshape(-1)[:, None]
-            per_ring = inside.reshape(n_poses, n_sonars, -1).any(axis=1)
-            counts += per_ring @ self.edge_onehot
-        return counts > 0
+                                    perceptual_range), perceptual_range)
+        ray_limit = np.minimum(np.repeat(limit.reshape(-1), k), t_first)
+        segs = cols[ap]
+        crossed = t_vis[:, ap] <= ray_limit[:, None]                            # (n, a)
+        # would the surface the opening replaces have sent a direct echo?
+        mats = w.stands_for[segs]
+        refl = np.array([m.reflectivity for m in w.materials])[mats]
+        lobe = np.radians(np.array([m.lobe for m in w.materials]))[mats]
+        cos_inc = np.abs(dirs @ self.normals[segs].T)                          # (n, a)
+        psi = 2.0 * np.arccos(np.clip(cos_inc, 0.0, 1.0))
+        strength = refl * np.exp(-0.5 * (psi / lobe) ** 2) * self.ranger.gain(phi)[:, None] ** 2
+        noticed = crossed & (strength >= 1.0)
+        per_ring = noticed.reshape(n_poses, n_sonars * k, ap.size).any(axis=1)   # (p, a)
+        for j, seg in enumerate(segs):
+            perceived[:, w.feature[seg]] |= per_ring[:, j]
+        return perceived

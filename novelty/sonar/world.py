@@ -76,6 +76,10 @@ class WorldMap:
         Lowest and highest point (m) of each segment above the floor.
     feature : ndarray of shape (n_segments,) of int
         Index into :attr:`features`, or -1 for plain wall.
+    stands_for : ndarray of shape (n_segments,) of int
+        For an ``"aperture"`` (an opening, transparent to sound): index into
+        :attr:`materials` of the surface it replaces, used to decide whether
+        a sonar noticed the opening; -1 elsewhere.
     edges : ndarray of shape (n_edges, 2)
         Positions of the edge scatterers.
     edge_range : ndarray of shape (n_edges,)
@@ -95,6 +99,7 @@ class WorldMap:
     material: np.ndarray
     z: np.ndarray
     feature: np.ndarray
+    stands_for: np.ndarray
     edges: np.ndarray
     edge_range: np.ndarray
     edge_z: np.ndarray
@@ -160,12 +165,20 @@ class MapBuilder:
                                       float(depth), float(width), description, inserted))
         return id
 
-    def wall(self, p0, p1, material: str, feature: str | None = None, z=FULL_HEIGHT) -> None:
-        """Add one straight segment from ``p0`` to ``p1``."""
+    def wall(self, p0, p1, material: str, feature: str | None = None, z=FULL_HEIGHT,
+             stands_for: str | None = None) -> None:
+        """Add one straight segment from ``p0`` to ``p1``.
+
+        ``stands_for`` names, for an ``"aperture"``, the material of the
+        surface the opening replaces.
+        """
         get_material(material)
+        if stands_for is not None:
+            get_material(stands_for)
         if np.allclose(p0, p1):
             return  # zero-length pieces arise naturally when items touch
-        self._segments.append((tuple(map(float, p0)), tuple(map(float, p1)), material, tuple(z), feature))
+        self._segments.append((tuple(map(float, p0)), tuple(map(float, p1)), material, tuple(z),
+                               feature, stands_for))
 
     def polyline(self, points, material: str, feature: str | None = None, z=FULL_HEIGHT,
                  closed=False) -> None:
@@ -182,10 +195,12 @@ class MapBuilder:
 
     def build(self) -> WorldMap:
         ids = [f.id for f in self._features]
-        for *_, fid in self._segments + self._edges:
+        used = [s[4] for s in self._segments] + [e[3] for e in self._edges]
+        for fid in used:
             if fid is not None and fid not in ids:
                 raise ValueError(f"Feature {fid!r} is used but was never declared.")
-        names = sorted({s[2] for s in self._segments}) or ["breezeblock"]
+        names = sorted({s[2] for s in self._segments} | {s[5] for s in self._segments if s[5]})
+        names = names or ["breezeblock"]
         index = {n: i for i, n in enumerate(names)}
         fidx = lambda fid: -1 if fid is None else ids.index(fid)  # noqa: E731
         seg = self._segments
@@ -196,6 +211,7 @@ class MapBuilder:
             material=np.array([index[s[2]] for s in seg], dtype=np.intp),
             z=np.array([s[3] for s in seg], dtype=np.float64).reshape(-1, 2),
             feature=np.array([fidx(s[4]) for s in seg], dtype=np.intp),
+            stands_for=np.array([index[s[5]] if s[5] else -1 for s in seg], dtype=np.intp),
             edges=np.array([e[0] for e in edges], dtype=np.float64).reshape(-1, 2),
             edge_range=np.array([e[1] for e in edges], dtype=np.float64),
             edge_z=np.array([e[2] for e in edges], dtype=np.float64).reshape(-1, 2),
