@@ -147,8 +147,10 @@ class NoveltyDetector(OutlierMixin, Component):
             self._check_online()
         X = check_batch(X, self, self.n_features_in_ if fitted else None)
         dt = self._elapsed(X.shape[0], timestamps)
+        # Parameters may have changed through set_params since the last call; the
+        # single-scan path skips this check to stay cheap.
+        self._validate_params()
         if not fitted:
-            self._validate_params()
             self._begin(X)
         out = self._learn(X, dt)
         self._advance_clock(X.shape[0], timestamps)

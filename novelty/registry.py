@@ -203,7 +203,10 @@ class Registry:
         """The one-line description of ``name``."""
         if name in self._descriptions:
             return self._descriptions[name]
-        obj = self.get(name)
+        try:
+            obj = self.get(name)
+        except Exception as exc:  # one broken plugin must not hide the others
+            return f"(cannot be loaded: {type(exc).__name__}: {exc})"
         return _first_line(obj)
 
     def descriptions(self) -> Mapping[str, str]:
