@@ -24,6 +24,7 @@ import numbers
 import numpy as np
 from sklearn.base import clone
 
+from . import _kernels
 from ._validation import Instance, Interval
 from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
@@ -180,14 +181,26 @@ class HabituatingFilter(NoveltyDetector):
         self.clusterer_ = clusterer
         self.synapse_ = synapse
 
+    # The three hooks below first ask novelty._kernels for a compiled kernel for
+    # this (clusterer, synapse) pair (issue 7); a kernel gives the same results
+    # as the reference code after it, which runs when there is none.
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        kernel = _kernels.learner(self.clusterer_, self.synapse_)
+        if kernel is not None:
+            return kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus))
         return learn_stream(self.clusterer_, self.synapse_, X, dt, float(self.stimulus))
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
+        kernel = _kernels.scorer(self.clusterer_, self.synapse_)
+        if kernel is not None:
+            return kernel(self.clusterer_, self.synapse_, X)
         rows, _ = self.clusterer_.winners(X)
         return self.synapse_.efficacy_[rows]
 
     def _novelty_one(self, x: np.ndarray) -> float:
+        kernel = _kernels.scorer(self.clusterer_, self.synapse_)
+        if kernel is not None:
+            return float(kernel(self.clusterer_, self.synapse_, x[None, :])[0])
         return float(self.synapse_.efficacy_[self.clusterer_.match(x).winner])
 
     def winners(self, X) -> np.ndarray:

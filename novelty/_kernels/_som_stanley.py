@@ -1,0 +1,250 @@
+"""Compiled learning and scoring loops for a SOM with Stanley synapses.
+
+The reference is :func:`novelty.filter.learn_stream` driving
+:class:`~novelty.clusterers.som.SOM` and
+:class:`~novelty.habituation.stanley.StanleySynapse`. Every floating-point
+operation below is written in the order numpy performs it there, so the
+results are bit-identical, not merely close:
+
+- numpy reduces ``((W - x) ** 2).sum(axis=1)`` by pairwise summation: eight
+  running sums over blocks of eight features, combined as
+  ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``, the tail added one
+  by one (fewer than eight features: one by one); more than 128 features are
+  split in two halves (the first a multiple of eight) summed separately and
+  added. :func:`pairwise_plan` lists those blocks, :func:`_block_cols` sums
+  one block in that order;
+- the winner is the first unit with the least distance (``np.argmin``);
+- the weight update is ``w + eta * (x - w)`` per element;
+- the Euler step is ``y + (h / tau) * (alpha * (y0 - y) - S)`` over
+  ``ceil(dt)`` sub-steps; the exact step ``y_inf + (y - y_inf) * exp(-alpha * dt / tau)``.
+
+numba compiles without fast-math, so LLVM neither reorders these sums nor
+fuses multiplies into adds. This module imports numba; it is only imported
+through :mod:`novelty._kernels`, on first use. No function here is recursive:
+numba's on-disk cache does not handle recursion reliably.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# decay codes (SOM.decay)
+CONSTANT, LINEAR, ASYMPTOTIC = 0, 1, 2
+
+#: numpy's pairwise summation sums blocks of at most this many items directly
+_PW_BLOCK = 128
+
+
+def pairwise_plan(n_features: int) -> np.ndarray:
+    """numpy's summation tree over ``n_features`` items, in post-order.
+
+    Each row ``(lo, n)`` with ``n > 0`` sums the block ``[lo, lo + n)`` and
+    pushes it; a row ``(0, 0)`` pops two partial sums and pushes their sum.
+    Up to 128 features the plan is the single block ``(0, n_features)``.
+    """
+    ops: list[tuple[int, int]] = []
+    pending = [(0, n_features, False)]
+    while pending:  # iterative post-order walk of numpy's recursive split
+        lo, n, expanded = pending.pop()
+        if n <= _PW_BLOCK:
+            ops.append((lo, n))
+        elif expanded:
+            ops.append((0, 0))
+        else:
+            half = n // 2
+            half -= half % 8
+            pending += [(lo, n, True), (lo + half, n - half, False), (lo, half, False)]
+    return np.array(ops, dtype=np.int64)
+
+
+# ------------------------------------------------------ distances, transposed
+@njit(cache=True, inline="always")
+def _block_cols(WT, x, out, acc, lo, n):
+    """Sum of (WT[k, j] - x[k])**2 over one block of at most 128 features k, for every unit j.
+
+    numpy's order: eight running sums ``acc`` over the blocks of eight
+    features, combined pairwise, then the tail added one by one (fewer than
+    eight features: all of them one by one). Starting the sums at 0.0 changes
+    nothing (0.0 + s == s for the non-negative squares) and saves a loop, which
+    matters for compile time. The loops over units are innermost and
+    contiguous, so they vectorise.
+    """
+    n_units = WT.shape[1]
+    end = lo + n - n % 8
+    if n >= 8:
+        for m in range(8):
+            for j in range(n_units):
+                acc[m, j] = 0.0
+        k = lo
+        while k < end:
+            for m in range(8):
+                xk = x[k + m]
+                for j in range(n_units):
+                    d = WT[k + m, j] - xk
+                    acc[m, j] += d * d
+            k += 8
+        for j in range(n_units):
+            out[j] = ((acc[0, j] + acc[1, j]) + (acc[2, j] + acc[3, j])) + (
+                (acc[4, j] + acc[5, j]) + (acc[6, j] + acc[7, j]))
+    else:
+        for j in range(n_units):
+            out[j] = 0.0
+    for k in range(end, lo + n):
+        xk = x[k]
+        for j in range(n_units):
+            d = WT[k, j] - xk
+            out[j] += d * d
+
+
+@njit(cache=True, inline="always")
+def _winner_cols(WT, x, plan, acc, stack):
+    """Winner and its squared distance, weights as (features, units).
+
+    ``acc`` (8, units) and ``stack`` (plan length, units) are scratch.
+    """
+    sp = 0
+    for p in range(plan.shape[0]):
+        if plan[p, 1] > 0:
+            _block_cols(WT, x, stack[sp], acc, plan[p, 0], plan[p, 1])
+            sp += 1
+        else:
+            a = stack[sp - 2]
+            b = stack[sp - 1]
+            for j in range(WT.shape[1]):
+                a[j] = a[j] + b[j]
+            sp -= 1
+    d = stack[0]
+    best = 0
+    best_d = d[0]
+    for j in range(1, WT.shape[1]):
+        if d[j] < best_d:
+            best = j
+            best_d = d[j]
+    return best, best_d
+
+
+@njit(cache=True, inline="always")
+def _transposed(W):
+    WT = np.empty((W.shape[1], W.shape[0]))
+    for j in range(W.shape[0]):
+        for k in range(W.shape[1]):
+            WT[k, j] = W[j, k]
+    return WT
+
+
+# ---------------------------------------------------------------- the models
+@njit(cache=True, inline="always")
+def _scheduled(decay, start, final, t, steps):
+    # SOM._scheduled, same operations
+    if decay == CONSTANT:
+        return start
+    if decay == LINEAR:
+        return start + (final - start) * min(t / steps, 1.0)
+    return final + (start - final) / (1.0 + 2.0 * t / steps)
+
+
+@njit(cache=True, inline="always")
+def _euler(y, stimulus, tau, dt, alpha, y0):
+    # StanleySynapse._advance, method="euler": ceil(dt) equal sub-steps
+    n_sub = max(1, math.ceil(dt))
+    h = dt / n_sub
+    for _ in range(n_sub):
+        y = y + (h / tau) * (alpha * (y0 - y) - stimulus)
+    return y
+
+
+@njit(cache=True, nogil=True)
+def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, learn,
+                       n_columns, table_radius, t,
+                       decay, lr0, lr1, radius0, radius1, decay_steps,
+                       exact, forget, tau_w, tau_n, tau_f, alpha, y0, stimulus):
+    """Present the rows of ``X`` in order; write each one's winner, novelty and distance.
+
+    The novelty is the winner's efficacy before the row is learned. With
+    ``learn`` the weights ``W`` and efficacies ``y`` are updated in place
+    (``learn_stream``); without, nothing is written but the outputs (batch
+    scoring, ``match``). ``table_radius`` is the grid radius of the SOM's
+    neighbour table and ``t`` its update count; returns both after the call.
+
+    Scoring and learning share this one function so that numba compiles the
+    distance code once (compile time, not run time, is what a user waits for).
+    """
+    n_units = W.shape[0]
+    n_features = W.shape[1]
+    n_rows = n_units // n_columns
+    # Work on a transposed copy (features x units) so that the distances to
+    # all units vectorise; it is copied back at the end.
+    WT = _transposed(W)
+    acc = np.empty((8, n_units))
+    vstack = np.empty((plan.shape[0], n_units))
+    radius = table_radius
+    for i in range(X.shape[0]):
+        x = X[i]
+        winner, distance = _winner_cols(WT, x, plan, acc, vstack)
+        winners[i] = winner
+        novelty[i] = y[winner]
+        distances[i] = distance
+        if not learn:
+            continue
+
+        # --- habituate (Synapse.step): the units outside the square
+        # neighbourhood are disjoint from it, so the groups' order is free.
+        wr = winner // n_columns
+        wc = winner - wr * n_columns
+        r_lo = max(0, wr - radius)
+        r_hi = min(n_rows - 1, wr + radius)
+        c_lo = max(0, wc - radius)
+        c_hi = min(n_columns - 1, wc + radius)
+        h = dt[i]
+        if exact:
+            # exp(-alpha * dt / tau) is shared by all units with the same tau
+            fall_w = math.exp(-alpha * h / tau_w)
+            fall_n = math.exp(-alpha * h / tau_n)
+            fall_f = math.exp(-alpha * h / tau_f)
+            y_inf = y0 - stimulus / alpha
+            y_rest = y0 - 0.0 / alpha
+        else:
+            fall_w = fall_n = fall_f = y_inf = y_rest = 0.0
+        if forget:
+            for j in range(n_units):
+                jr = j // n_columns
+                jc = j - jr * n_columns
+                if r_lo <= jr <= r_hi and c_lo <= jc <= c_hi:
+                    continue
+                if exact:
+                    y[j] = y_rest + (y[j] - y_rest) * fall_f
+                else:
+                    y[j] = _euler(y[j], 0.0, tau_f, h, alpha, y0)
+        for r in range(r_lo, r_hi + 1):
+            for c in range(c_lo, c_hi + 1):
+                j = r * n_columns + c
+                if j == winner:
+                    tau = tau_w
+                    fall = fall_w
+                else:
+                    tau = tau_n
+                    fall = fall_n
+                if exact:
+                    y[j] = y_inf + (y[j] - y_inf) * fall
+                else:
+                    y[j] = _euler(y[j], stimulus, tau, h, alpha, y0)
+
+        # --- adapt (SOM.adapt): rate and radius are those of update t
+        lr = _scheduled(decay, lr0, lr1, t, decay_steps)
+        for r in range(r_lo, r_hi + 1):
+            for c in range(c_lo, c_hi + 1):
+                j = r * n_columns + c
+                for k in range(n_features):
+                    WT[k, j] = WT[k, j] + lr * (x[k] - WT[k, j])
+        t += 1
+        if decay != CONSTANT:
+            radius = int(math.floor(_scheduled(decay, radius0, radius1, t, decay_steps) + 0.5))
+    if learn:
+        # explicit loops: a slice assignment compiles numba's shape-error path (seconds)
+        for j in range(n_units):
+            for k in range(n_features):
+                W[j, k] = WT[k, j]
+    return radius, t

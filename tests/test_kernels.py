@@ -1,0 +1,288 @@
+"""The compiled kernels (novelty._kernels) against the readable reference.
+
+The reference is ``learn_stream`` with ``SOM.match`` / ``SOM.adapt`` and
+``StanleySynapse.step`` (learning) and ``Clusterer.winners`` (scoring). The
+kernels repeat numpy's floating-point operations in numpy's order, so every
+comparison here is exact equality, not a tolerance. No timing is asserted
+(``benchmarks/perf.py`` measures speed).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import novelty
+from novelty import _kernels
+from novelty.filter import HabituatingFilter, learn_stream
+
+pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
+
+
+@contextlib.contextmanager
+def reference_only():
+    """Make the filter use the reference loops (as when no kernel exists)."""
+    learner, scorer = _kernels.learner, _kernels.scorer
+    _kernels.learner = _kernels.scorer = lambda *args: None
+    try:
+        yield
+    finally:
+        _kernels.learner, _kernels.scorer = learner, scorer
+
+
+def reference_learn(clusterer, synapse, X, dt, stimulus):
+    """``learn_stream``, also returning the winner of each row."""
+    winners = []
+    match = clusterer.match
+
+    def recording(x):
+        m = match(x)
+        winners.append(m.winner)
+        return m
+
+    clusterer.match = recording
+    try:
+        out = learn_stream(clusterer, synapse, X, dt, stimulus)
+    finally:
+        del clusterer.match
+    return out, np.array(winners, dtype=np.int64)
+
+
+def kernel_learn(clusterer, synapse, X, dt, stimulus):
+    kernel = _kernels.learner(clusterer, synapse)
+    assert kernel is not None
+    winners = np.empty(X.shape[0], dtype=np.int64)
+    out = kernel(clusterer, synapse, X, dt, stimulus, winners=winners)
+    return out, winners
+
+
+def assert_same_state(det_a, det_b):
+    np.testing.assert_array_equal(det_a.clusterer_.weights_, det_b.clusterer_.weights_)
+    np.testing.assert_array_equal(det_a.synapse_.efficacy_, det_b.synapse_.efficacy_)
+    assert det_a.clusterer_.n_updates_ == det_b.clusterer_.n_updates_
+    assert det_a.clusterer_._table_radius == det_b.clusterer_._table_radius
+
+
+# ------------------------------------------------------------------ strategies
+finite = dict(allow_nan=False, allow_infinity=False)
+
+som_params = st.fixed_dictionaries({
+    "n_rows": st.integers(1, 6),
+    "n_columns": st.integers(1, 6),
+    "learning_rate": st.floats(0, 1, **finite),
+    "radius": st.one_of(st.integers(0, 4), st.floats(0, 4.5, **finite)),
+    "decay": st.sampled_from(["constant", "linear", "asymptotic"]),
+    "decay_steps": st.integers(1, 40),
+    "learning_rate_final": st.floats(0, 1, **finite),
+    "radius_final": st.floats(0, 3, **finite),
+    "init": st.sampled_from(["uniform", "sample"]),
+})
+
+
+@st.composite
+def stanley_params(draw):
+    alpha = draw(st.floats(0.2, 3, **finite))
+    method = draw(st.sampled_from(["euler", "exact"]))
+    low = alpha if method == "euler" else 0.05  # Euler needs tau >= alpha
+    tau = st.floats(low, 40, **finite)
+    return {
+        "alpha": alpha,
+        "method": method,
+        "tau_winner": draw(tau),
+        "tau_neighbour": draw(tau),
+        "y0": draw(st.floats(0.1, 3, **finite)),
+        "others": draw(st.sampled_from(["hold", "forget"])),
+        "tau_forget": draw(st.one_of(st.none(), tau)),
+    }
+
+
+@st.composite
+def streams(draw):
+    n_features = draw(st.integers(1, 40))
+    n_samples = draw(st.integers(1, 60))
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    scale = draw(st.sampled_from([1.0, 1e-3, 50.0]))
+    X = rng.uniform(-scale, scale, size=(n_samples, n_features))
+    if draw(st.booleans()):  # repeated scans make exact ties between units likely
+        X = np.round(X, 1)
+    if draw(st.booleans()):
+        steps = rng.choice([0.0, 0.5, 1.0, 2.0, 3.7], size=n_samples)
+        timestamps = np.cumsum(steps)
+    else:
+        timestamps = None
+    return X, timestamps
+
+
+def build(som, stanley, stimulus=1.0, seed=0):
+    return HabituatingFilter.from_params("som", "stanley", stimulus=stimulus, random_state=seed,
+                                         **som, **{f"synapse__{k}": v for k, v in stanley.items()})
+
+
+# ------------------------------------------------------------------ learning
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(som=som_params, stanley=stanley_params(), data=streams(),
+       stimulus=st.floats(0, 2, **finite))
+def test_learning_equals_reference(som, stanley, data, stimulus):
+    X, timestamps = data
+    det = build(som, stanley, stimulus)
+    det._validate_params()
+    det._begin(X)
+    dt = det._elapsed(X.shape[0], timestamps)
+    ref_c, ref_s = copy.deepcopy(det.clusterer_), copy.deepcopy(det.synapse_)
+
+    expected, expected_winners = reference_learn(ref_c, ref_s, X, dt, float(stimulus))
+    got, winners = kernel_learn(det.clusterer_, det.synapse_, X, dt, float(stimulus))
+
+    np.testing.assert_array_equal(winners, expected_winners)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(det.clusterer_.weights_, ref_c.weights_)
+    np.testing.assert_array_equal(det.synapse_.efficacy_, ref_s.efficacy_)
+    assert det.clusterer_.n_updates_ == ref_c.n_updates_
+    assert det.clusterer_._table_radius == ref_c._table_radius
+    for a, b in zip(det.clusterer_._neighbour_table, ref_c._neighbour_table):
+        np.testing.assert_array_equal(a, b)
+
+
+@settings(max_examples=40, deadline=None)
+@given(som=som_params, stanley=stanley_params(), data=streams(), split=st.integers(0, 60))
+def test_detector_api_equals_reference(som, stanley, data, split):
+    """fit / partial_fit / score_learn_one / novelty / score_one, kernel vs reference."""
+    X, _ = data
+    fast, slow = build(som, stanley), build(som, stanley)
+    head, tail = X[:split], X[split:]
+    results = []
+    for det, context in ((fast, contextlib.nullcontext()), (slow, reference_only())):
+        with context:
+            out = [det.stream(head)] if len(head) else []
+            out.append(np.array([det.score_learn_one(x) for x in tail[:5]]))
+            if len(tail) > 5:
+                out.append(det.stream(tail[5:]))
+            out.append(det.novelty(X))
+            out.append(np.array([det.score_one(x) for x in X]))
+            results.append(np.concatenate(out))
+    np.testing.assert_array_equal(results[0], results[1])
+    assert_same_state(fast, slow)
+
+
+def corridor(n_scans, n_features=16, seed=0):
+    """A smooth random walk in [0, 1]^n_features, like sonar scans along corridors."""
+    rng = np.random.default_rng(seed)
+    X = np.empty((n_scans, n_features))
+    x = rng.uniform(0.2, 0.8, n_features)
+    for i in range(n_scans):
+        x = np.clip(x + rng.normal(0, 0.03, n_features), 0.0, 1.0)
+        X[i] = x
+    return X
+
+
+@pytest.mark.parametrize("synapse", [
+    {},  # the paper's configuration
+    {"synapse__others": "forget", "synapse__tau_forget": 60.0},
+    {"synapse__method": "exact", "synapse__others": "forget"},
+])
+@pytest.mark.parametrize("som", [{}, {"decay": "linear", "radius": 3, "decay_steps": 1500}])
+def test_corridor_stream_equals_reference(som, synapse):
+    X = corridor(3000)
+    fast, slow = novelty.make("hsom", **som, **synapse), novelty.make("hsom", **som, **synapse)
+    got = np.concatenate([fast.stream(X[:10]), fast.stream(X[10:])])
+    with reference_only():
+        expected = np.concatenate([slow.stream(X[:10]), slow.stream(X[10:])])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_state(fast, slow)
+    # the learned map scores the corridor (and new scans) the same way
+    probe = np.concatenate([X[::7], corridor(500, seed=1)])
+    with reference_only():
+        expected_scores = slow.novelty(probe)
+    np.testing.assert_array_equal(fast.novelty(probe), expected_scores)
+
+
+# ------------------------------------------------------------------- scoring
+@pytest.mark.parametrize("n_features", [1, 3, 7, 8, 9, 16, 24, 64, 127, 128, 129, 200, 300])
+def test_distances_follow_numpy_summation(n_features):
+    """The kernel's squared distances equal ``((W - x) ** 2).sum(axis=1)`` bit for bit."""
+    rng = np.random.default_rng(n_features)
+    W = rng.uniform(-1, 1, (13, n_features)) * rng.choice([1e-3, 1.0, 1e3], (13, n_features))
+    X = rng.uniform(-1, 1, (20, n_features))
+    module = _kernels._load()
+    rows, novelty_out, dist = np.empty(20, dtype=np.int64), np.empty(20), np.empty(20)
+    module.som_stanley_stream(W, np.arange(13.0), X, np.empty(0), rows, novelty_out, dist,
+                              module.pairwise_plan(n_features), False, 13, 0, 0, 0, 0.0, 0.0,
+                              0.0, 0.0, 1, False, False, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0)
+    for i, x in enumerate(X):
+        d = ((W - x) ** 2).sum(axis=1)
+        assert rows[i] == np.argmin(d)
+        assert dist[i] == d[rows[i]]
+        assert novelty_out[i] == rows[i]
+
+
+@settings(max_examples=40, deadline=None)
+@given(som=som_params, data=streams(), n_test=st.integers(1, 300))
+def test_batch_scoring_equals_score_one(som, data, n_test):
+    X, _ = data
+    det = build(som, {}).fit(X)
+    rng = np.random.default_rng(n_test)
+    probe = np.concatenate([X, rng.uniform(X.min(), X.max() + 1e-9, (n_test, X.shape[1]))])
+    batch = det.novelty(probe)
+    np.testing.assert_array_equal(batch, [det.score_one(x) for x in probe])
+    with reference_only():
+        np.testing.assert_array_equal(batch, det.novelty(probe))
+
+
+def test_threaded_scoring_equals_reference(monkeypatch):
+    """Large batches are split across threads; the result does not depend on it."""
+    monkeypatch.setattr(_kernels, "_SCORE_CHUNK", 1000)
+    monkeypatch.setenv("NOVELTY_NUM_THREADS", "3")
+    det = novelty.make("hsom").fit(corridor(2000))
+    probe = np.random.default_rng(0).uniform(0, 1, (10_007, 16))
+    got = det.novelty(probe)
+    with reference_only():
+        np.testing.assert_array_equal(got, det.novelty(probe))
+
+
+# ----------------------------------------------------------------- dispatch
+def test_other_components_use_the_reference():
+    class MySOM(novelty.SOM):
+        pass
+
+    det = HabituatingFilter(clusterer=MySOM(n_rows=2, n_columns=2)).fit(np.zeros((3, 2)))
+    assert _kernels.learner(det.clusterer_, det.synapse_) is None
+    hsom = novelty.make("hsom").fit(np.zeros((3, 2)))
+    assert _kernels.learner(hsom.clusterer_, hsom.synapse_) is not None
+    hsom.clusterer_.weights_ = np.asfortranarray(hsom.clusterer_.weights_)
+    assert _kernels.learner(hsom.clusterer_, hsom.synapse_) is None
+
+
+def test_missing_numba_falls_back_with_one_warning(monkeypatch):
+    monkeypatch.setattr(_kernels, "_module", None)
+    monkeypatch.setattr(_kernels, "_failed", False)
+    monkeypatch.delitem(sys.modules, "novelty._kernels._som_stanley")
+    monkeypatch.delattr(_kernels, "_som_stanley", raising=False)
+    monkeypatch.setitem(sys.modules, "numba", None)  # makes "import numba" fail
+    det = novelty.make("hsom")
+    X = corridor(50)
+    with pytest.warns(RuntimeWarning, match="reference numpy loops"):
+        got = det.stream(X)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        det.score_learn_one(X[0])
+    with reference_only():
+        expected = novelty.make("hsom").stream(X)
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_import_novelty_does_not_import_numba():
+    code = ("import sys, numpy as np, novelty\n"
+            "det = novelty.make('hsom')\n"
+            "assert 'numba' not in sys.modules\n"
+            "det.fit(np.zeros((2, 3)))\n"
+            "assert 'numba' in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
