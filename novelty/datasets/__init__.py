@@ -3,6 +3,21 @@
 ``available()`` lists them with a one-line description; ``load(name, **options)``
 builds one. Third-party datasets register through the entry-point group
 ``novelty.datasets``.
+
+Built in:
+
+- the paper's environments, simulated (:mod:`novelty.sonar`): ``paper-a``,
+  ``paper-a-star``, ``paper-b``, ``paper-c``, ``paper-control``
+  (``run=0, seed=0, runs=1``);
+- tasks from the paper's experiments: ``paper-a-to-a-star``, ``paper-a-to-b``,
+  ``paper-a-to-c`` (``seed=0, train_runs=3, test_runs=1``);
+- inspection tasks on generated corridors: ``inspection`` (any
+  ``difficulty``), ``inspection-easy``, ``inspection-medium``,
+  ``inspection-hard`` (``seed=0, n_novelties=2, train_runs=3, test_runs=1,
+  length=15.0``);
+- real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
+  ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
+  ``uci-sonar-mines``.
 """
 
 from __future__ import annotations
@@ -12,7 +27,26 @@ from .base import Dataset
 
 __all__ = ["Dataset", "registry", "available", "load", "register"]
 
-registry = Registry("dataset", group="novelty.datasets", builtins={})
+_BUILTINS = {
+    "paper-a": "novelty.datasets.paper:paper_a",
+    "paper-a-star": "novelty.datasets.paper:paper_a_star",
+    "paper-b": "novelty.datasets.paper:paper_b",
+    "paper-c": "novelty.datasets.paper:paper_c",
+    "paper-control": "novelty.datasets.paper:paper_control",
+    "paper-a-to-a-star": "novelty.datasets.paper:paper_a_to_a_star",
+    "paper-a-to-b": "novelty.datasets.paper:paper_a_to_b",
+    "paper-a-to-c": "novelty.datasets.paper:paper_a_to_c",
+    "inspection": "novelty.datasets.inspection:inspection",
+    "inspection-easy": "novelty.datasets.inspection:inspection_easy",
+    "inspection-medium": "novelty.datasets.inspection:inspection_medium",
+    "inspection-hard": "novelty.datasets.inspection:inspection_hard",
+    "uci-wall-following": "novelty.datasets.uci:uci_wall_following",
+    "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
+    "uci-sonar": "novelty.datasets.uci:uci_sonar",
+    "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
+}
+
+registry = Registry("dataset", group="novelty.datasets", builtins=_BUILTINS)
 
 
 def available() -> dict:

@@ -14,9 +14,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from .world import FULL_HEIGHT, MapBuilder
 
-__all__ = ["Door", "Crack", "Board", "Opening", "Recess", "Protrusion", "corridor_wall"]
+__all__ = ["Door", "Crack", "Board", "Opening", "Recess", "Protrusion", "Person", "corridor_wall"]
 
 #: On-axis range (m) up to which a door frame's vertical edge is heard, approximately.
 FRAME_EDGE_RANGE = 1.6
@@ -46,6 +48,7 @@ class Door:
     leaf: str = "wood"
     room: str = "plaster"
     description: str = ""
+    inserted: bool = False
 
     def extent(self):
         return self.x - self.width / 2, self.x + self.width / 2
@@ -133,9 +136,25 @@ class Protrusion:
         return self.x - self.width / 2, self.x + self.width / 2
 
 
+@dataclass(frozen=True)
+class Person:
+    """A person standing ``gap`` metres from the wall: a 12-sided prism of clothing."""
+
+    id: str
+    x: float
+    radius: float = 0.2
+    gap: float = 0.15
+    height: float = 1.75
+    inserted: bool = False
+    description: str = "person standing by the wall"
+
+    def extent(self):
+        return self.x - self.radius, self.x + self.radius
+
+
 def _overlay(item) -> bool:
     """Items that sit on an unbroken wall rather than replace a piece of it."""
-    return isinstance(item, (Crack, Board, Protrusion))
+    return isinstance(item, (Crack, Board, Protrusion, Person))
 
 
 def corridor_wall(b: MapBuilder, y: float, x0: float, x1: float, side: int, material: str,
@@ -169,11 +188,18 @@ def _cut_item(b: MapBuilder, it, y: float, side: int, material: str) -> None:
         back = y + s * it.depth
         kind = "opening" if it.open else "door"
         fid = b.feature(it.id, kind, (it.x, y), _label_side(s), it.depth, it.width,
-                        it.description or ("open door" if it.open else "door in a recess"))
-        b.wall((a, y), (a, back), it.frame, fid)
-        b.wall((c, y), (c, back), it.frame, fid)
-        b.edge((a, y), FRAME_EDGE_RANGE, fid)
-        b.edge((c, y), FRAME_EDGE_RANGE, fid)
+                        it.description or ("open door" if it.open else "door in a recess"),
+                        inserted=it.inserted)
+        frame = fid
+        if it.open:
+            # the frame is there whether the door is open or shut: opening the
+            # door changes only what lies beyond it, so the frame is its own feature
+            frame = b.feature(f"{it.id}-frame", "door", (it.x, y), _label_side(s), it.depth,
+                              it.width, "frame of an open door")
+        b.wall((a, y), (a, back), it.frame, frame)
+        b.wall((c, y), (c, back), it.frame, frame)
+        b.edge((a, y), FRAME_EDGE_RANGE, frame)
+        b.edge((c, y), FRAME_EDGE_RANGE, frame)
         if not it.open:
             b.wall((a, back), (c, back), it.leaf, fid)
             return
@@ -226,6 +252,14 @@ def _overlay_item(b: MapBuilder, it, y: float, side: int) -> None:
         b.polyline([(a, y), (a, face), (c, face), (c, y)], it.material, fid, z=it.z)
         b.edge((a, face), FRAME_EDGE_RANGE * 0.6, fid, z=it.z)
         b.edge((c, face), FRAME_EDGE_RANGE * 0.6, fid, z=it.z)
+    elif isinstance(it, Person):
+        centre_y = y - s * (it.gap + it.radius)
+        fid = b.feature(it.id, "object", (it.x, centre_y), _label_side(s),
+                        -(it.gap + 2 * it.radius), 2 * it.radius, it.description,
+                        inserted=it.inserted)
+        ang = np.linspace(0.0, 2.0 * np.pi, 13)[:-1]
+        b.polyline(np.stack([it.x + it.radius * np.cos(ang), centre_y + it.radius * np.sin(ang)],
+                            axis=1), "fabric", fid, z=(0.0, it.height), closed=True)
     elif isinstance(it, Protrusion):
         fid = b.feature(it.id, "object", (it.x, y - s * it.depth / 2), _label_side(s), -it.depth,
                         it.width, it.description, inserted=it.inserted)

@@ -83,8 +83,8 @@ class RingEchoes:
     ranges : ndarray of shape (n_rings, n_sonars)
         Noiseless first-echo ranges (m); ``inf`` where nothing was heard.
     perceived : ndarray of shape (n_rings, n_features) of bool
-        Whether each map feature shaped some sonar's reading within the
-        perceptual range: it sent the first echo (directly, as either
+        Whether each map feature shaped some sonar's reading nearer than
+        the salient range (see :meth:`PolaroidRanger.cast`): it sent the first echo (directly, as either
         surface of a multipath echo, or from one of its edges), or it is an
         opening that the sonar looked through, nearer than its echo (plus
         ``footprint_margin``), where the missing surface would have echoed.
@@ -167,8 +167,14 @@ class PolaroidRanger:
 
     # ----------------------------------------------------------------- rings
     def cast(self, world: WorldMap, poses, robot: Robot = NOMAD_200,
-             perceptual_range: float = 4.0) -> RingEchoes:
-        """Noiseless first echoes of every sonar for every pose (x, y, heading)."""
+             salient_range: float = 2.0) -> RingEchoes:
+        """Noiseless first echoes of every sonar for every pose (x, y, heading).
+
+        ``salient_range`` (m) bounds the ground truth: a feature is perceived
+        only through readings nearer than this. The default, 2 m, is where the
+        paper's encoding (threshold 4 m) gives an input of at least 0.5; a
+        faint reading at 3.9 m (input 0.025) hardly changes a perception.
+        """
         poses = np.atleast_2d(np.asarray(poses, dtype=np.float64))
         sensor_pos, sensor_axis = robot.sonar_poses(poses)
         n_poses, n_sonars = sensor_axis.shape
@@ -179,7 +185,7 @@ class PolaroidRanger:
         scene = _Scene(world, self, robot.sonar_height)
         for start in range(0, n_poses, per_chunk):
             sl = slice(start, start + per_chunk)
-            r, src, seen = scene.rings(sensor_pos[sl], sensor_axis[sl], perceptual_range)
+            r, src, seen = scene.rings(sensor_pos[sl], sensor_axis[sl], salient_range)
             ranges[sl], source[sl], perceived[sl] = r, src, seen
         return RingEchoes(ranges, perceived, source)
 
@@ -240,7 +246,7 @@ class _Scene:
             t[:, partial] = np.where(off[:, partial] <= self.half, t[:, partial], np.inf)
         return t, off
 
-    def rings(self, sensor_pos, sensor_axis, perceptual_range):
+    def rings(self, sensor_pos, sensor_axis, salient_range):
         ranger = self.ranger
         n_poses, n_sonars = sensor_axis.shape
         k = self.offsets.size
@@ -297,18 +303,18 @@ class _Scene:
         ranges = sonar_range.reshape(n_poses, n_sonars)
         source = sonar_src.reshape(n_poses, n_sonars).astype(np.int8)
         echo_feature = self._echo_features(sonar_src, sonar_range, first_seg, second_seg,
-                                           edge_which, perceptual_range)
-        perceived = self._openings(ranges, t_vis, t_first, cols, dirs, phi, perceptual_range,
+                                           edge_which, salient_range)
+        perceived = self._openings(ranges, t_vis, t_first, cols, dirs, phi, salient_range,
                                    n_poses, n_sonars, k)
         for column in echo_feature:
             rows = np.flatnonzero(column >= 0)
             perceived[rows // n_sonars, column[rows]] = True
         return ranges, source, perceived
 
-    def _echo_features(self, src, rng, first_seg, second_seg, edge_which, perceptual_range):
+    def _echo_features(self, src, rng, first_seg, second_seg, edge_which, salient_range):
         """Feature index (or -1) of each surface that made each sonar's echo: two columns and the edge."""
         w = self.world
-        near = rng <= perceptual_range
+        near = rng <= salient_range
         seg_feature = np.append(w.feature, -1)  # index -1 (no segment) maps to -1
         edge_feature = np.append(w.edge_feature, -1)
         first = np.where(near & ((src == 1) | (src == 2)), seg_feature[first_seg], -1)
@@ -379,7 +385,7 @@ class _Scene:
         first = r_heard[np.arange(m), which]
         return first, np.where(np.isfinite(first), which, -1)
 
-    def _openings(self, ranges, t_vis, t_first, cols, dirs, phi, perceptual_range,
+    def _openings(self, ranges, t_vis, t_first, cols, dirs, phi, salient_range,
                   n_poses, n_sonars, k):
         """Per ring, the openings some sonar looked through where a surface would have echoed."""
         w = self.world
@@ -390,7 +396,7 @@ class _Scene:
         if not ap.size:
             return perceived
         limit = np.minimum(np.where(np.isfinite(ranges), ranges + self.ranger.footprint_margin,
-                                    perceptual_range), perceptual_range)
+                                    salient_range), salient_range)
         ray_limit = np.minimum(np.repeat(limit.reshape(-1), k), t_first)
         segs = cols[ap]
         crossed = t_vis[:, ap] <= ray_limit[:, None]                            # (n, a)

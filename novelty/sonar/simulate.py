@@ -70,7 +70,7 @@ class RingLog:
 def simulate_rings(environment, seed: int = 0, run: int = 0, *,
                    ranger: PolaroidRanger = PolaroidRanger(), robot: Robot = NOMAD_200,
                    variation: RunVariation = RunVariation(),
-                   perceptual_range: float = PAPER_THRESHOLD) -> RingLog:
+                   salient_range: float = 2.0) -> RingLog:
     """Drive one run and fire the sonar ring along it (before any averaging)."""
     env = get_environment(environment)
     rng = run_rng(seed, run)
@@ -82,7 +82,7 @@ def simulate_rings(environment, seed: int = 0, run: int = 0, *,
                       np.interp(times, traj.t, traj.poses[:, 1]),
                       np.interp(times, traj.t, heading)], axis=1)
     travelled = np.interp(times, traj.t, traj.odometry)
-    echoes = ranger.cast(env.world, poses, robot, perceptual_range)
+    echoes = ranger.cast(env.world, poses, robot, salient_range)
     readings = ranger.read(echoes.ranges, rng)
     return RingLog(poses, travelled, readings, echoes.ranges, echoes.source, echoes.perceived,
                    traj.poses, traj.odometry)
@@ -91,13 +91,18 @@ def simulate_rings(environment, seed: int = 0, run: int = 0, *,
 def simulate_run(environment, seed: int = 0, run: int = 0, *,
                  ranger: PolaroidRanger = PolaroidRanger(), robot: Robot = NOMAD_200,
                  variation: RunVariation = RunVariation(), threshold: float = PAPER_THRESHOLD,
-                 bin_length: float = PAPER_BIN_LENGTH):
-    """One run as a dataset: one perception per ``bin_length`` of travel."""
+                 bin_length: float = PAPER_BIN_LENGTH, salient_range: float = 2.0):
+    """One run as a dataset: one perception per ``bin_length`` of travel.
+
+    ``feature_ids[k]`` holds the features that shaped a reading nearer than
+    ``salient_range`` in any ring of scan ``k`` (see
+    :meth:`~novelty.sonar.ranger.PolaroidRanger.cast`).
+    """
     from ..datasets.base import Dataset
 
     env = get_environment(environment)
     log = simulate_rings(env, seed, run, ranger=ranger, robot=robot, variation=variation,
-                         perceptual_range=threshold)
+                         salient_range=min(salient_range, threshold))
     n_bins = int(round(env.length / bin_length))
     values = preprocess(log.readings, threshold)
     X, member = bin_by_distance(values, log.travelled, bin_length, n_bins)
@@ -130,6 +135,7 @@ def simulate_run(environment, seed: int = 0, run: int = 0, *,
             "description": env.description,
             "n_rings": int(log.readings.shape[0]),
             "threshold_m": float(threshold),
+            "salient_range_m": float(min(salient_range, threshold)),
             "bin_length_m": float(bin_length),
             "encoding": f"1 - min(range, {threshold:g} m) / {threshold:g} m, mean over each "
                         f"{bin_length * 100:g} cm of travel",
