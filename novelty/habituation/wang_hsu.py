@@ -32,6 +32,9 @@ Under a constant stimulus, equation (2) has the closed form (with
     z(t + h) = z(t) / r
     integral of z over [t, t + h] = l * h - ln(r) / (gamma * S)           (4)
 
+(evaluated as ``D / (gamma S)`` with ``D = k h - ln r``, which keeps its
+precision for weak stimuli and long steps)
+
 and at ``S = 0``, ``z`` is constant and (1) is linear:
 
     y(t + h) = y0 + (y(t) - y0) * exp(-alpha * z * h / tau)               (5)
@@ -281,9 +284,11 @@ class WangHsuSynapse(Synapse):
         b = self.beta * s * h / tau
         for _ in range(n_sub):
             z, z_integral = self._recovery_step(z, s, h)
-            a = (self.alpha / tau) * z_integral  # > 0: z stays positive
-            y_inf = self.y0 * a / (a + b)
-            y = y_inf + (y - y_inf) * np.exp(-(a + b))
+            a = (self.alpha / tau) * z_integral
+            total = a + b
+            # total > 0 but for z and b both vanishing, when nothing moves
+            y_inf = np.where(total > 0, self.y0 * a / np.where(total > 0, total, 1.0), y)
+            y = y_inf + (y - y_inf) * np.exp(-total)
         return y, z
 
     def _recovery_step(self, z: np.ndarray, s: float, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -292,9 +297,15 @@ class WangHsuSynapse(Synapse):
         if k == 0:
             return z, z * h
         q = np.minimum(z / self.l, 1.0)
-        with np.errstate(divide="ignore"):  # q = 1 (z at l): log(1 - q) = -inf is meant
-            log_r = np.logaddexp(np.log(q), np.log1p(-q) + k)
-        return z * np.exp(-log_r), self.l * h - log_r / (self.gamma * s)
+        # D = k - ln(r) = -ln((1 - q) + q e^-k) >= 0, so that the integral is D / (gamma S)
+        # and z(t + h) = z e^(D - k); log1p where D is small (weak stimulus, small z),
+        # log-add-exp where it is large (q near 1, long steps).
+        x = -q * np.expm1(-k)
+        with np.errstate(divide="ignore"):  # log(1 - q) = -inf at q = 1 is meant
+            d = np.where(x < 0.5, -np.log1p(-np.minimum(x, 0.5)),
+                         -np.logaddexp(np.log1p(-q), np.log(q) - k))
+        z_next = np.maximum(z * np.exp(d - k), np.finfo(float).tiny)
+        return z_next, d / (self.gamma * s)
 
     def _check_state(self) -> None:
         super()._check_state()
