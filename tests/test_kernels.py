@@ -214,9 +214,10 @@ def test_distances_follow_numpy_summation(n_features):
     X = rng.uniform(-1, 1, (20, n_features))
     module = _kernels._load()
     rows, novelty_out, dist = np.empty(20, dtype=np.int64), np.empty(20), np.empty(20)
+    params = np.zeros(len(module.PARAMS))
+    params[0] = 13  # n_columns
     module.som_stanley_stream(W, np.arange(13.0), X, np.empty(0), rows, novelty_out, dist,
-                              module.pairwise_plan(n_features), False, 13, 0, 0, 0, 0.0, 0.0,
-                              0.0, 0.0, 1, False, False, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0)
+                              module.pairwise_plan(n_features), params, False, 0, 0)
     for i, x in enumerate(X):
         d = ((W - x) ** 2).sum(axis=1)
         assert rows[i] == np.argmin(d)

@@ -12,11 +12,14 @@ when they answer ``None``:
 - the state is not in the plain layout the kernel writes to in place;
 - numba is missing or failed to compile (a ``RuntimeWarning``, once);
 - the environment variable ``NOVELTY_NO_KERNELS`` is set to a non-empty value
-  other than ``0`` (for comparisons and debugging).
+  other than ``0`` when the first kernel is asked for (for comparisons).
 
-numba is imported here only on the first call that wants a kernel, so
+numba is imported only by the first call that wants a kernel, so
 ``import novelty`` does not pay for it; compiled code is cached on disk
-(``cache=True``), so later processes load it instead of compiling again.
+(``cache=True``, in ``NUMBA_CACHE_DIR`` when set), so later processes load
+it instead of compiling again. Batch scoring splits large batches across
+threads (``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel
+releases the GIL.
 """
 
 from __future__ import annotations
@@ -26,6 +29,9 @@ import warnings
 from typing import Callable
 
 import numpy as np
+
+from ..clusterers.som import SOM
+from ..habituation.stanley import StanleySynapse
 
 __all__ = ["learner", "scorer", "kernels_enabled"]
 
@@ -52,58 +58,38 @@ def _load():
             f"novelty: compiled kernels are unavailable ({type(exc).__name__}: {exc}); "
             "using the reference numpy loops, which give the same results more slowly.",
             RuntimeWarning,
-            stacklevel=3,
+            stacklevel=4,
         )
         return None
     _module = _som_stanley
     return _module
 
 
-def _plain(a: np.ndarray, ndim: int) -> bool:
-    # The kernels update state in place: it must be an owned-layout float64 array.
+def _plain(a, ndim: int) -> bool:
+    # The kernels update state in place: it must be a plain, writable float64 array.
+    if type(a) is not np.ndarray or a.ndim != ndim or a.dtype != np.float64:
+        return False
+    flags = a.flags
+    return flags.c_contiguous and flags.writeable
+
+
+def _som_ready(som, y) -> bool:
+    W = getattr(som, "weights_", None)
     return (
-        type(a) is np.ndarray
-        and a.ndim == ndim
-        and a.dtype == np.float64
-        and a.flags.c_contiguous
-        and a.flags.writeable
-    )
-
-
-_DECAY_CODES = {"constant": 0, "linear": 1, "asymptotic": 2}
-
-
-def _som_ready(clusterer) -> bool:
-    from ..clusterers.som import SOM
-
-    W = getattr(clusterer, "weights_", None)
-    return (
-        type(clusterer) is SOM
-        and _plain(W, 2)
-        and W.shape[0] == clusterer.n_rows * clusterer.n_columns
-        and clusterer.decay in _DECAY_CODES
-        and hasattr(clusterer, "_table_radius")
-    )
-
-
-def _stanley_ready(synapse, n_units: int) -> bool:
-    from ..habituation.stanley import StanleySynapse
-
-    y = getattr(synapse, "efficacy_", None)
-    return (
-        type(synapse) is StanleySynapse
+        _plain(W, 2)
         and _plain(y, 1)
-        and y.shape[0] == n_units
-        and synapse.method in ("euler", "exact")
-        and synapse.others in ("hold", "forget")
+        and y.shape[0] == W.shape[0]
+        and hasattr(som, "_table_radius")
     )
 
 
 def learner(clusterer, synapse) -> Callable | None:
     """A function ``(clusterer, synapse, X, dt, stimulus) -> novelty`` equal to ``learn_stream``, or None."""
-    if not (_som_ready(clusterer) and _stanley_ready(synapse, clusterer.weights_.shape[0])):
+    if type(clusterer) is not SOM or type(synapse) is not StanleySynapse:
         return None
-    if _load() is None:
+    if not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
+        return None
+    if _module is None and _load() is None:
         return None
     return _learn_som_stanley
 
@@ -114,15 +100,17 @@ def scorer(clusterer, synapse) -> Callable | None:
     Scoring only reads the efficacies, so any synapse model with a plain
     ``efficacy_`` array will do.
     """
-    y = getattr(synapse, "efficacy_", None)
-    if not (_som_ready(clusterer) and _plain(y, 1) and y.shape[0] == clusterer.weights_.shape[0]):
+    if type(clusterer) is not SOM or not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
         return None
-    if _load() is None:
+    if _module is None and _load() is None:
         return None
     return _score_som
 
 
+# ---------------------------------------------------------------- parameters
+_DECAY_CODES = {"constant": 0, "linear": 1, "asymptotic": 2}
 _plans: dict[int, np.ndarray] = {}
+_params: dict[tuple, np.ndarray] = {}
 
 
 def _plan(n_features: int) -> np.ndarray:
@@ -132,32 +120,65 @@ def _plan(n_features: int) -> np.ndarray:
     return plan
 
 
+def _som_stanley_params(som, syn, stimulus: float) -> np.ndarray | None:
+    """The kernel's ``params`` vector (see ``_som_stanley.PARAMS``), or None if out of its scope.
+
+    Parameters may change between calls (``set_params``), so they are read
+    every time; the vector is cached by value because building it costs
+    more than looking it up.
+    """
+    key = (som.n_rows, som.n_columns, som.decay, som.learning_rate, som.learning_rate_final,
+           som.radius, som.radius_final, som.decay_steps, syn.method, syn.others,
+           syn.tau_winner, syn.tau_neighbour, syn.tau_forget, syn.alpha, syn.y0, stimulus)
+    params = _params.get(key)
+    if params is None:
+        if som.decay not in _DECAY_CODES or syn.method not in ("euler", "exact") \
+                or syn.others not in ("hold", "forget"):
+            return None
+        tau_f = syn.tau_neighbour if syn.tau_forget is None else syn.tau_forget
+        values = {
+            "n_columns": som.n_columns, "decay": _DECAY_CODES[som.decay],
+            "learning_rate": som.learning_rate, "learning_rate_final": som.learning_rate_final,
+            "radius": som.radius, "radius_final": som.radius_final,
+            "decay_steps": som.decay_steps, "exact": syn.method == "exact",
+            "forget": syn.others == "forget", "tau_winner": syn.tau_winner,
+            "tau_neighbour": syn.tau_neighbour, "tau_forget": tau_f, "alpha": syn.alpha,
+            "y0": syn.y0, "stimulus": stimulus,
+        }
+        params = np.array([float(values[name]) for name in _module.PARAMS])
+        if len(_params) > 256:  # a parameter sweep: do not grow without bound
+            _params.clear()
+        _params[key] = params
+    return params
+
+
+# ------------------------------------------------------------------ learning
 def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
                        winners: np.ndarray | None = None) -> np.ndarray:
-    # ``winners`` (int64, one per row) receives the winning rows, for tests
+    # X and dt come from the detector's checks: C-contiguous float64.
+    # ``winners`` (int64, one per row) receives the winning rows, for tests.
+    params = _som_stanley_params(som, syn, stimulus)
+    if params is None or som.n_rows * som.n_columns != som.weights_.shape[0]:
+        from ..filter import learn_stream
+
+        return learn_stream(som, syn, X, dt, stimulus)
     n = X.shape[0]
     novelty = np.empty(n)
-    tau_f = syn.tau_neighbour if syn.tau_forget is None else syn.tau_forget
     radius, t = _module.som_stanley_stream(
-        som.weights_, syn.efficacy_, np.ascontiguousarray(X, dtype=np.float64),
-        np.ascontiguousarray(dt, dtype=np.float64),
+        som.weights_, syn.efficacy_, X, dt,
         np.empty(n, dtype=np.int64) if winners is None else winners, novelty, np.empty(n),
-        _plan(X.shape[1]), True,
-        int(som.n_columns), int(som._table_radius), int(som.n_updates_),
-        _DECAY_CODES[som.decay], float(som.learning_rate), float(som.learning_rate_final),
-        float(som.radius), float(som.radius_final), int(som.decay_steps),
-        syn.method == "exact", syn.others == "forget",
-        float(syn.tau_winner), float(syn.tau_neighbour), float(tau_f),
-        float(syn.alpha), float(syn.y0), float(stimulus),
+        _plan(X.shape[1]), params, True, som._table_radius, som.n_updates_,
     )
-    som.n_updates_ = int(t)
+    som.n_updates_ = t
     if radius != som._table_radius:
         # SOM.adapt rebuilds its neighbour table whenever the scheduled radius changes
         som._rebuild_scratch()
     return novelty
 
 
-#: rows scored per kernel call: bounds the scratch (winners, distances) to 1 MB a thread
+# ------------------------------------------------------------------- scoring
+#: rows per kernel call when scoring: bounds the scratch (winners, distances)
+#: to 1 MB a thread, whatever the batch
 _SCORE_CHUNK = 65536
 _NO_DT = np.empty(0)
 _pool = None
@@ -173,34 +194,40 @@ def _threads() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _score_part(som, y, X, out, plan) -> None:
+def _score_params(som) -> np.ndarray:
+    key = ("score", som.n_columns)  # scoring reads no other parameter
+    params = _params.get(key)
+    if params is None:
+        params = _params[key] = np.ones(len(_module.PARAMS))
+        params[0] = som.n_columns
+    return params
+
+
+def _score_part(som, y, X, out, plan, params) -> None:
     for lo in range(0, X.shape[0], _SCORE_CHUNK):
         block = X[lo : lo + _SCORE_CHUNK]
         m = block.shape[0]
-        _module.som_stanley_stream(
-            som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64), out[lo : lo + m],
-            np.empty(m), plan, False, int(som.n_columns), 0, 0,
-            0, 0.0, 0.0, 0.0, 0.0, 1, False, False, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0,
-        )
+        _module.som_stanley_stream(som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64),
+                                   out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)
 
 
 def _score_som(som, syn, X: np.ndarray) -> np.ndarray:
     global _pool
-    X = np.ascontiguousarray(X, dtype=np.float64)
     n = X.shape[0]
     out = np.empty(n)
     plan = _plan(X.shape[1])
-    threads = min(_threads(), n // _SCORE_CHUNK)
-    if threads <= 1:
-        _score_part(som, syn.efficacy_, X, out, plan)
+    params = _score_params(som)
+    if n < 2 * _SCORE_CHUNK or _threads() == 1:
+        _score_part(som, syn.efficacy_, X, out, plan, params)
         return out
     # The kernel releases the GIL (nogil): contiguous parts score in parallel.
+    threads = min(_threads(), n // _SCORE_CHUNK)
     if _pool is None or _pool._max_workers < threads:
         from concurrent.futures import ThreadPoolExecutor
 
         _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="novelty-score")
     bounds = np.linspace(0, n, threads + 1).astype(int)
-    jobs = [_pool.submit(_score_part, som, syn.efficacy_, X[a:b], out[a:b], plan)
+    jobs = [_pool.submit(_score_part, som, syn.efficacy_, X[a:b], out[a:b], plan, params)
             for a, b in zip(bounds[:-1], bounds[1:])]
     for job in jobs:
         job.result()

@@ -19,7 +19,8 @@ results are bit-identical, not merely close:
   ``ceil(dt)`` sub-steps; the exact step ``y_inf + (y - y_inf) * exp(-alpha * dt / tau)``.
 
 numba compiles without fast-math, so LLVM neither reorders these sums nor
-fuses multiplies into adds. This module imports numba; it is only imported
+fuses multiplies into adds. ``error_model="numpy"`` drops Python's
+division-by-zero checks (the validated parameters never divide by zero). This module imports numba; it is only imported
 through :mod:`novelty._kernels`, on first use. No function here is recursive:
 numba's on-disk cache does not handle recursion reliably.
 """
@@ -61,7 +62,7 @@ def pairwise_plan(n_features: int) -> np.ndarray:
 
 
 # ------------------------------------------------------ distances, transposed
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _block_cols(WT, x, out, acc, lo, n):
     """Sum of (WT[k, j] - x[k])**2 over one block of at most 128 features k, for every unit j.
 
@@ -99,7 +100,7 @@ def _block_cols(WT, x, out, acc, lo, n):
             out[j] += d * d
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _winner_cols(WT, x, plan, acc, stack):
     """Winner and its squared distance, weights as (features, units).
 
@@ -126,7 +127,7 @@ def _winner_cols(WT, x, plan, acc, stack):
     return best, best_d
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _transposed(W):
     WT = np.empty((W.shape[1], W.shape[0]))
     for j in range(W.shape[0]):
@@ -136,7 +137,7 @@ def _transposed(W):
 
 
 # ---------------------------------------------------------------- the models
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _scheduled(decay, start, final, t, steps):
     # SOM._scheduled, same operations
     if decay == CONSTANT:
@@ -146,7 +147,7 @@ def _scheduled(decay, start, final, t, steps):
     return final + (start - final) / (1.0 + 2.0 * t / steps)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _euler(y, stimulus, tau, dt, alpha, y0):
     # StanleySynapse._advance, method="euler": ceil(dt) equal sub-steps
     n_sub = max(1, math.ceil(dt))
@@ -156,31 +157,48 @@ def _euler(y, stimulus, tau, dt, alpha, y0):
     return y
 
 
-@njit(cache=True, nogil=True)
-def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, learn,
-                       n_columns, table_radius, t,
-                       decay, lr0, lr1, radius0, radius1, decay_steps,
-                       exact, forget, tau_w, tau_n, tau_f, alpha, y0, stimulus):
+#: layout of the ``params`` vector of :func:`som_stanley_stream` (one array
+#: instead of fifteen scalars: each argument costs time at every call)
+PARAMS = ("n_columns", "decay", "learning_rate", "learning_rate_final", "radius",
+          "radius_final", "decay_steps", "exact", "forget", "tau_winner",
+          "tau_neighbour", "tau_forget", "alpha", "y0", "stimulus")
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, learn,
+                       table_radius, t):
     """Present the rows of ``X`` in order; write each one's winner, novelty and distance.
 
     The novelty is the winner's efficacy before the row is learned. With
     ``learn`` the weights ``W`` and efficacies ``y`` are updated in place
-    (``learn_stream``); without, nothing is written but the outputs (batch
-    scoring, ``match``). ``table_radius`` is the grid radius of the SOM's
-    neighbour table and ``t`` its update count; returns both after the call.
+    (``learn_stream``); without, only the outputs are written (``match``,
+    batch scoring). ``params`` holds the values named in ``PARAMS``;
+    ``table_radius`` is the grid radius of the SOM's neighbour table and ``t``
+    its update count, both returned as they are after the call.
 
     Scoring and learning share this one function so that numba compiles the
-    distance code once (compile time, not run time, is what a user waits for).
+    distance code once: compile time, not run time, is what a user waits for
+    on the first call.
     """
     n_units = W.shape[0]
     n_features = W.shape[1]
+    n_columns = int(params[0])
     n_rows = n_units // n_columns
-    # Work on a transposed copy (features x units) so that the distances to
-    # all units vectorise; it is copied back at the end.
+    decay = int(params[1])
+    lr0, lr1, radius0, radius1, decay_steps = params[2], params[3], params[4], params[5], params[6]
+    exact = params[7] != 0.0
+    forget = params[8] != 0.0
+    tau_w, tau_n, tau_f, alpha, y0, stimulus = (params[9], params[10], params[11], params[12],
+                                                params[13], params[14])
+    # Distances to all units vectorise on a transposed copy (features x
+    # units); it is copied back at the end.
     WT = _transposed(W)
     acc = np.empty((8, n_units))
     vstack = np.empty((plan.shape[0], n_units))
     radius = table_radius
+    # with learning off nothing below reads dt
+    y_hit = y0 - stimulus / alpha  # efficacy approached under the stimulus
+    y_rest = y0 - 0.0 / alpha  # and without it (forgetting)
     for i in range(X.shape[0]):
         x = X[i]
         winner, distance = _winner_cols(WT, x, plan, acc, vstack)
@@ -190,8 +208,10 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, learn,
         if not learn:
             continue
 
-        # --- habituate (Synapse.step): the units outside the square
-        # neighbourhood are disjoint from it, so the groups' order is free.
+        # The winner, its square grid neighbourhood (habituate with the
+        # stimulus, adapt) and, when forgetting, every other unit (recover).
+        # Each unit's update depends on that unit alone, so one pass in any
+        # order reproduces Synapse.step followed by SOM.adapt.
         wr = winner // n_columns
         wc = winner - wr * n_columns
         r_lo = max(0, wr - radius)
@@ -199,46 +219,30 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, learn,
         c_lo = max(0, wc - radius)
         c_hi = min(n_columns - 1, wc + radius)
         h = dt[i]
-        if exact:
-            # exp(-alpha * dt / tau) is shared by all units with the same tau
+        lr = _scheduled(decay, lr0, lr1, t, decay_steps)
+        if exact:  # exp(-alpha * dt / tau) is shared by all units with the same tau
             fall_w = math.exp(-alpha * h / tau_w)
             fall_n = math.exp(-alpha * h / tau_n)
             fall_f = math.exp(-alpha * h / tau_f)
-            y_inf = y0 - stimulus / alpha
-            y_rest = y0 - 0.0 / alpha
         else:
-            fall_w = fall_n = fall_f = y_inf = y_rest = 0.0
-        if forget:
-            for j in range(n_units):
-                jr = j // n_columns
-                jc = j - jr * n_columns
-                if r_lo <= jr <= r_hi and c_lo <= jc <= c_hi:
-                    continue
-                if exact:
-                    y[j] = y_rest + (y[j] - y_rest) * fall_f
-                else:
-                    y[j] = _euler(y[j], 0.0, tau_f, h, alpha, y0)
-        for r in range(r_lo, r_hi + 1):
-            for c in range(c_lo, c_hi + 1):
+            fall_w = fall_n = fall_f = 0.0
+        for r in range(0 if forget else r_lo, n_rows if forget else r_hi + 1):
+            for c in range(0 if forget else c_lo, n_columns if forget else c_hi + 1):
                 j = r * n_columns + c
-                if j == winner:
-                    tau = tau_w
-                    fall = fall_w
+                hit = r_lo <= r <= r_hi and c_lo <= c <= c_hi
+                if not hit:
+                    s, tau, fall, y_inf = 0.0, tau_f, fall_f, y_rest
+                elif j == winner:
+                    s, tau, fall, y_inf = stimulus, tau_w, fall_w, y_hit
                 else:
-                    tau = tau_n
-                    fall = fall_n
+                    s, tau, fall, y_inf = stimulus, tau_n, fall_n, y_hit
                 if exact:
                     y[j] = y_inf + (y[j] - y_inf) * fall
                 else:
-                    y[j] = _euler(y[j], stimulus, tau, h, alpha, y0)
-
-        # --- adapt (SOM.adapt): rate and radius are those of update t
-        lr = _scheduled(decay, lr0, lr1, t, decay_steps)
-        for r in range(r_lo, r_hi + 1):
-            for c in range(c_lo, c_hi + 1):
-                j = r * n_columns + c
-                for k in range(n_features):
-                    WT[k, j] = WT[k, j] + lr * (x[k] - WT[k, j])
+                    y[j] = _euler(y[j], s, tau, h, alpha, y0)
+                if hit:
+                    for k in range(n_features):
+                        WT[k, j] = WT[k, j] + lr * (x[k] - WT[k, j])
         t += 1
         if decay != CONSTANT:
             radius = int(math.floor(_scheduled(decay, radius0, radius1, t, decay_steps) + 0.5))
