@@ -1,0 +1,94 @@
+"""The registered clusterer + synapse combinations: each builds what its name says."""
+
+import numpy as np
+import pytest
+
+import novelty
+from novelty.filter import HabituatingFilter
+from novelty.habituation import StanleySynapse, WangHsuSynapse
+from novelty.registry import clusterers, detectors
+
+PRESETS = {
+    "gwr-novelty": ("gwr", StanleySynapse),
+    "gng-stanley": ("gng", StanleySynapse),
+    "som-wang-hsu": ("som", WangHsuSynapse),
+    "gwr-wang-hsu": ("gwr", WangHsuSynapse),
+    "gng-wang-hsu": ("gng", WangHsuSynapse),
+}
+
+
+def _needs(clusterer):
+    return pytest.mark.skipif(clusterer not in clusterers,
+                              reason=f"the {clusterer!r} clusterer is not registered yet")
+
+
+CASES = [pytest.param(name, marks=_needs(c)) for name, (c, _) in PRESETS.items()]
+
+
+def test_every_preset_is_registered_with_a_description():
+    for name in PRESETS:
+        assert name in detectors
+        assert detectors.describe(name)
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_preset_builds_its_clusterer_and_synapse(name):
+    cname, synapse_class = PRESETS[name]
+    det = novelty.make(name)
+    assert isinstance(det, HabituatingFilter)
+    assert clusterers.name_of(det.clusterer) == cname
+    assert type(det.synapse) is synapse_class
+    assert det.synapse.get_params() == synapse_class().get_params(), "the synapse's own defaults"
+    if cname in ("gng", "gwr"):
+        assert det.clusterer.init == "uniform"
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_preset_routes_parameters_and_streams(name):
+    cname, synapse_class = PRESETS[name]
+    det = novelty.make(name, tau_winner=5.0, others="forget")
+    assert det.synapse.tau_winner == 5.0 and det.synapse.others == "forget"
+    X = np.random.default_rng(0).random((80, 5))
+    out = det.stream(X)
+    assert out[0] == 1.0 and np.all((out >= 0) & (out <= 1))
+    assert out[40:].mean() < 1.0
+
+
+@pytest.mark.parametrize("name", [pytest.param("gwr-novelty", marks=_needs("gwr")),
+                                  pytest.param("gng-stanley", marks=_needs("gng"))])
+def test_growing_presets_keep_a_user_init(name):
+    assert novelty.make(name, init="sample").clusterer.init == "sample"
+    assert novelty.make(name, clusterer__init="sample").clusterer.init == "sample"
+
+
+def test_som_wang_hsu_is_the_papers_map():
+    det = novelty.make("som-wang-hsu")
+    c = det.clusterer
+    assert (c.n_rows, c.n_columns, c.learning_rate, c.radius) == (10, 10, 0.25, 1)
+
+
+def test_som_wang_hsu_re_habituates_faster_than_hsom():
+    """Through the whole filter: a scan seen before, then forgotten, is learned again faster."""
+    a, b = np.zeros(4), np.ones(4)
+
+    def scans_to_familiar(name):
+        det = novelty.make(name, n_rows=1, n_columns=2, radius=0, others="forget")
+        first = det.stream(np.array([a] * 20))
+        det.stream(np.array([b] * 200))
+        second = det.stream(np.array([a] * 20))
+        assert det.winners(np.array([a, b])).tolist() in ([0, 1], [1, 0])
+        assert second[0] > 0.99, "recovered before the second exposure"
+        return int(np.argmax(first < 0.3)), int(np.argmax(second < 0.3))
+
+    wh_first, wh_second = scans_to_familiar("som-wang-hsu")
+    st_first, st_second = scans_to_familiar("hsom")
+    assert wh_second < wh_first
+    assert st_second == st_first
+
+
+def test_preset_with_an_unregistered_clusterer_fails_at_fit_with_the_name():
+    from novelty.presets import _compose
+
+    det = _compose("no-such-net", "stanley", {})
+    with pytest.raises(novelty.UnknownNameError, match="no-such-net"):
+        det.fit(np.zeros((3, 2)))
