@@ -263,20 +263,61 @@ def test_other_components_use_the_reference():
 
 
 def test_missing_numba_falls_back_with_one_warning(monkeypatch):
-    monkeypatch.setattr(_kernels, "_module", None)
-    monkeypatch.setattr(_kernels, "_failed", False)
+    for name, value in {"_module": None, "_failed": False, "_thread": None, "_error": None}.items():
+        monkeypatch.setattr(_kernels, name, value)
     monkeypatch.delitem(sys.modules, "novelty._kernels._som_stanley")
     monkeypatch.delattr(_kernels, "_som_stanley", raising=False)
     monkeypatch.setitem(sys.modules, "numba", None)  # makes "import numba" fail
-    det = novelty.make("hsom")
     X = corridor(50)
+    det = novelty.make("hsom")
     with pytest.warns(RuntimeWarning, match="reference numpy loops"):
-        got = det.stream(X)
+        assert _kernels.wait() is None
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        det.score_learn_one(X[0])
+        got = np.append(det.stream(X), det.score_learn_one(X[0]))
     with reference_only():
-        expected = novelty.make("hsom").stream(X)
+        ref = novelty.make("hsom")
+        expected = np.append(ref.stream(X), ref.score_learn_one(X[0]))
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
+    """While the kernel compiles, the reference learns; the kernel takes over when ready."""
+    monkeypatch.setattr(_kernels, "_HANDOVER_BLOCK", 100)
+    module = _kernels._module
+    calls = []
+
+    def reference_blocks(som, syn, X, dt, stimulus):
+        calls.append(len(X))
+        if len(calls) == 3:
+            monkeypatch.setattr(_kernels, "_module", module)  # "compiled" after 3 blocks
+        return learn_stream(som, syn, X, dt, stimulus)
+
+    monkeypatch.setattr(_kernels, "_module", None)
+    monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)
+    X = corridor(1000)
+    det = novelty.make("hsom").fit(X[:1])
+    assert _kernels.learner(det.clusterer_, det.synapse_) is _kernels._learn_while_compiling
+    calls.clear()
+    got = det.stream(X)
+    assert calls == [100, 100, 100]
+    monkeypatch.undo()
+    with reference_only():
+        ref = novelty.make("hsom").fit(X[:1])
+        expected = ref.stream(X)
+    np.testing.assert_array_equal(got, expected)
+    assert_same_state(det, ref)
+
+
+def test_read_only_and_strided_inputs():
+    X = corridor(300)
+    det, ref = novelty.make("hsom"), novelty.make("hsom")
+    frozen = X.copy()
+    frozen.setflags(write=False)
+    with reference_only():
+        expected = np.concatenate([ref.stream(X), ref.novelty(X), [ref.score_one(X[:, 0][:16])]])
+    got = np.concatenate([det.stream(frozen), det.novelty(frozen),
+                          [det.score_one(np.asfortranarray(X)[:, 0][:16])]])
     np.testing.assert_array_equal(got, expected)
 
 
@@ -285,5 +326,6 @@ def test_import_novelty_does_not_import_numba():
             "det = novelty.make('hsom')\n"
             "assert 'numba' not in sys.modules\n"
             "det.fit(np.zeros((2, 3)))\n"
+            "novelty._kernels.wait()\n"
             "assert 'numba' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)

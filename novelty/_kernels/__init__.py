@@ -14,17 +14,25 @@ when they answer ``None``:
 - the environment variable ``NOVELTY_NO_KERNELS`` is set to a non-empty value
   other than ``0`` when the first kernel is asked for (for comparisons).
 
-numba is imported only by the first call that wants a kernel, so
-``import novelty`` does not pay for it; compiled code is cached on disk
-(``cache=True``, in ``NUMBA_CACHE_DIR`` when set), so later processes load
-it instead of compiling again. Batch scoring splits large batches across
-threads (``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel
-releases the GIL.
+Compiling in the background. numba is imported only when the first kernel
+is asked for, so ``import novelty`` does not pay for it. Compiling the kernel
+takes seconds the first time; numba caches the machine code on disk
+(``cache=True``, in ``NUMBA_CACHE_DIR`` when set) and later processes load it
+in a fraction of a second. So that no call waits for the compiler, it runs
+in a background thread: meanwhile learning runs the reference loop in small
+blocks and hands over to the kernel, mid-stream, as soon as it is ready
+(the two give identical states, so the hand-over is invisible in the
+results). The thread is not a daemon: a process that ends early waits for it,
+so that the cache gets written. :func:`wait` blocks until the kernels are
+ready (benchmarks, tests). Batch scoring splits large batches across threads
+(``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel releases the
+GIL.
 """
 
 from __future__ import annotations
 
 import os
+import threading
 import warnings
 from typing import Callable
 
@@ -33,36 +41,64 @@ import numpy as np
 from ..clusterers.som import SOM
 from ..habituation.stanley import StanleySynapse
 
-__all__ = ["learner", "scorer", "kernels_enabled"]
+__all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
-_module = None  # the compiled module, once loaded
-_failed = False  # numba missing or broken: warned once, never retried
+_module = None  # the compiled module, once ready
+_failed = False  # numba missing, broken or disabled: never retried
+_thread: threading.Thread | None = None
+_error: BaseException | None = None  # raised in the thread, warned about in the caller's
 
 
 def kernels_enabled() -> bool:
-    """Whether compiled kernels may be used (numba importable, not disabled)."""
-    return _load() is not None
+    """Whether compiled kernels are in use (waits for them to be compiled)."""
+    return wait() is not None
+
+
+def wait(timeout: float | None = None):
+    """Compile or load the kernels now and block until done; the module or None."""
+    _load()
+    if _thread is not None:
+        _thread.join(timeout)
+    return _load()
+
+
+def _compile() -> None:
+    global _module, _error
+    try:
+        from . import _som_stanley  # compiles, or loads from numba's cache
+
+        _module = _som_stanley
+    except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
+        _error = exc
 
 
 def _load():
-    global _module, _failed
+    """The compiled module if ready; else start compiling it (once) and return None."""
+    global _failed, _thread
     if _module is not None:
         return _module
-    if _failed or os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0"):
+    if _failed:
         return None
-    try:
-        from . import _som_stanley
-    except Exception as exc:  # ImportError, or numba/LLVM failing to compile or load
+    if _error is not None:
         _failed = True
         warnings.warn(
-            f"novelty: compiled kernels are unavailable ({type(exc).__name__}: {exc}); "
+            f"novelty: compiled kernels are unavailable ({type(_error).__name__}: {_error}); "
             "using the reference numpy loops, which give the same results more slowly.",
             RuntimeWarning,
             stacklevel=4,
         )
         return None
-    _module = _som_stanley
-    return _module
+    if _thread is None:
+        if os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0"):
+            _failed = True
+            return None
+        _thread = threading.Thread(target=_compile, name="novelty-compile-kernels")
+        _thread.start()
+    return None
+
+
+def _compiling() -> bool:
+    return _module is None and not _failed and _thread is not None
 
 
 def _plain(a, ndim: int) -> bool:
@@ -71,6 +107,15 @@ def _plain(a, ndim: int) -> bool:
         return False
     flags = a.flags
     return flags.c_contiguous and flags.writeable
+
+
+def _c(a: np.ndarray) -> np.ndarray:
+    """``a`` as the kernel's signature wants it: C-contiguous, writable float64 (copied if not)."""
+    if a.dtype == np.float64:
+        flags = a.flags
+        if flags.c_contiguous and flags.writeable:
+            return a
+    return np.array(a, dtype=np.float64, order="C")
 
 
 def _som_ready(som, y) -> bool:
@@ -90,7 +135,7 @@ def learner(clusterer, synapse) -> Callable | None:
     if not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
         return None
     if _module is None and _load() is None:
-        return None
+        return _learn_while_compiling if _compiling() else None
     return _learn_som_stanley
 
 
@@ -155,7 +200,6 @@ def _som_stanley_params(som, syn, stimulus: float) -> np.ndarray | None:
 # ------------------------------------------------------------------ learning
 def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
                        winners: np.ndarray | None = None) -> np.ndarray:
-    # X and dt come from the detector's checks: C-contiguous float64.
     # ``winners`` (int64, one per row) receives the winning rows, for tests.
     params = _som_stanley_params(som, syn, stimulus)
     if params is None or som.n_rows * som.n_columns != som.weights_.shape[0]:
@@ -165,7 +209,7 @@ def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
     n = X.shape[0]
     novelty = np.empty(n)
     radius, t = _module.som_stanley_stream(
-        som.weights_, syn.efficacy_, X, dt,
+        som.weights_, syn.efficacy_, _c(X), _c(dt),
         np.empty(n, dtype=np.int64) if winners is None else winners, novelty, np.empty(n),
         _plan(X.shape[1]), params, True, som._table_radius, som.n_updates_,
     )
@@ -173,6 +217,28 @@ def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
     if radius != som._table_radius:
         # SOM.adapt rebuilds its neighbour table whenever the scheduled radius changes
         som._rebuild_scratch()
+    return novelty
+
+
+#: scans learned by the reference between two looks at the compiler thread
+_HANDOVER_BLOCK = 256
+
+
+def _learn_while_compiling(som, syn, X, dt, stimulus, winners=None):
+    """The reference loop, block by block, until the kernel is ready; then the kernel."""
+    from ..filter import learn_stream
+
+    if winners is not None:  # only tests ask for winners, and they wait for the kernel
+        raise ValueError("winners are only reported by the compiled kernel")
+    novelty = np.empty(X.shape[0])
+    start = 0
+    while start < X.shape[0]:
+        if _module is not None or _load() is not None:
+            novelty[start:] = _learn_som_stanley(som, syn, X[start:], dt[start:], stimulus)
+            break
+        stop = start + _HANDOVER_BLOCK
+        novelty[start:stop] = learn_stream(som, syn, X[start:stop], dt[start:stop], stimulus)
+        start = stop
     return novelty
 
 
@@ -205,7 +271,7 @@ def _score_params(som) -> np.ndarray:
 
 def _score_part(som, y, X, out, plan, params) -> None:
     for lo in range(0, X.shape[0], _SCORE_CHUNK):
-        block = X[lo : lo + _SCORE_CHUNK]
+        block = _c(X[lo : lo + _SCORE_CHUNK])  # a read-only batch is copied block by block
         m = block.shape[0]
         _module.som_stanley_stream(som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64),
                                    out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)

@@ -164,7 +164,15 @@ PARAMS = ("n_columns", "decay", "learning_rate", "learning_rate_final", "radius"
           "tau_neighbour", "tau_forget", "alpha", "y0", "stimulus")
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+#: the one signature compiled (when this module is imported): callers pass
+#: exactly these types, so no call ever triggers another compilation
+SIGNATURE = (
+    "UniTuple(int64, 2)(float64[:, ::1], float64[::1], float64[:, ::1], float64[::1], "
+    "int64[::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], boolean, int64, int64)"
+)
+
+
+@njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, learn,
                        table_radius, t):
     """Present the rows of ``X`` in order; write each one's winner, novelty and distance.
