@@ -1,0 +1,40 @@
+"""Time to simulate one 10 m run of each paper environment (median of several).
+
+Run: ``python benchmarks/bench_simulate.py [--repeats 7]``. Prints a table;
+not a unit test (timings depend on the machine and its load).
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+
+from novelty import sonar
+from novelty.sonar.inspection import generate_corridor
+
+
+def _time(env, repeats: int) -> tuple[float, float, int]:
+    times = []
+    for run in range(repeats):
+        start = time.perf_counter()
+        ds = sonar.simulate_run(env, seed=0, run=run)
+        times.append(time.perf_counter() - start)
+    return statistics.median(times), min(times), len(ds)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=7)
+    args = parser.parse_args(argv)
+    sonar.simulate_run("a", 0, 0)  # warm up imports and caches
+    rows = [(name, *_time(name, args.repeats)) for name in sonar.environment_names()]
+    corridor = generate_corridor(0, length=10.0).build()
+    rows.append(("generated corridor 0", *_time(corridor, args.repeats)))
+    print(f"{'environment':22s} {'median (s)':>10s} {'min (s)':>8s} {'scans':>6s}")
+    for name, median, best, n in rows:
+        print(f"{name:22s} {median:10.3f} {best:8.3f} {n:6d}")
+
+
+if __name__ == "__main__":
+    main()
