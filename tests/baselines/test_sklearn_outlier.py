@@ -1,0 +1,83 @@
+"""The scikit-learn outlier adapter and the four detectors registered through it."""
+
+import numpy as np
+import pytest
+from sklearn.covariance import EllipticEnvelope
+from sklearn.ensemble import IsolationForest
+from sklearn.linear_model import SGDOneClassSVM
+from sklearn.neighbors import LocalOutlierFactor
+from sklearn.svm import OneClassSVM
+
+import novelty
+from novelty._component import StateError
+from novelty.baselines import SklearnOutlierDetector
+
+
+@pytest.fixture(scope="module")
+def data():
+    rng = np.random.default_rng(0)
+    return rng.normal(size=(200, 3)), np.vstack([rng.normal(size=(20, 3)), [[8.0, 8.0, 8.0]]])
+
+
+REGISTERED = {
+    "isolation-forest": IsolationForest(random_state=0),
+    "one-class-svm": OneClassSVM(),
+    "lof": LocalOutlierFactor(novelty=True),
+    "elliptic-envelope": EllipticEnvelope(random_state=0),
+}
+
+
+@pytest.mark.parametrize("name", REGISTERED)
+def test_raw_novelty_is_minus_score_samples(name, data):
+    X, Z = data
+    det = novelty.make(name).fit(X)
+    ref = REGISTERED[name].fit(X)
+    assert np.allclose(det.raw_novelty(Z), -ref.score_samples(Z), rtol=1e-12, atol=1e-12)
+    assert det.novelty(Z[-1:])[0] > det.novelty(X).max(), "the far point is the most novel"
+
+
+def test_lof_reference_is_the_training_outlier_factors(data):
+    X, _ = data
+    det = novelty.make("lof").fit(X)
+    ref = LocalOutlierFactor(novelty=True).fit(X)
+    assert np.allclose(np.sort(det.reference_), np.sort(-ref.negative_outlier_factor_), rtol=1e-12)
+
+
+@pytest.mark.parametrize("name", REGISTERED)
+def test_saved_model_is_refitted_identically(name, data, tmp_path):
+    X, Z = data
+    det = novelty.make(name).fit(X)
+    arrays, _, children = det._export_state()
+    assert set(arrays) == {"samples_", "reference_"} and not children, "no estimator object is saved"
+    det.save(tmp_path / "m.npz")
+    back = novelty.load(tmp_path / "m.npz")
+    assert type(back) is type(det)
+    assert np.array_equal(back.novelty(Z), det.novelty(Z))
+
+
+def test_saving_needs_an_integer_seed(data, tmp_path):
+    det = novelty.make("isolation-forest", random_state=None).fit(data[0])
+    with pytest.raises(StateError, match="integer random_state"):
+        det.save(tmp_path / "m.npz")
+
+
+def test_any_estimator_can_be_wrapped_but_not_saved(data, tmp_path):
+    X, Z = data
+    det = SklearnOutlierDetector(SGDOneClassSVM(random_state=0)).fit(X)
+    ref = SGDOneClassSVM(random_state=0).fit(X)
+    assert np.allclose(det.raw_novelty(Z), -ref.score_samples(Z))
+    det.set_params(estimator__nu=0.2)
+    assert det.get_params()["estimator__nu"] == 0.2
+    with pytest.raises(StateError, match="cannot be saved.*never pickled"):
+        det.save(tmp_path / "m.npz")
+
+
+def test_lof_without_novelty_mode_is_refused(data):
+    with pytest.raises(ValueError, match="must have fit and score_samples"):
+        SklearnOutlierDetector(LocalOutlierFactor()).fit(data[0])
+
+
+def test_the_wrapped_estimator_is_not_modified(data):
+    est = IsolationForest(n_estimators=10, random_state=0)
+    SklearnOutlierDetector(est).fit(data[0])
+    assert not hasattr(est, "estimators_"), "fit works on a clone"
