@@ -165,7 +165,8 @@ def insert_novelties(plan: CorridorPlan, seed: int = 0, difficulty: str = "easy"
     if difficulty not in DIFFICULTIES:
         raise ValueError(f"Unknown difficulty {difficulty!r}; expected one of {', '.join(DIFFICULTIES)}.")
     _check_int("n_novelties", n_novelties, 1)
-    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 0x0BE1, len(difficulty)]))
+    level = list(DIFFICULTIES).index(difficulty)
+    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 0x0BE1, level]))
     makers = DIFFICULTIES[difficulty]
     items = {"right": list(plan.right_items), "left": list(plan.left_items)}
     placed: list[float] = []

@@ -26,7 +26,8 @@ from .preprocessing import PAPER_BIN_LENGTH, PAPER_THRESHOLD, bin_by_distance, p
 from .ranger import PolaroidRanger
 from .robot import NOMAD_200, Robot
 
-__all__ = ["simulate", "simulate_run", "simulate_rings", "RingLog", "write_dataset", "run_rng"]
+__all__ = ["simulate", "simulate_run", "simulate_rings", "RingLog", "write_dataset", "run_rng",
+           "concatenate"]
 
 
 def run_rng(seed: int, run: int) -> np.random.Generator:

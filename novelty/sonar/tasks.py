@@ -68,8 +68,9 @@ def make_task(name: str, train_env, test_env, novel_ids, *, seed: int = 0, train
         if split == "test":
             y = np.array([1 if f & novel else 0 for f in ds.feature_ids], dtype=np.int64)
         parts.append(_with(ds, y=y, split=np.full(len(ds), split)))
-    out = concatenate(parts, name=name)
-    meta = {
+    kept = ("threshold_m", "salient_range_m", "bin_length_m", "encoding", "sensor_angles_deg")
+    meta = {k: v for k, v in parts[0].metadata.items() if k in kept}
+    meta.update({
         "task": name,
         "description": description,
         "seed": int(seed),
@@ -78,17 +79,15 @@ def make_task(name: str, train_env, test_env, novel_ids, *, seed: int = 0, train
         "train_runs": int(train_runs),
         "test_runs": int(test_runs),
         "train_passes": int(train_passes),
+        "runs": [r for p in parts for r in p.metadata["runs"]],
         "novel_features": sorted(novel),
         "features": test_env.feature_table(),
         "train_features": train_env.feature_table(),
         "labels": "y = 1 where a test scan's feature_ids include a novel feature",
-    }
+    })
     meta.update(metadata)
-    out.metadata.clear()
-    out.metadata.update({**{k: v for k, v in ds.metadata.items() if k in (
-        "threshold_m", "bin_length_m", "encoding", "sensor_angles_deg")}, **meta,
-        "runs": [int(r) for r in np.unique(out.run)]})
-    return out
+    joined = concatenate(parts, name=name)
+    return _with(joined, metadata=meta)
 
 
 def _with(ds, **changes):

@@ -1,10 +1,22 @@
 """The real-data loaders, on the shared files and on small malformed files."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from novelty import datasets
 from novelty.datasets.uci import WALL_FOLLOWING_CLASSES
+
+#: The project's shared folder of public data, beside the repository.
+SHARED = (Path(__file__).resolve().parents[2] / ".." / "shared" / "datasets").resolve()
+
+
+@pytest.fixture(scope="module")
+def shared_data() -> Path:
+    if not SHARED.is_dir():
+        pytest.skip(f"the shared data folder {SHARED} is absent (it lives beside the repository)")
+    return SHARED
 
 WF = "wall-following-robot-navigation"
 SONAR = "sonar-mines-vs-rocks"

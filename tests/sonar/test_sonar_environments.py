@@ -1,11 +1,24 @@
 """Measured properties of the paper's environments (issue 3's "done when")."""
 
+import functools
+
 import numpy as np
 import pytest
 
 from novelty import sonar
 
 NAMES = ["a", "a-star", "b", "c", "control"]
+
+
+@functools.lru_cache(maxsize=None)
+def _run(env: str, run: int, seed: int = 0):
+    return sonar.simulate_run(env, seed, run)
+
+
+@pytest.fixture(scope="module")
+def sim():
+    """simulate_run(env, run, seed=0), cached for the module (tests only read the results)."""
+    return _run
 
 
 def _nearest(X, reference):
