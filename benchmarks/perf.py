@@ -1,0 +1,501 @@
+"""Performance suite (issue 7): novelty against MiniSom and River, measured in one run.
+
+Run::
+
+    pip install ".[bench]"
+    python benchmarks/perf.py [--quick] [--out DIR] [--repeats N]
+
+Every timed case runs once per repetition, all cases interleaved (so a change
+in the machine's load touches every case alike); the table shows the median
+over the repetitions, in samples per second, and the ratio to the anchor of
+its row (MiniSom, River or our own numpy reference loop, all measured in the
+same run). Then the costs that are not rates: ``import novelty``, compiling
+the kernels with an empty numba cache and loading them from the cache (fresh
+subprocesses), and the peak memory of scoring 10 million scans. Writes
+``perf.json`` (every raw time) and ``perf.md`` (the table) to ``--out``
+(default ``results/perf``). Not a unit test: the numbers depend on the
+machine and on what else it is doing.
+
+What is compared with what (the honest part):
+
+- online HSOM: ``stream`` (score, then learn, every scan: novelty out,
+  habituation and the map's update) vs MiniSom ``winner()`` + ``update()`` per
+  scan on the same 10 x 10 map with the same learning rule (bubble
+  neighbourhood of sigma 1.5 = the 3 x 3 square of radius 1, constant rate
+  0.25); MiniSom computes no novelty, so it does less work per scan;
+- batch scoring: ``novelty(X)`` (winners, then the efficacies) vs MiniSom
+  ``quantization(X)`` (winners, then their weights) on the same batch;
+- growing networks: ``gng-stanley`` / ``gwr-novelty`` ``stream`` vs River
+  ``KMeans`` ``learn_one`` + ``predict_one`` (River's inputs are dicts, made
+  before timing);
+- one scan at a time: ``score_one`` then ``learn_one`` (numpy vector in) vs
+  River ``HalfSpaceTrees`` ``score_one`` + ``learn_one`` (dict in).
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import copy
+import json
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tracemalloc
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+# ------------------------------------------------------------------ inputs
+
+
+def corridor_stream(n_scans: int, n_features: int = 16, seed: int = 0) -> np.ndarray:
+    """A smooth random walk in [0, 1]^n_features: consecutive scans along a corridor are alike."""
+    rng = np.random.default_rng(seed)
+    steps = rng.normal(0.0, 0.03, size=(n_scans, n_features))
+    X = np.empty((n_scans, n_features))
+    x = rng.uniform(0.2, 0.8, n_features)
+    for i in range(n_scans):
+        x = np.clip(x + steps[i], 0.0, 1.0)
+        X[i] = x
+    return X
+
+
+@contextlib.contextmanager
+def reference_loops():
+    """Run the filter's readable numpy loops instead of the compiled kernels."""
+    from novelty import _kernels
+
+    saved = _kernels.learner, _kernels.scorer
+    _kernels.learner = _kernels.scorer = lambda *args: None
+    try:
+        yield
+    finally:
+        _kernels.learner, _kernels.scorer = saved
+
+
+# ------------------------------------------------------------------- cases
+@dataclass
+class Case:
+    """One contender: ``setup()`` (untimed) returns ``run()`` (timed), which handles ``n`` samples."""
+
+    name: str
+    n: int
+    setup: Callable[[], Callable[[], object]]
+    times: list[float] = field(default_factory=list)
+
+    @property
+    def rate(self) -> float:
+        return self.n / statistics.median(self.times)
+
+
+@dataclass
+class Row:
+    """A line of the table: ours against an anchor, with the issue's target if it has one."""
+
+    label: str
+    ours: Case
+    anchor: Case
+    target: float | None = None  # minimum ratio ours / anchor
+    note: str = ""
+
+
+def hsom_stream(X: np.ndarray, n_rows: int = 10, reference: bool = False):
+    import novelty
+
+    det = novelty.make("hsom", n_rows=n_rows, n_columns=n_rows).fit(X[:1])
+
+    def setup():
+        fresh = copy.deepcopy(det)
+        if reference:
+            def run():
+                with reference_loops():
+                    return fresh.stream(X)
+            return run
+        return lambda: fresh.stream(X)
+
+    return setup
+
+
+def minisom_online(X: np.ndarray, n_rows: int = 10):
+    from minisom import MiniSom
+
+    def setup():
+        som = MiniSom(n_rows, n_rows, X.shape[1], sigma=1.5, learning_rate=0.25,
+                      neighborhood_function="bubble", random_seed=0,
+                      decay_function=lambda rate, t, max_t: rate)  # constant rate, as the paper
+
+        def run():
+            # sigma's (asymptotic) decay is made negligible by a huge horizon
+            for t, x in enumerate(X):
+                som.update(x, som.winner(x), t, 10**12)
+        return run
+
+    return setup
+
+
+def hsom_batch(X_fit: np.ndarray, X: np.ndarray, reference: bool = False):
+    import novelty
+
+    det = novelty.make("hsom").fit(X_fit)
+    if reference:
+        def run():
+            with reference_loops():
+                return det.novelty(X)
+        return lambda: run
+    return lambda: (lambda: det.novelty(X))
+
+
+def minisom_batch(X_fit: np.ndarray, X: np.ndarray):
+    from minisom import MiniSom
+
+    som = MiniSom(10, 10, X.shape[1], sigma=1.5, learning_rate=0.25,
+                  neighborhood_function="bubble", random_seed=0)
+    som.train(X_fit, 1000, random_order=False)
+    return lambda: (lambda: som.quantization(X))
+
+
+def growing_stream(name: str, X: np.ndarray):
+    import novelty
+
+    def setup():
+        det = novelty.make(name)
+        return lambda: det.stream(X)
+
+    return setup
+
+
+def river_kmeans(X: np.ndarray):
+    from river import cluster
+
+    rows = [dict(enumerate(x.tolist())) for x in X]
+
+    def setup():
+        model = cluster.KMeans(n_clusters=5, seed=0)
+
+        def run():
+            for x in rows:
+                model.learn_one(x)
+                model.predict_one(x)
+        return run
+
+    return setup
+
+
+def hsom_one_by_one(X: np.ndarray):
+    import novelty
+
+    det = novelty.make("hsom").fit(X[:1])
+
+    def setup():
+        fresh = copy.deepcopy(det)
+
+        def run():
+            for x in X:
+                fresh.score_one(x)
+                fresh.learn_one(x)
+        return run
+
+    return setup
+
+
+def river_hst(X: np.ndarray):
+    from river import anomaly
+
+    rows = [dict(enumerate(x.tolist())) for x in X]
+
+    def setup():
+        model = anomaly.HalfSpaceTrees(seed=0)
+
+        def run():
+            for x in rows:
+                model.score_one(x)
+                model.learn_one(x)
+        return run
+
+    return setup
+
+
+def build_rows(quick: bool) -> list[Row]:
+    n_stream = 5_000 if quick else 20_000
+    n_batch = 50_000 if quick else 200_000
+    n_small = 1_000 if quick else 2_000
+    X = corridor_stream(n_stream)
+    rows: list[Row] = []
+
+    ours = Case("novelty hsom stream (kernel)", n_stream, hsom_stream(X))
+    mini = Case("MiniSom winner+update", n_stream, minisom_online(X))
+    ref = Case("novelty hsom stream (numpy reference)", n_stream, hsom_stream(X, reference=True))
+    rows.append(Row(f"online HSOM 10x10, 16 features, {n_stream} scans", ours, mini, 30.0,
+                    "aim 50x"))
+    rows.append(Row(f"online HSOM 10x10, 16 features, {n_stream} scans", ours, ref, None,
+                    "kernel vs our numpy loop"))
+
+    X_test = np.random.default_rng(1).uniform(0, 1, (n_batch, 16))
+    ours_b = Case("novelty hsom novelty(X) (kernel)", n_batch, hsom_batch(X, X_test))
+    mini_b = Case("MiniSom quantization(X)", n_batch, minisom_batch(X, X_test))
+    ref_b = Case("novelty hsom novelty(X) (numpy reference)", n_batch,
+                 hsom_batch(X, X_test, reference=True))
+    rows.append(Row(f"batch scoring 10x10, 16 features, {n_batch} scans", ours_b, mini_b, 20.0))
+    rows.append(Row(f"batch scoring 10x10, 16 features, {n_batch} scans", ours_b, ref_b, None,
+                    "kernel vs numpy chunked matmul"))
+
+    for size, n_features in ((20, 16), (40, 16), (10, 24), (10, 64)):
+        Xs = X if n_features == 16 else corridor_stream(n_stream, n_features)
+        rows.append(Row(
+            f"online HSOM {size}x{size}, {n_features} features, {n_stream} scans",
+            Case(f"novelty hsom {size}x{size}/{n_features}", n_stream, hsom_stream(Xs, size)),
+            Case(f"MiniSom {size}x{size}/{n_features}", n_stream, minisom_online(Xs, size)),
+            None, "how the cost grows"))
+
+    import novelty
+
+    Xg = corridor_stream(n_small, seed=2)
+    kmeans = Case("River KMeans learn_one+predict_one", n_small, river_kmeans(Xg))
+    for name in ("gng-stanley", "gwr-novelty"):
+        if name in novelty.available("detectors"):
+            rows.append(Row(f"online {name}, {n_small} corridor scans",
+                            Case(f"novelty {name} stream", n_small, growing_stream(name, Xg)),
+                            kmeans, 10.0))
+
+    Xo = X[:n_small]
+    rows.append(Row(f"score_one + learn_one from Python, {n_small} scans",
+                    Case("novelty hsom score_one+learn_one", n_small, hsom_one_by_one(Xo)),
+                    Case("River HalfSpaceTrees score_one+learn_one", n_small, river_hst(Xo)),
+                    1.0, "faster than River"))
+    return rows
+
+
+def measure_rates(rows: list[Row], repeats: int) -> list[Case]:
+    cases: list[Case] = []
+    for row in rows:
+        for case in (row.ours, row.anchor):
+            if all(case is not c for c in cases):
+                cases.append(case)
+    for case in cases:  # warm-up: imports, numba's compilation, caches
+        case.setup()()
+    for rep in range(repeats):
+        for case in cases:
+            run = case.setup()
+            start = time.perf_counter()
+            run()
+            case.times.append(time.perf_counter() - start)
+        print(f"  repetition {rep + 1}/{repeats} done", file=sys.stderr)
+    return cases
+
+
+# -------------------------------------------------------- one-off costs
+_FIRST_CALL = r"""
+import json, time
+t0 = time.perf_counter()
+import numpy as np
+import novelty
+t1 = time.perf_counter()
+det = novelty.make("hsom")
+X = np.random.default_rng(0).uniform(0, 1, (2000, 16))
+from sklearn.utils import check_array  # the first call's validation imports it; not ours
+t2 = time.perf_counter()
+det.partial_fit(X)
+t3 = time.perf_counter()
+import novelty._kernels
+novelty._kernels.wait()
+t4 = time.perf_counter()
+print(json.dumps({"import": t1 - t0, "first_call": t3 - t2, "kernel_ready": t4 - t2,
+                  "kernels": novelty._kernels._module is not None}))
+"""
+
+_COMPILE = r"""
+import json, time
+t0 = time.perf_counter()
+import numba
+t1 = time.perf_counter()
+import novelty._kernels._som_stanley
+t2 = time.perf_counter()
+print(json.dumps({"import_numba": t1 - t0, "compile_or_load": t2 - t1}))
+"""
+
+
+def _subprocess(code: str, cache_dir: str) -> dict:
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
+    env.pop("NOVELTY_NO_KERNELS", None)
+    root = str(Path(__file__).resolve().parents[1])
+    env["PYTHONPATH"] = root + os.pathsep + env.get("PYTHONPATH", "")
+    out = subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def measure_startup(repeats: int) -> dict:
+    results: dict = {}
+    imports = []
+    for _ in range(repeats):
+        imports.append(_subprocess(
+            "import json, time; t = time.perf_counter(); import novelty; "
+            "print(json.dumps({'t': time.perf_counter() - t}))", tempfile.gettempdir())["t"])
+    results["import_novelty_s"] = statistics.median(imports)
+
+    with tempfile.TemporaryDirectory() as cache:  # fresh numba cache = a fresh install
+        results["fresh_compile"] = _subprocess(_COMPILE, cache)
+        results["later_load"] = [_subprocess(_COMPILE, cache) for _ in range(repeats)]
+    with tempfile.TemporaryDirectory() as cache:
+        results["fresh_first_call"] = _subprocess(_FIRST_CALL, cache)
+        results["later_first_call"] = [_subprocess(_FIRST_CALL, cache) for _ in range(repeats)]
+    return results
+
+
+def measure_memory(n_scans: int) -> dict:
+    import novelty
+
+    X = np.random.default_rng(3).uniform(0, 1, (n_scans, 16))
+    det = novelty.make("hsom").fit(X[:20_000])
+    det.novelty(X[:1000])  # compiled and warm
+    out: dict = {"n_scans": n_scans, "input_mb": X.nbytes / 1e6}
+    for label, context in (("kernel", contextlib.nullcontext), ("reference", reference_loops)):
+        with context():
+            start = time.perf_counter()
+            det.novelty(X)
+            elapsed = time.perf_counter() - start
+            tracemalloc.start()
+            det.novelty(X)
+            _, peak = tracemalloc.get_traced_memory()
+            tracemalloc.stop()
+        out[label] = {"peak_mb": peak / 1e6, "seconds": elapsed, "scans_per_s": n_scans / elapsed}
+    return out
+
+
+# ---------------------------------------------------------------- report
+def _fmt_rate(r: float) -> str:
+    return f"{r:,.0f}"
+
+
+def report(rows: list[Row], startup: dict, memory: dict, env: dict) -> tuple[str, list[dict]]:
+    lines = [
+        "| measurement | novelty (samples/s) | anchor | anchor (samples/s) | ratio | target | holds |",
+        "| --- | ---: | --- | ---: | ---: | --- | --- |",
+    ]
+    verdicts = []
+    for row in rows:
+        ratio = row.ours.rate / row.anchor.rate
+        target = f">= {row.target:g}x" if row.target is not None else "-"
+        holds = "-" if row.target is None else ("yes" if ratio >= row.target else "NO")
+        note = f" ({row.note})" if row.note else ""
+        lines.append(f"| {row.label}{note} | {_fmt_rate(row.ours.rate)} | {row.anchor.name} | "
+                     f"{_fmt_rate(row.anchor.rate)} | {ratio:.1f}x | {target} | {holds} |")
+        if row.target is not None:
+            verdicts.append({"target": f"{row.label}: {target} {row.anchor.name}",
+                             "value": ratio, "holds": ratio >= row.target})
+
+    fresh = startup["fresh_first_call"]
+    later_call = statistics.median(r["first_call"] for r in startup["later_first_call"])
+    later_ready = statistics.median(r["kernel_ready"] for r in startup["later_first_call"])
+    compile_s = startup["fresh_compile"]["compile_or_load"] + startup["fresh_compile"]["import_numba"]
+    load_s = statistics.median(r["compile_or_load"] + r["import_numba"] for r in startup["later_load"])
+    one_off = [
+        ("`import novelty` (subprocess, median)", startup["import_novelty_s"], 0.5),
+        ("first call after a fresh install: `partial_fit` of 2,000 scans, empty numba cache",
+         fresh["first_call"], 2.0),
+        ("  of which until the compiled kernel is ready (it compiles in the background)",
+         fresh["kernel_ready"], None),
+        ("  compiling the kernel alone (import numba + compile), empty cache", compile_s, None),
+        ("first call in a later process (cache filled), median", later_call, 0.5),
+        ("  until the kernel is ready, later process", later_ready, None),
+        ("  loading the kernel alone (import numba + load), later process", load_s, 0.5),
+    ]
+    lines += ["", "| one-off cost | seconds | target | holds |", "| --- | ---: | --- | --- |"]
+    for label, value, limit in one_off:
+        target = "-" if limit is None else f"< {limit:g} s"
+        holds = "-" if limit is None else ("yes" if value < limit else "NO")
+        lines.append(f"| {label} | {value:.3f} | {target} | {holds} |")
+        if limit is not None:
+            verdicts.append({"target": f"{label.strip()} {target}", "value": value,
+                             "holds": value < limit})
+
+    lines += ["", f"| scoring {memory['n_scans']:,} scans (input {memory['input_mb']:.0f} MB, "
+              "not counted) | peak allocated (tracemalloc) | scans/s | target | holds |",
+              "| --- | ---: | ---: | --- | --- |"]
+    for label in ("kernel", "reference"):
+        m = memory[label]
+        holds = "yes" if m["peak_mb"] < 500 else "NO"
+        lines.append(f"| {label} | {m['peak_mb']:.0f} MB | {_fmt_rate(m['scans_per_s'])} | "
+                     f"< 500 MB (\"a few hundred\") | {holds} |")
+        verdicts.append({"target": f"scoring {memory['n_scans']:,} scans ({label}) < 500 MB",
+                         "value": m["peak_mb"], "holds": m["peak_mb"] < 500})
+
+    lines += ["", "Machine: " + ", ".join(f"{k} {v}" for k, v in env.items())]
+    return "\n".join(lines), verdicts
+
+
+def environment() -> dict:
+    import minisom  # noqa: F401  (version below)
+    import numba
+    import river
+    from importlib.metadata import version
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return {
+        "cpu": cpu,
+        "cores": len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count(),
+        "load average at start": " ".join(f"{v:.2f}" for v in os.getloadavg()),
+        "python": platform.python_version(),
+        "numpy": np.__version__,
+        "numba": numba.__version__,
+        "minisom": version("minisom"),
+        "river": river.__version__,
+    }
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="smaller inputs, 3 repetitions")
+    parser.add_argument("--repeats", type=int, default=None, help="repetitions (default 5, quick 3)")
+    parser.add_argument("--out", type=Path, default=Path("results/perf"))
+    args = parser.parse_args(argv)
+    repeats = args.repeats or (3 if args.quick else 5)
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from novelty import _kernels
+
+    env = environment()
+    if _kernels.wait() is None:
+        print("warning: compiled kernels unavailable; timing the reference loops", file=sys.stderr)
+
+    print("measuring rates ...", file=sys.stderr)
+    rows = build_rows(args.quick)
+    measure_rates(rows, repeats)
+    print("measuring start-up costs ...", file=sys.stderr)
+    startup = measure_startup(3 if args.quick else 5)
+    print("measuring memory ...", file=sys.stderr)
+    memory = measure_memory(1_000_000 if args.quick else 10_000_000)
+
+    table, verdicts = report(rows, startup, memory, env)
+    print(table)
+    args.out.mkdir(parents=True, exist_ok=True)
+    cases = {c.name: {"n": c.n, "times_s": c.times, "median_rate": c.rate}
+             for row in rows for c in (row.ours, row.anchor)}
+    (args.out / "perf.json").write_text(json.dumps({
+        "quick": args.quick, "repeats": repeats, "environment": env, "cases": cases,
+        "rows": [{"label": r.label, "ours": r.ours.name, "anchor": r.anchor.name,
+                  "ratio": r.ours.rate / r.anchor.rate, "target": r.target, "note": r.note}
+                 for r in rows],
+        "startup": startup, "memory": memory, "targets": verdicts,
+    }, indent=2))
+    (args.out / "perf.md").write_text(table + "\n")
+    print(f"\nwrote {args.out / 'perf.json'} and {args.out / 'perf.md'}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
