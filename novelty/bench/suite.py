@@ -10,7 +10,8 @@ The TOML form::
     name = "quick"
     seeds = [0, 1]
     threshold = "max"      # or a quantile of the training novelty, e.g. 0.99
-    memory = true          # peak memory by a second, traced run of each cell
+    memory = true          # peak memory by a second, traced run of each cell;
+                           # "first-seed": of the cells of the first seed only
 
     [[detectors]]
     name = "hsom"                               # registry name
@@ -174,13 +175,14 @@ class Suite:
     seeds: list[int] = field(default_factory=lambda: [0])
     name: str = "suite"
     threshold: Any = "max"
-    memory: bool = True
+    memory: bool | str = True
     skipped: list[str] = field(default_factory=list)  # optional entries not registered
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)
         return [
-            Cell(d, t, s, self.threshold, self.memory, components)
+            Cell(d, t, s, self.threshold,
+                 self.memory is True or (self.memory == "first-seed" and s == self.seeds[0]), components)
             for t in self.tasks
             for d in self.detectors
             for s in self.seeds
@@ -383,8 +385,8 @@ def suite_from_dict(data: dict, source: str = "suite") -> Suite:
         tasks.append(TaskSpec(name, _table(entry.get("options"), f"{where}: options"),
                               entry.get("label", name)))
     memory = head.get("memory", True)
-    if not isinstance(memory, bool):
-        raise SuiteError(f"{source}: memory must be true or false.")
+    if not isinstance(memory, bool) and memory != "first-seed":
+        raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")
     suite = Suite(detectors, tasks, list(seeds), str(head.get("name", source)),
                   head.get("threshold", "max"), memory, skipped)
     return suite.check()

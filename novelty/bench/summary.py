@@ -25,6 +25,11 @@ def _num(value) -> float:
         return float("nan")
 
 
+def _in_order(rows: Iterable[dict]) -> list[dict]:
+    # Backends finish cells in any order; summing in one order makes the table identical.
+    return sorted(rows, key=lambda r: (str(r["detector"]), str(r["task"]), r["seed"], r["cell_id"]))
+
+
 def _mean(values: Iterable[float]) -> float:
     arr = np.array([v for v in values if not math.isnan(v)], dtype=float)
     return float(arr.mean()) if arr.size else float("nan")
@@ -38,7 +43,7 @@ def _sd(values: Sequence[float]) -> float:
 def rank_detectors(rows: Iterable[dict]) -> list[dict]:
     """One record a detector, best first (by mean ROC AUC over seeds)."""
     by_detector: dict[str, list[dict]] = defaultdict(list)
-    for row in rows:
+    for row in _in_order(rows):
         by_detector[row["detector"]].append(row)
     records = []
     for detector, cells in by_detector.items():
@@ -76,7 +81,7 @@ def rank_detectors(rows: Iterable[dict]) -> list[dict]:
 def per_task(rows: Iterable[dict]) -> dict[str, dict[str, tuple[float, float]]]:
     """``{detector: {task: (mean AUC, sd over seeds)}}`` over successful cells."""
     values: dict[str, dict[str, list[float]]] = defaultdict(lambda: defaultdict(list))
-    for row in rows:
+    for row in _in_order(rows):
         if row.get("status") == "ok":
             values[row["detector"]][row["task"]].append(_num(row.get("roc_auc")))
     return {d: {t: (_mean(v), _sd(v)) for t, v in tasks.items()} for d, tasks in values.items()}
@@ -110,12 +115,13 @@ def ranking_text(rows: Sequence[dict]) -> str:
     """The ranked table printed at the end of ``novelty bench``."""
     records = rank_detectors(rows)
     header = ["#", "detector", "ROC AUC (± sd over seeds)", "AP", "TPR@1%", "TPR@5%",
-              "delay", "false alarms", "integrated", "max", "train s", "units", "failed"]
+              "delay", "false alarms", "integrated", "max", "train s", "MiB", "units", "failed"]
     body = [[
         str(r["rank"]), r["detector"], _pm(r["roc_auc"], r["roc_auc_sd"]),
         _fmt(r["average_precision"]), _fmt(r["tpr_at_1pct_fpr"]), _fmt(r["tpr_at_5pct_fpr"]),
         _fmt(r["detection_delay"], 1), _fmt(r["false_alarms"], 1), _fmt(r["integrated_novelty"], 2),
-        _fmt(r["max_novelty"]), _fmt(r["train_time_s"], 3), ("-" if math.isnan(r["n_units"]) else f"{r['n_units']:.0f}"),
+        _fmt(r["max_novelty"]), _fmt(r["train_time_s"], 3), _fmt(r["peak_memory_mb"], 2),
+        "-" if math.isnan(r["n_units"]) else f"{r['n_units']:.0f}",
         f"{r['failed']}/{r['cells']}" if r["failed"] else "0",
     ] for r in records]
     return format_table(header, body)
@@ -153,7 +159,7 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "training novelty only: its maximum unless a note below says otherwise), false alarms on a "
         "clean pass (or the normal test scans), integrated "
         "novelty over the test part with the resting activity subtracted and its maximum, "
-        "training time, model size in units.",
+        "training time, peak memory (MiB, traced), model size in units.",
         "",
         ranking_text(rows),
         "",
