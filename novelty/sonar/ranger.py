@@ -122,8 +122,9 @@ class PolaroidRanger:
     noise_fraction : float, default=0.01
         Part of the noise's standard deviation proportional to the range (the
         module's 1 % accuracy; Polaroid, 1987).
-    dropout : float, default=0.005
-        Probability that a reading is lost (maximum range), approximately.
+    dropout : float, default=0.001
+        Probability that a reading is lost (maximum range), approximately: a
+        missed echo now and then, about one reading in 1000.
     multipath : bool, default=True
         Whether to follow one specular bounce.
     footprint_margin : float, default=0.05
@@ -139,7 +140,7 @@ class PolaroidRanger:
     max_range: float = 6.5
     noise_sd: float = 0.01
     noise_fraction: float = 0.01
-    dropout: float = 0.005
+    dropout: float = 0.001
     multipath: bool = True
     footprint_margin: float = 0.05
 
