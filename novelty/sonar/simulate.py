@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .controller import RunVariation
-from .environments import Environment, get_environment
+from .environments import get_environment
 from .preprocessing import PAPER_BIN_LENGTH, PAPER_THRESHOLD, bin_by_distance, preprocess
 from .ranger import PolaroidRanger
 from .robot import NOMAD_200, Robot
