@@ -17,7 +17,7 @@ exposure leaves a trace, a lower ``z``, which
 - slows recovery, so that the synapse stays habituated for longer.
 
 A stimulus habituated to before is therefore re-habituated faster after the
-synapse has recovered: long-term memory, which Stanley's model (1) in
+synapse has recovered: long-term memory, which Stanley's model in
 :mod:`novelty.habituation.stanley` does not have (its state is ``y`` alone, so
 a recovered synapse is the same as a fresh one). ``tau`` scales equation (1)
 only, as in the form reviewed by Marsland (2003): a neighbour's ``z`` falls as
@@ -64,17 +64,18 @@ Two discretisations:
 
 Defaults
 --------
-Wang & Hsu fitted their model to toad data over minutes to weeks; those
-values are not reproduced here (not verified, see below). The defaults are
+Wang (1993) fitted the model to toads' habituation over minutes to weeks;
+those values are not reproduced here (not verified, see below). The defaults are
 chosen to show the effect on the time scale of Marsland et al. (2000), tens
 of scans: the paper's ``tau`` (3.33 winner, 14.3 neighbours) and
 ``alpha = 1.05``, with ``beta = 2``, ``gamma = 0.05``, ``z0 = 0.9``, ``l = 1``.
 Then, with ``others="forget"``: a first exposure of 20 scans takes 16 scans
 to bring the efficacy below 0.3 (and ``z`` from 0.9 to 0.77); after a
 recovery of 200 scans the efficacy is back to 1.0, and the second exposure
-takes 3 scans. Stanley's synapse takes 4 scans both times. The efficacy
-settles at 0.32 on the first exposure (``alpha z0 / (alpha z0 + beta)``) and
-tends to 0 under a very long stimulus (``z`` tends to 0).
+takes 3 scans (16, then 5, with ``method="exact"``). Stanley's synapse takes 4
+scans both times. Early in a first exposure the efficacy levels off near
+``alpha z0 / (alpha z0 + beta) = 0.32``, then sinks as ``z`` falls, towards
+0 under a very long stimulus.
 
 What could and could not be verified
 ------------------------------------
