@@ -28,6 +28,13 @@ def use_bar(stream: TextIO) -> bool:
     return True
 
 
+def _columns(stream) -> int:
+    try:
+        return os.get_terminal_size(stream.fileno()).columns
+    except (AttributeError, OSError, ValueError):
+        return 0
+
+
 def _short(row: dict) -> str:
     what = f"{row['detector']} / {row['task']} / seed {row['seed']}"
     if row.get("status") != "ok":
@@ -52,7 +59,9 @@ class Progress:
         if not quiet and (use_bar(self.stream) if bar is None else bar):
             from tqdm import tqdm
 
-            self._bar = tqdm(total=total, file=self.stream, unit="cell", dynamic_ncols=True)
+            sized = _columns(self.stream) > 0  # a pseudo-terminal may report 0 columns
+            self._bar = tqdm(total=total, file=self.stream, unit="cell", dynamic_ncols=sized,
+                             ncols=None if sized else 100)
 
     def update(self, row: dict) -> None:
         self.done += 1
