@@ -61,7 +61,7 @@ class Progress:
 
             sized = _columns(self.stream) > 0  # a pseudo-terminal may report 0 columns
             self._bar = tqdm(total=total, file=self.stream, unit="cell", dynamic_ncols=sized,
-                             ncols=None if sized else 100)
+                             ncols=None if sized else 100, nrows=None if sized else 24)
 
     def update(self, row: dict) -> None:
         self.done += 1
