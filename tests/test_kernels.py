@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from sklearn.base import clone
 
 import novelty
 from novelty import _kernels
@@ -205,6 +206,93 @@ def test_corridor_stream_equals_reference(som, synapse):
     np.testing.assert_array_equal(fast.novelty(probe), expected_scores)
 
 
+# ---------------------------------------------------------- growing networks
+def assert_same_network(a, b):
+    """Every piece of learned state of two growing networks (and their synapse banks) is equal."""
+    for name in ("weights_", "edge_ages_", "unit_ids_", "errors_"):
+        if hasattr(b.clusterer_, name):
+            got, expected = getattr(a.clusterer_, name), getattr(b.clusterer_, name)
+            assert got.dtype == expected.dtype, name
+            np.testing.assert_array_equal(got, expected, err_msg=name)
+    for name in ("next_unit_id_", "n_inputs_"):
+        assert getattr(a.clusterer_, name, None) == getattr(b.clusterer_, name, None), name
+    if hasattr(b.clusterer_, "firing_"):
+        np.testing.assert_array_equal(a.clusterer_.firing_.efficacy_, b.clusterer_.firing_.efficacy_)
+    np.testing.assert_array_equal(a.synapse_.efficacy_, b.synapse_.efficacy_)
+
+
+gng_params = st.fixed_dictionaries({
+    "epsilon_b": st.floats(0, 1, **finite),
+    "epsilon_n": st.floats(0, 1, **finite),
+    "insertion_interval": st.integers(1, 20),
+    "insertion_error_decay": st.floats(0, 1, **finite),
+    "error_decay": st.floats(0, 1, **finite),
+    "max_age": st.integers(1, 8),
+    "max_units": st.integers(2, 12),
+    "init": st.sampled_from(["sample", "uniform"]),
+})
+
+gwr_params = st.fixed_dictionaries({
+    "activity_threshold": st.floats(0, 1, **finite),
+    "habituation_threshold": st.floats(0, 1.2, **finite),
+    "epsilon_b": st.floats(0, 1, **finite),
+    "epsilon_n": st.floats(0, 1, **finite),
+    "max_age": st.integers(1, 8),
+    "max_units": st.one_of(st.none(), st.integers(2, 12)),
+    "init": st.sampled_from(["sample", "uniform"]),
+})
+
+
+@st.composite
+def growing_filters(draw):
+    kind = draw(st.sampled_from(["gng", "gwr"]))
+    params = draw(gng_params if kind == "gng" else gwr_params)
+    if kind == "gwr":
+        firing = draw(stanley_params())
+        params["firing"] = novelty.StanleySynapse(**firing)
+    synapse = novelty.StanleySynapse(**draw(stanley_params()))
+    clusterer = novelty.registry.clusterers.make(kind, **params)
+    return HabituatingFilter(clusterer=clusterer, synapse=synapse,
+                             stimulus=draw(st.floats(0, 2, **finite)),
+                             random_state=draw(st.integers(0, 100)))
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(det=growing_filters(), data=streams(), split=st.integers(0, 60))
+def test_growing_networks_equal_reference(det, data, split):
+    X, timestamps = data
+    fast, slow = clone(det), clone(det)
+    results = []
+    for model, context in ((fast, contextlib.nullcontext()), (slow, reference_only())):
+        with context:
+            t = None if timestamps is None else timestamps[:split]
+            out = [model.stream(X[:split], timestamps=t)] if split else []
+            if split < len(X):
+                t = None if timestamps is None else timestamps[split:]
+                out.append(model.stream(X[split:], timestamps=t))
+            out.append(np.array([model.score_learn_one(x) for x in X[:3]]))
+            results.append(np.concatenate(out))
+    np.testing.assert_array_equal(results[0], results[1])
+    assert_same_network(fast, slow)
+
+
+@pytest.mark.parametrize("name,params", [
+    ("gng-stanley", {}),
+    ("gng-stanley", {"insertion_interval": 10, "max_age": 4, "synapse__others": "forget"}),
+    ("gwr-novelty", {}),
+    ("gwr-novelty", {"activity_threshold": 0.95, "max_age": 3, "synapse__method": "exact"}),
+])
+def test_growing_corridor_equals_reference(name, params):
+    X = corridor(3000)
+    fast, slow = novelty.make(name, **params), novelty.make(name, **params)
+    got = np.concatenate([fast.stream(X[:10]), fast.stream(X[10:])])
+    with reference_only():
+        expected = np.concatenate([slow.stream(X[:10]), slow.stream(X[10:])])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_network(fast, slow)
+    assert fast.clusterer_.next_unit_id_ > 2  # units were added (and, with max_age 3, deleted)
+
+
 # ------------------------------------------------------------------- scoring
 @pytest.mark.parametrize("n_features", [1, 3, 7, 8, 9, 16, 24, 64, 127, 128, 129, 200, 300])
 def test_distances_follow_numpy_summation(n_features):
@@ -212,7 +300,7 @@ def test_distances_follow_numpy_summation(n_features):
     rng = np.random.default_rng(n_features)
     W = rng.uniform(-1, 1, (13, n_features)) * rng.choice([1e-3, 1.0, 1e3], (13, n_features))
     X = rng.uniform(-1, 1, (20, n_features))
-    module = _kernels._load()
+    module = _kernels._SOM.wait()
     rows, novelty_out, dist = np.empty(20, dtype=np.int64), np.empty(20), np.empty(20)
     params = np.zeros(len(module.PARAMS))
     params[0] = 13  # n_columns
@@ -263,8 +351,7 @@ def test_other_components_use_the_reference():
 
 
 def test_missing_numba_falls_back_with_one_warning(monkeypatch):
-    for name, value in {"_module": None, "_failed": False, "_thread": None, "_error": None}.items():
-        monkeypatch.setattr(_kernels, name, value)
+    monkeypatch.setattr(_kernels, "_SOM", _kernels._Compiled("_som_stanley"))
     monkeypatch.delitem(sys.modules, "novelty._kernels._som_stanley")
     monkeypatch.delattr(_kernels, "_som_stanley", raising=False)
     monkeypatch.setitem(sys.modules, "numba", None)  # makes "import numba" fail
@@ -284,20 +371,20 @@ def test_missing_numba_falls_back_with_one_warning(monkeypatch):
 def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
     """While the kernel compiles, the reference learns; the kernel takes over when ready."""
     monkeypatch.setattr(_kernels, "_HANDOVER_BLOCK", 100)
-    module = _kernels._module
+    module = _kernels._SOM.module
     calls = []
 
     def reference_blocks(som, syn, X, dt, stimulus):
         calls.append(len(X))
         if len(calls) == 3:
-            monkeypatch.setattr(_kernels, "_module", module)  # "compiled" after 3 blocks
+            monkeypatch.setattr(_kernels._SOM, "module", module)  # "compiled" after 3 blocks
         return learn_stream(som, syn, X, dt, stimulus)
 
-    monkeypatch.setattr(_kernels, "_module", None)
+    monkeypatch.setattr(_kernels._SOM, "module", None)
     monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)
     X = corridor(1000)
     det = novelty.make("hsom").fit(X[:1])
-    assert _kernels.learner(det.clusterer_, det.synapse_) is _kernels._learn_while_compiling
+    assert _kernels.learner(det.clusterer_, det.synapse_) is _kernels._som_handing_over
     calls.clear()
     got = det.stream(X)
     assert calls == [100, 100, 100]

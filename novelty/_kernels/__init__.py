@@ -38,15 +38,68 @@ from typing import Callable
 
 import numpy as np
 
+from ..clusterers.gng import GrowingNeuralGas
+from ..clusterers.gwr import GrowWhenRequired
 from ..clusterers.som import SOM
 from ..habituation.stanley import StanleySynapse
 
 __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
-_module = None  # the compiled module, once ready
-_failed = False  # numba missing, broken or disabled: never retried
-_thread: threading.Thread | None = None
-_error: BaseException | None = None  # raised in the thread, warned about in the caller's
+class _Compiled:
+    """One module of kernels, compiled (or loaded from numba's cache) in a background thread."""
+
+    def __init__(self, name: str):
+        self.name = name
+        self.module = None  # once ready
+        self.failed = False  # numba missing, broken or disabled: never retried
+        self.thread: threading.Thread | None = None
+        self.error: BaseException | None = None  # raised in the thread, warned about here
+
+    def get(self):
+        """The module if ready; else start compiling it (once) and return None."""
+        if self.module is not None:
+            return self.module
+        if self.failed:
+            return None
+        if self.error is not None:
+            self.failed = True
+            warnings.warn(
+                f"novelty: compiled kernels are unavailable ({type(self.error).__name__}: "
+                f"{self.error}); using the reference numpy loops, which give the same results "
+                "more slowly.",
+                RuntimeWarning,
+                stacklevel=4,
+            )
+            return None
+        if self.thread is None:
+            if os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0"):
+                self.failed = True
+                return None
+            self.thread = threading.Thread(target=self._compile, name=f"novelty-{self.name}")
+            self.thread.start()
+        return None
+
+    def _compile(self) -> None:
+        try:
+            import importlib
+
+            self.module = importlib.import_module(f"{__name__}.{self.name}")
+        except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
+            self.error = exc
+
+    def wait(self, timeout: float | None = None):
+        self.get()
+        if self.thread is not None:
+            self.thread.join(timeout)
+        return self.get()
+
+    @property
+    def compiling(self) -> bool:
+        return self.module is None and not self.failed and self.thread is not None
+
+
+_SOM = _Compiled("_som_stanley")
+_GROWING = _Compiled("_growing")
 
 
 def kernels_enabled() -> bool:
@@ -55,50 +108,9 @@ def kernels_enabled() -> bool:
 
 
 def wait(timeout: float | None = None):
-    """Compile or load the kernels now and block until done; the module or None."""
-    _load()
-    if _thread is not None:
-        _thread.join(timeout)
-    return _load()
-
-
-def _compile() -> None:
-    global _module, _error
-    try:
-        from . import _som_stanley  # compiles, or loads from numba's cache
-
-        _module = _som_stanley
-    except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
-        _error = exc
-
-
-def _load():
-    """The compiled module if ready; else start compiling it (once) and return None."""
-    global _failed, _thread
-    if _module is not None:
-        return _module
-    if _failed:
-        return None
-    if _error is not None:
-        _failed = True
-        warnings.warn(
-            f"novelty: compiled kernels are unavailable ({type(_error).__name__}: {_error}); "
-            "using the reference numpy loops, which give the same results more slowly.",
-            RuntimeWarning,
-            stacklevel=4,
-        )
-        return None
-    if _thread is None:
-        if os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0"):
-            _failed = True
-            return None
-        _thread = threading.Thread(target=_compile, name="novelty-compile-kernels")
-        _thread.start()
-    return None
-
-
-def _compiling() -> bool:
-    return _module is None and not _failed and _thread is not None
+    """Compile or load every kernel now and block until done; the SOM module or None."""
+    _GROWING.wait(timeout)
+    return _SOM.wait(timeout)
 
 
 def _plain(a, ndim: int) -> bool:
@@ -128,15 +140,40 @@ def _som_ready(som, y) -> bool:
     )
 
 
+def _stanley_ready(syn, n_units: int) -> bool:
+    y = getattr(syn, "efficacy_", None)
+    return (type(syn) is StanleySynapse and _plain(y, 1) and y.shape[0] == n_units
+            and syn.method in ("euler", "exact") and syn.others in ("hold", "forget"))
+
+
+def _growing_ready(net, syn) -> bool:
+    W = getattr(net, "weights_", None)
+    A = getattr(net, "edge_ages_", None)
+    if not (_plain(W, 2) and type(A) is np.ndarray and A.shape == (W.shape[0], W.shape[0])
+            and _stanley_ready(syn, W.shape[0])):
+        return False
+    if type(net) is GrowWhenRequired:  # its firing counters are a Stanley bank too
+        return _stanley_ready(getattr(net, "firing_", None), W.shape[0])
+    return _plain(getattr(net, "errors_", None), 1)
+
+
 def learner(clusterer, synapse) -> Callable | None:
     """A function ``(clusterer, synapse, X, dt, stimulus) -> novelty`` equal to ``learn_stream``, or None."""
-    if type(clusterer) is not SOM or type(synapse) is not StanleySynapse:
+    kind = type(clusterer)
+    if kind is SOM:
+        if type(synapse) is not StanleySynapse or \
+                not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
+            return None
+        compiled, kernel, handing_over = _SOM, _learn_som_stanley, _som_handing_over
+    elif kind is GrowingNeuralGas or kind is GrowWhenRequired:
+        if not _growing_ready(clusterer, synapse):
+            return None
+        compiled, kernel, handing_over = _GROWING, _learn_growing, _growing_handing_over
+    else:
         return None
-    if not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
-        return None
-    if _module is None and _load() is None:
-        return _learn_while_compiling if _compiling() else None
-    return _learn_som_stanley
+    if compiled.module is None and compiled.get() is None:
+        return handing_over if compiled.compiling else None
+    return kernel
 
 
 def scorer(clusterer, synapse) -> Callable | None:
@@ -147,7 +184,7 @@ def scorer(clusterer, synapse) -> Callable | None:
     """
     if type(clusterer) is not SOM or not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
         return None
-    if _module is None and _load() is None:
+    if _SOM.module is None and _SOM.get() is None:
         return None
     return _score_som
 
@@ -161,7 +198,9 @@ _params: dict[tuple, np.ndarray] = {}
 def _plan(n_features: int) -> np.ndarray:
     plan = _plans.get(n_features)
     if plan is None:
-        plan = _plans[n_features] = _module.pairwise_plan(n_features)
+        from ._pairwise import pairwise_plan
+
+        plan = _plans[n_features] = pairwise_plan(n_features)
     return plan
 
 
@@ -190,7 +229,7 @@ def _som_stanley_params(som, syn, stimulus: float) -> np.ndarray | None:
             "tau_neighbour": syn.tau_neighbour, "tau_forget": tau_f, "alpha": syn.alpha,
             "y0": syn.y0, "stimulus": stimulus,
         }
-        params = np.array([float(values[name]) for name in _module.PARAMS])
+        params = np.array([float(values[name]) for name in _SOM.module.PARAMS])
         if len(_params) > 256:  # a parameter sweep: do not grow without bound
             _params.clear()
         _params[key] = params
@@ -208,7 +247,7 @@ def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
         return learn_stream(som, syn, X, dt, stimulus)
     n = X.shape[0]
     novelty = np.empty(n)
-    radius, t = _module.som_stanley_stream(
+    radius, t = _SOM.module.som_stanley_stream(
         som.weights_, syn.efficacy_, _c(X), _c(dt),
         np.empty(n, dtype=np.int64) if winners is None else winners, novelty, np.empty(n),
         _plan(X.shape[1]), params, True, som._table_radius, som.n_updates_,
@@ -224,22 +263,100 @@ def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
 _HANDOVER_BLOCK = 256
 
 
-def _learn_while_compiling(som, syn, X, dt, stimulus, winners=None):
-    """The reference loop, block by block, until the kernel is ready; then the kernel."""
-    from ..filter import learn_stream
+def _handing_over(compiled: _Compiled, kernel: Callable) -> Callable:
+    """``kernel``'s stand-in while ``compiled`` compiles: the reference, block by block, then the kernel."""
 
-    if winners is not None:  # only tests ask for winners, and they wait for the kernel
-        raise ValueError("winners are only reported by the compiled kernel")
+    def learn(net, syn, X, dt, stimulus, winners=None):
+        from ..filter import learn_stream
+
+        if winners is not None:  # only tests ask for winners, and they wait for the kernel
+            raise ValueError("winners are only reported by the compiled kernel")
+        novelty = np.empty(X.shape[0])
+        start = 0
+        while start < X.shape[0]:
+            if compiled.module is not None or compiled.get() is not None:
+                novelty[start:] = kernel(net, syn, X[start:], dt[start:], stimulus)
+                break
+            stop = start + _HANDOVER_BLOCK
+            novelty[start:stop] = learn_stream(net, syn, X[start:stop], dt[start:stop], stimulus)
+            start = stop
+        return novelty
+
+    return learn
+
+
+_som_handing_over = _handing_over(_SOM, _learn_som_stanley)
+
+
+# ------------------------------------------------------------ growing networks
+def _stanley_params(syn) -> np.ndarray:
+    tau_f = syn.tau_neighbour if syn.tau_forget is None else syn.tau_forget
+    return np.array([syn.method == "exact", syn.others == "forget", syn.tau_winner,
+                     syn.tau_neighbour, tau_f, syn.alpha, syn.y0], dtype=np.float64)
+
+
+def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> np.ndarray:
+    """GNG or GWR: the kernel on arrays with room to grow, enlarged whenever it stops full."""
+    module = _GROWING.module
+    gwr = type(net) is GrowWhenRequired
+    X, dt = _c(X), _c(dt)
+    plan = _plan(X.shape[1])
+    p = _stanley_params(syn)
+    if gwr:
+        g = np.array([net.activity_threshold, net.habituation_threshold, net.epsilon_b,
+                      net.epsilon_n, net.max_age, -1 if net.max_units is None else net.max_units],
+                     dtype=np.float64)
+        ph = _stanley_params(net.firing_)
+    else:
+        g = np.array([net.epsilon_b, net.epsilon_n, net.insertion_interval,
+                      net.insertion_error_decay, net.error_decay, net.max_age, net.max_units],
+                     dtype=np.float64)
     novelty = np.empty(X.shape[0])
+    age_dtype = net.edge_ages_.dtype
     start = 0
-    while start < X.shape[0]:
-        if _module is not None or _load() is not None:
-            novelty[start:] = _learn_som_stanley(som, syn, X[start:], dt[start:], stimulus)
-            break
-        stop = start + _HANDOVER_BLOCK
-        novelty[start:stop] = learn_stream(som, syn, X[start:stop], dt[start:stop], stimulus)
-        start = stop
-    return novelty
+    while True:
+        n = net.weights_.shape[0]
+        # a GWR may add a unit per input, a GNG one per insertion_interval inputs
+        rest = X.shape[0] - start
+        room = rest if gwr else rest // net.insertion_interval + 1
+        cap = n + max(1, min(room, max(n, 16)))  # doubled at most per call: few wasted rows
+        W = np.zeros((cap, X.shape[1]))
+        W[:n] = net.weights_
+        A = np.full((cap, cap), -1, dtype=np.int32)
+        A[:n, :n] = net.edge_ages_
+        y = np.zeros(cap)
+        y[:n] = syn.efficacy_
+        ids = np.zeros(cap, dtype=np.int64)
+        ids[:n] = net.unit_ids_
+        u = np.zeros(cap)  # GWR: firing counters; GNG: errors
+        u[:n] = net.firing_.efficacy_ if gwr else net.errors_
+        out = novelty[start:]
+        if gwr:
+            done, n, next_id = module.gwr_stream(W, u, A, y, ids, X[start:], dt[start:], out,
+                                                 plan, g, p, ph, float(stimulus), n,
+                                                 int(net.next_unit_id_))
+        else:
+            done, n, next_id, n_inputs = module.gng_stream(
+                W, u, A, y, ids, X[start:], dt[start:], out, plan, g, p, float(stimulus), n,
+                int(net.next_unit_id_), int(net.n_inputs_))
+            net.n_inputs_ = int(n_inputs)
+        net.weights_ = W[:n].copy()
+        net.edge_ages_ = A[:n, :n].astype(age_dtype)
+        net.unit_ids_ = ids[:n].copy()
+        net.next_unit_id_ = int(next_id)
+        syn.efficacy_ = y[:n].copy()
+        if gwr:
+            net.firing_.efficacy_ = u[:n].copy()
+        else:
+            net.errors_ = u[:n].copy()
+        if done < 0:
+            raise RuntimeError("GrowingNeuralGas: the unit of largest error has no neighbour.")
+        start += int(done)
+        if start >= X.shape[0]:
+            return novelty
+
+
+_growing_handing_over = _handing_over(_GROWING, _learn_growing)
 
 
 # ------------------------------------------------------------------- scoring
@@ -264,7 +381,7 @@ def _score_params(som) -> np.ndarray:
     key = ("score", som.n_columns)  # scoring reads no other parameter
     params = _params.get(key)
     if params is None:
-        params = _params[key] = np.ones(len(_module.PARAMS))
+        params = _params[key] = np.ones(len(_SOM.module.PARAMS))
         params[0] = som.n_columns
     return params
 
@@ -273,7 +390,7 @@ def _score_part(som, y, X, out, plan, params) -> None:
     for lo in range(0, X.shape[0], _SCORE_CHUNK):
         block = _c(X[lo : lo + _SCORE_CHUNK])  # a read-only batch is copied block by block
         m = block.shape[0]
-        _module.som_stanley_stream(som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64),
+        _SOM.module.som_stanley_stream(som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64),
                                    out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)
 
 

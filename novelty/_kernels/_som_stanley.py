@@ -11,7 +11,7 @@ results are bit-identical, not merely close:
   ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``, the tail added one
   by one (fewer than eight features: one by one); more than 128 features are
   split in two halves (the first a multiple of eight) summed separately and
-  added. :func:`pairwise_plan` lists those blocks, :func:`_block_cols` sums
+  added. :func:`._pairwise.pairwise_plan` lists those blocks, :func:`_block_cols` sums
   one block in that order;
 - the winner is the first unit with the least distance (``np.argmin``);
 - the weight update is ``w + eta * (x - w)`` per element;
@@ -20,8 +20,9 @@ results are bit-identical, not merely close:
 
 numba compiles without fast-math, so LLVM neither reorders these sums nor
 fuses multiplies into adds. ``error_model="numpy"`` drops Python's
-division-by-zero checks (the validated parameters never divide by zero). This module imports numba; it is only imported
-through :mod:`novelty._kernels`, on first use. No function here is recursive:
+division-by-zero checks (the validated parameters never divide by zero).
+This module imports numba; it is only imported through
+:mod:`novelty._kernels`, on first use. No function here is recursive:
 numba's on-disk cache does not handle recursion reliably.
 """
 
@@ -32,33 +33,10 @@ import math
 import numpy as np
 from numba import njit
 
+from ._pairwise import pairwise_plan  # noqa: F401  (re-exported for callers)
+
 # decay codes (SOM.decay)
 CONSTANT, LINEAR, ASYMPTOTIC = 0, 1, 2
-
-#: numpy's pairwise summation sums blocks of at most this many items directly
-_PW_BLOCK = 128
-
-
-def pairwise_plan(n_features: int) -> np.ndarray:
-    """numpy's summation tree over ``n_features`` items, in post-order.
-
-    Each row ``(lo, n)`` with ``n > 0`` sums the block ``[lo, lo + n)`` and
-    pushes it; a row ``(0, 0)`` pops two partial sums and pushes their sum.
-    Up to 128 features the plan is the single block ``(0, n_features)``.
-    """
-    ops: list[tuple[int, int]] = []
-    pending = [(0, n_features, False)]
-    while pending:  # iterative post-order walk of numpy's recursive split
-        lo, n, expanded = pending.pop()
-        if n <= _PW_BLOCK:
-            ops.append((lo, n))
-        elif expanded:
-            ops.append((0, 0))
-        else:
-            half = n // 2
-            half -= half % 8
-            pending += [(lo, n, True), (lo + half, n - half, False), (lo, half, False)]
-    return np.array(ops, dtype=np.int64)
 
 
 # ------------------------------------------------------ distances, transposed

@@ -1,0 +1,349 @@
+"""Compiled learning loops for the growing networks (GNG, GWR) with Stanley synapses.
+
+The references are :func:`novelty.filter.learn_stream` driving
+:class:`~novelty.clusterers.gng.GrowingNeuralGas` or
+:class:`~novelty.clusterers.gwr.GrowWhenRequired` (whose firing counters are
+a Stanley bank too) and :class:`~novelty.habituation.stanley.StanleySynapse`.
+As in :mod:`._som_stanley`, the arithmetic is numpy's, operation by
+operation, so the results are bit-identical (distances summed in numpy's
+pairwise order, see :func:`._pairwise.pairwise_plan`).
+
+State lives in fixed-capacity arrays: ``W`` (capacity x features), the
+efficacies, the unit ids and the edge-age matrix ``A`` (capacity x capacity,
+-1 = no edge), of which the first ``n`` rows are in use. Deleting units shifts
+the later rows down, as ``np.delete`` does, so rows keep the reference's
+numbering. A call stops early, returning the number of inputs it learned,
+when the network is full and the next input might add a unit; the caller
+then enlarges the arrays and calls again. Networks have few units, so the
+distances are computed row by row (no transposed copy).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+#: layout of a Stanley bank's parameter vector
+STANLEY = ("exact", "forget", "tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0")
+GNG = ("epsilon_b", "epsilon_n", "insertion_interval", "insertion_error_decay", "error_decay",
+       "max_age", "max_units")
+GWR = ("activity_threshold", "habituation_threshold", "epsilon_b", "epsilon_n", "max_age",
+       "max_units")  # max_units < 0: no limit
+
+_NO_EDGE = -1
+
+
+# ----------------------------------------------------------------- distances
+@njit(cache=True, error_model="numpy", inline="always")
+def _block(W, j, x, lo, n):
+    """Sum of (W[j, k] - x[k])**2 over one block of at most 128 features, numpy's order.
+
+    Eight running sums over blocks of eight, combined pairwise, then the tail
+    one by one (fewer than eight: all one by one); starting at 0.0 changes
+    nothing for non-negative squares.
+    """
+    end = lo + n - n % 8
+    res = 0.0
+    if n >= 8:
+        r0 = r1 = r2 = r3 = r4 = r5 = r6 = r7 = 0.0
+        for k in range(lo, end, 8):
+            d0 = W[j, k] - x[k]
+            d1 = W[j, k + 1] - x[k + 1]
+            d2 = W[j, k + 2] - x[k + 2]
+            d3 = W[j, k + 3] - x[k + 3]
+            d4 = W[j, k + 4] - x[k + 4]
+            d5 = W[j, k + 5] - x[k + 5]
+            d6 = W[j, k + 6] - x[k + 6]
+            d7 = W[j, k + 7] - x[k + 7]
+            r0 += d0 * d0
+            r1 += d1 * d1
+            r2 += d2 * d2
+            r3 += d3 * d3
+            r4 += d4 * d4
+            r5 += d5 * d5
+            r6 += d6 * d6
+            r7 += d7 * d7
+        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    for k in range(end, lo + n):
+        d = W[j, k] - x[k]
+        res += d * d
+    return res
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _sqdist(W, j, x, plan, stack):
+    if plan.shape[0] == 1:
+        return _block(W, j, x, plan[0, 0], plan[0, 1])
+    sp = 0
+    for p in range(plan.shape[0]):
+        if plan[p, 1] > 0:
+            stack[sp] = _block(W, j, x, plan[p, 0], plan[p, 1])
+            sp += 1
+        else:
+            stack[sp - 2] = stack[sp - 2] + stack[sp - 1]
+            sp -= 1
+    return stack[0]
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _two_nearest(W, n, x, plan, stack, d):
+    """Winner, its squared distance and runner-up: ``argmin``, then ``argmin`` with the winner at inf."""
+    for j in range(n):
+        d[j] = _sqdist(W, j, x, plan, stack)
+    s1 = 0
+    for j in range(1, n):
+        if d[j] < d[s1]:
+            s1 = j
+    s2 = -1
+    for j in range(n):
+        if j != s1 and (s2 < 0 or d[j] < d[s2]):
+            s2 = j
+    if s2 < 0:
+        s2 = 0
+    return s1, d[s1], s2
+
+
+# ------------------------------------------------------------ Stanley synapse
+@njit(cache=True, error_model="numpy", inline="always")
+def _stanley_one(y, stimulus, tau, dt, exact, alpha, y0):
+    # StanleySynapse._advance for one unit
+    if exact:
+        y_inf = y0 - stimulus / alpha
+        return y_inf + (y - y_inf) * math.exp(-alpha * dt / tau)
+    n_sub = max(1, math.ceil(dt))
+    h = dt / n_sub
+    for _ in range(n_sub):
+        y = y + (h / tau) * (alpha * (y0 - y) - stimulus)
+    return y
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _stanley_step(y, n, winner, is_nb, stimulus, dt, p):
+    """Synapse.step: the winner and the units with ``is_nb`` habituate, the others hold or recover."""
+    exact = p[0] != 0.0
+    forget = p[1] != 0.0
+    for j in range(n):
+        if j == winner:
+            y[j] = _stanley_one(y[j], stimulus, p[2], dt, exact, p[5], p[6])
+        elif is_nb[j]:
+            y[j] = _stanley_one(y[j], stimulus, p[3], dt, exact, p[5], p[6])
+        elif forget:
+            y[j] = _stanley_one(y[j], 0.0, p[4], dt, exact, p[5], p[6])
+
+
+# --------------------------------------------------------------------- graph
+@njit(cache=True, error_model="numpy", inline="always")
+def _mark_neighbours(A, n, row, is_nb):
+    for j in range(n):
+        is_nb[j] = A[row, j] >= 0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _age_edges(A, n, row):
+    for j in range(n):
+        if A[row, j] >= 0:
+            A[row, j] += 1
+            A[j, row] += 1
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _connect(A, i, j, age):
+    A[i, j] = age
+    A[j, i] = age
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _prune(A, n, row, max_age, isolated):
+    """_graph.prune: drop the edges of ``row`` older than ``max_age``; mark the units left alone."""
+    any_old = False
+    for j in range(n):
+        isolated[j] = False
+        if A[row, j] > max_age:
+            _connect(A, row, j, _NO_EDGE)
+            isolated[j] = True  # a candidate for now
+            any_old = True
+    if not any_old:
+        return 0
+    isolated[row] = True
+    count = 0
+    for c in range(n):
+        if isolated[c]:
+            for j in range(n):
+                if A[c, j] >= 0:
+                    isolated[c] = False
+                    break
+            if isolated[c]:
+                count += 1
+    return count
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _delete_units(n, gone, W, A, ids, a, b, c):
+    """np.delete of the rows marked in ``gone`` from W, A (rows and columns), ids, a, b and c."""
+    keep = 0
+    for j in range(n):
+        if gone[j]:
+            continue
+        if keep != j:
+            for k in range(W.shape[1]):  # element loops: slice assignment compiles slowly
+                W[keep, k] = W[j, k]
+            ids[keep] = ids[j]
+            a[keep] = a[j]
+            b[keep] = b[j]
+            c[keep] = c[j]
+            for i in range(n):
+                A[keep, i] = A[j, i]
+        keep += 1
+    for i in range(keep):
+        col = 0
+        for j in range(n):
+            if not gone[j]:
+                A[i, col] = A[i, j]
+                col += 1
+    for i in range(keep):
+        for j in range(keep, n):
+            A[i, j] = _NO_EDGE
+            A[j, i] = _NO_EDGE
+    for j in range(keep, n):
+        gone[j] = False
+    return keep
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _new_unit(n, A):
+    for j in range(n + 1):
+        A[n, j] = _NO_EDGE
+        A[j, n] = _NO_EDGE
+
+
+# ------------------------------------------------------------------- the GNG
+@njit("int64[::1](float64[:, ::1], float64[::1], int32[:, ::1], float64[::1], int64[::1], "
+      "float64[:, ::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], float64[::1], "
+      "float64, int64, int64, int64)", cache=True, nogil=True, error_model="numpy")
+def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id, n_inputs):
+    """Learn the rows of ``X`` with a GNG and a Stanley bank ``y`` (parameters ``g``, ``p``).
+
+    Returns ``[inputs learned, n units, next id, n_inputs]``; stops early
+    when the arrays are full and an insertion may come.
+    """
+    cap = W.shape[0]
+    eps_b, eps_n, interval, ins_decay, err_decay = g[0], g[1], int(g[2]), g[3], g[4]
+    max_age, max_units = int(g[5]), int(g[6])
+    stack = np.empty(plan.shape[0])
+    d = np.empty(cap)
+    is_nb = np.zeros(cap, dtype=np.bool_)
+    gone = np.zeros(cap, dtype=np.bool_)
+    dummy = np.empty(cap)
+    done = 0
+    for i in range(X.shape[0]):
+        if n == cap:
+            break
+        x = X[i]
+        s1, d1, s2 = _two_nearest(W, n, x, plan, stack, d)
+        novelty[i] = y[s1]
+        _mark_neighbours(A, n, s1, is_nb)
+        _stanley_step(y, n, s1, is_nb, stimulus, dt[i], p)
+        # adapt, steps 3-9
+        _age_edges(A, n, s1)
+        E[s1] += d1  # ((x - w)**2).sum() is d1, the same numbers summed in the same order
+        for k in range(W.shape[1]):
+            W[s1, k] = W[s1, k] + eps_b * (x[k] - W[s1, k])
+        for j in range(n):
+            if is_nb[j]:
+                for k in range(W.shape[1]):
+                    W[j, k] = W[j, k] + eps_n * (x[k] - W[j, k])
+        _connect(A, s1, s2, 0)
+        if _prune(A, n, s1, max_age, gone) > 0:
+            n = _delete_units(n, gone, W, A, ids, E, y, dummy)
+        n_inputs += 1
+        if n_inputs % interval == 0 and n < max_units:
+            q = 0
+            for j in range(1, n):
+                if E[j] > E[q]:
+                    q = j
+            f = -1
+            for j in range(n):
+                if A[q, j] >= 0 and (f < 0 or E[j] > E[f]):
+                    f = j
+            if f < 0:  # cannot happen after the first input: every unit has an edge
+                return np.array([-1, n, next_id, n_inputs])
+            E[q] *= ins_decay
+            E[f] *= ins_decay
+            for k in range(W.shape[1]):
+                W[n, k] = 0.5 * (W[q, k] + W[f, k])
+            E[n] = E[q]
+            y[n] = p[6]
+            ids[n] = next_id
+            next_id += 1
+            _new_unit(n, A)
+            r = n
+            n += 1
+            _connect(A, q, f, _NO_EDGE)
+            _connect(A, q, r, 0)
+            _connect(A, r, f, 0)
+        for j in range(n):
+            E[j] *= 1.0 - err_decay
+        done = i + 1
+    return np.array([done, n, next_id, n_inputs])
+
+
+# ------------------------------------------------------------------- the GWR
+@njit("int64[::1](float64[:, ::1], float64[::1], int32[:, ::1], float64[::1], int64[::1], "
+      "float64[:, ::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], float64[::1], "
+      "float64[::1], float64, int64, int64)", cache=True, nogil=True, error_model="numpy")
+def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, next_id):
+    """Learn the rows of ``X`` with a GWR (counters ``h``, parameters ``ph``) and a Stanley bank ``y``.
+
+    Returns ``[inputs learned, n units, next id]``; stops early when the
+    arrays are full (any input may add a unit).
+    """
+    cap = W.shape[0]
+    a_t, h_t, eps_b, eps_n = g[0], g[1], g[2], g[3]
+    max_age, max_units = int(g[4]), int(g[5])
+    stack = np.empty(plan.shape[0])
+    d = np.empty(cap)
+    is_nb = np.zeros(cap, dtype=np.bool_)
+    gone = np.zeros(cap, dtype=np.bool_)
+    dummy = np.empty(cap)
+    done = 0
+    for i in range(X.shape[0]):
+        if n == cap:
+            break
+        x = X[i]
+        s, d_s, t = _two_nearest(W, n, x, plan, stack, d)
+        novelty[i] = y[s]
+        _mark_neighbours(A, n, s, is_nb)
+        is_nb[t] = True  # match(): the neighbours after step 5 include t
+        _stanley_step(y, n, s, is_nb, stimulus, dt[i], p)
+        # adapt, steps 5-11
+        _connect(A, s, t, 0)
+        activity = math.exp(-math.sqrt(d_s))  # ((x - w_s)**2).sum() is d_s
+        if activity < a_t and h[s] < h_t and (max_units < 0 or n < max_units):
+            r = n
+            for k in range(W.shape[1]):
+                W[r, k] = 0.5 * (W[s, k] + x[k])
+            h[r] = ph[6]
+            y[r] = p[6]
+            ids[r] = next_id
+            next_id += 1
+            _new_unit(n, A)
+            n += 1
+            _connect(A, r, s, 0)
+            _connect(A, r, t, 0)
+            _connect(A, s, t, _NO_EDGE)
+        else:
+            for k in range(W.shape[1]):
+                W[s, k] = W[s, k] + eps_b * h[s] * (x[k] - W[s, k])
+            for j in range(n):
+                if A[s, j] >= 0:
+                    for k in range(W.shape[1]):
+                        W[j, k] = W[j, k] + eps_n * h[j] * (x[k] - W[j, k])
+        _age_edges(A, n, s)
+        _mark_neighbours(A, n, s, is_nb)
+        _stanley_step(h, n, s, is_nb, 1.0, 1.0, ph)
+        if _prune(A, n, s, max_age, gone) > 0:
+            n = _delete_units(n, gone, W, A, ids, h, y, dummy)
+        done = i + 1
+    return np.array([done, n, next_id])
