@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 from sklearn.base import OutlierMixin
 from sklearn.exceptions import NotFittedError
+from sklearn.utils.metaestimators import available_if
 
 from ._component import Component, StateError, check_int_state
 from ._validation import check_batch, check_one, check_timestamps
@@ -129,6 +130,9 @@ class NoveltyDetector(OutlierMixin, Component):
         self._advance_clock(X.shape[0], timestamps)
         return self
 
+    # Batch-only detectors do not offer partial_fit at all, so that scikit-learn
+    # (which treats its presence as "learns incrementally") sees them as they are.
+    @available_if(lambda self: self.supports_online)
     def partial_fit(self, X, y=None, timestamps=None):
         """Learn ``X`` in order, continuing from the current state (one pass)."""
         self.stream(X, timestamps=timestamps, learn=True)

@@ -62,7 +62,6 @@ from abc import abstractmethod
 
 import numpy as np
 
-from sklearn.utils.metaestimators import available_if
 
 from .._component import StateError, check_array_state, check_int_state
 from .._validation import check_batch
@@ -220,10 +219,6 @@ class CalibratedDetector(NoveltyDetector):
             X = check_batch(X, self, self.n_features_in_)
             self._set_reference(self._reference_raw(X))
         return self
-
-    # Batch learners have no partial_fit at all (scikit-learn looks for the
-    # attribute to decide whether a model learns incrementally).
-    partial_fit = available_if(lambda self: self.supports_online)(NoveltyDetector.partial_fit)
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         return self._scale(self._raw(X))
