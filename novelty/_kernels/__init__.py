@@ -361,8 +361,8 @@ _growing_handing_over = _handing_over(_GROWING, _learn_growing)
 
 # ------------------------------------------------------------------- scoring
 #: rows per kernel call when scoring: bounds the scratch (winners, distances)
-#: to 1 MB a thread, whatever the batch
-_SCORE_CHUNK = 65536
+#: to 256 kB a thread, whatever the batch; from two chunks on, threads share the work
+_SCORE_CHUNK = 16384
 _NO_DT = np.empty(0)
 _pool = None
 
@@ -400,6 +400,11 @@ def _score_som(som, syn, X: np.ndarray) -> np.ndarray:
     out = np.empty(n)
     plan = _plan(X.shape[1])
     params = _score_params(som)
+    if n == 1:  # score_one: the shortest path
+        _SOM.module.som_stanley_stream(som.weights_, syn.efficacy_, _c(X), _NO_DT,
+                                       np.empty(1, dtype=np.int64), out, np.empty(1), plan,
+                                       params, False, 0, 0)
+        return out
     if n < 2 * _SCORE_CHUNK or _threads() == 1:
         _score_part(som, syn.efficacy_, X, out, plan, params)
         return out
