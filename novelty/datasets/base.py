@@ -39,8 +39,12 @@ class Dataset:
         Ids of the map features perceived in each scan (any sonar).
     run : ndarray of shape (n_scans,) of int, or None
         Which traversal each scan belongs to.
+    columns : dict of str to ndarray
+        Further per-scan values (e.g. the class of each scan of a labelled
+        real data set); each has one row per scan and follows :meth:`subset`.
     metadata : dict
-        Anything else (sensor names, units, seed, map name, ``train_passes``).
+        Anything else, about the data as a whole (sensor names, units, seed,
+        map name, ``train_passes``).
     """
 
     name: str
@@ -51,6 +55,7 @@ class Dataset:
     poses: np.ndarray | None = None
     feature_ids: tuple | None = None
     run: np.ndarray | None = None
+    columns: dict[str, np.ndarray] = field(default_factory=dict)
     metadata: dict[str, Any] = field(default_factory=dict)
 
     def __post_init__(self):
@@ -68,6 +73,13 @@ class Dataset:
                 object.__setattr__(self, name, value)
         if self.feature_ids is not None and len(self.feature_ids) != n:
             raise ValueError(f"Dataset.feature_ids has {len(self.feature_ids)} entries; X has {n}.")
+        columns = {}
+        for name, value in self.columns.items():
+            value = np.asarray(value)
+            if value.shape[:1] != (n,):
+                raise ValueError(f"Dataset column {name!r} has {value.shape[:1]} rows; X has {n}.")
+            columns[name] = value
+        object.__setattr__(self, "columns", columns)
 
     def __len__(self) -> int:
         return self.X.shape[0]
@@ -91,6 +103,7 @@ class Dataset:
             poses=take(self.poses),
             run=take(self.run),
             feature_ids=None if self.feature_ids is None else tuple(self.feature_ids[i] for i in idx),
+            columns={name: value[idx] for name, value in self.columns.items()},
         )
 
     def _part(self, which: str) -> "Dataset":
@@ -112,23 +125,66 @@ class Dataset:
         return int(self.metadata.get("train_passes", 1))
 
     def to_npz(self, path) -> None:
-        """Write the scans and ground truth as plain arrays (no pickle)."""
-        arrays = {"X": self.X}
+        """Write the scans and all ground truth as plain arrays (no pickle).
+
+        ``feature_ids`` and ``metadata`` are stored as JSON text, the split
+        and string columns as unicode arrays, so ``numpy.load`` reads the file
+        with ``allow_pickle=False``.
+        """
+        import json
+
+        arrays: dict[str, np.ndarray] = {"X": self.X}
         for name in ("y", "distance", "poses", "run"):
             if getattr(self, name) is not None:
                 arrays[name] = getattr(self, name)
         if self.split is not None:
             arrays["split"] = self.split.astype("U5")
+        for name, value in self.columns.items():
+            arrays[f"column_{name}"] = value.astype(str) if value.dtype == object else value
+        if self.feature_ids is not None:
+            arrays["feature_ids"] = np.array(json.dumps([sorted(map(str, f)) for f in self.feature_ids]))
+        arrays["metadata"] = np.array(json.dumps(self.metadata, default=_jsonable))
         with open(path, "wb") as fh:
             np.savez(fh, **arrays)
 
     def to_csv(self, path) -> None:
-        """Write one row per scan: the sensors, then ``y``/``distance`` when known."""
-        columns = [self.X]
+        """Write one row per scan: the sensors, then the per-scan ground truth.
+
+        Columns ``s0..s{n-1}``, then those known of ``y``, ``distance``,
+        ``run``, ``split``, the extra columns, and ``features`` (feature ids
+        joined by ``;``).
+        """
+        import csv
+
         header = [f"s{i}" for i in range(self.n_sensors)]
-        for name in ("y", "distance"):
+        extra: list[tuple[str, Any]] = []
+        for name in ("y", "distance", "run", "split"):
             if getattr(self, name) is not None:
-                columns.append(np.asarray(getattr(self, name), dtype=np.float64)[:, None])
-                header.append(name)
-        np.savetxt(path, np.hstack(columns), delimiter=",", header=",".join(header), comments="",
-                   fmt="%.10g")
+                extra.append((name, getattr(self, name)))
+        extra += list(self.columns.items())
+        if self.feature_ids is not None:
+            extra.append(("features", [";".join(sorted(map(str, f))) for f in self.feature_ids]))
+        header += [name for name, _ in extra]
+        with open(path, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(header)
+            for i in range(len(self)):
+                row = [f"{v:.10g}" for v in self.X[i]]
+                row += [_cell(values[i]) for _, values in extra]
+                writer.writerow(row)
+
+
+def _cell(value: Any) -> str:
+    if isinstance(value, (float, np.floating)):
+        return f"{value:.10g}"
+    return str(value.item() if isinstance(value, np.generic) else value)
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (set, frozenset, tuple)):
+        return list(value)
+    return str(value)

@@ -67,7 +67,7 @@ def uci_wall_following(path=None, threshold: float = 5.0, normalise: bool = True
     Returns
     -------
     Dataset
-        ``X`` (5456, 24) in file (time) order; ``metadata["classes"]`` the
+        ``X`` (5456, 24) in file (time) order; ``columns["class"]`` the
         command of each scan, ``metadata["class_counts"]``.
     """
     _check_threshold(threshold)
@@ -77,9 +77,9 @@ def uci_wall_following(path=None, threshold: float = 5.0, normalise: bool = True
     return Dataset(
         name="uci-wall-following",
         X=X,
+        columns={"class": classes},
         metadata={
             "source": str(file),
-            "classes": classes,
             "class_counts": {c: int((classes == c).sum()) for c in WALL_FOLLOWING_CLASSES},
             "sensors": [f"US{i}" for i in range(1, 25)],
             "encoding": (f"1 - min(range, {threshold:g} m) / {threshold:g} m" if normalise
@@ -129,19 +129,18 @@ def uci_wall_following_novelty(path=None, train_fraction: float = 0.5, threshold
     if unknown or not normal or len(set(normal)) == len(WALL_FOLLOWING_CLASSES):
         raise ValueError(f"normal must name some, not all, of {WALL_FOLLOWING_CLASSES}; got {normal!r}.")
     full = uci_wall_following(path, threshold)
-    classes = full.metadata["classes"]
+    classes = full.columns["class"]
     cut = int(round(train_fraction * len(full)))
     is_normal = np.isin(classes, normal)
     keep = np.concatenate([np.flatnonzero(is_normal[:cut]), np.arange(cut, len(full))])
     split = np.where(keep < cut, "train", "test")
     y = np.where(split == "test", (~is_normal[keep]).astype(np.int64), 0)
     meta = dict(full.metadata)
-    meta.update(classes=classes[keep], normal_classes=list(normal),
+    meta.update(normal_classes=list(normal),
                 novel_classes=[c for c in WALL_FOLLOWING_CLASSES if c not in normal],
-                train_fraction=train_fraction, train_passes=1, row_index=keep,
-                task="uci-wall-following-novelty")
+                train_fraction=train_fraction, train_passes=1, task="uci-wall-following-novelty")
     return Dataset(name="uci-wall-following-novelty", X=full.X[keep], y=y, split=split,
-                   metadata=meta)
+                   columns={"class": classes[keep], "row_index": keep}, metadata=meta)
 
 
 def uci_sonar(path=None):
@@ -156,16 +155,16 @@ def uci_sonar(path=None):
     -------
     Dataset
         ``X`` (208, 60) in file order (97 rocks then 111 mines);
-        ``metadata["classes"]`` ("R"/"M") per echo.
+        ``columns["class"]`` ("R"/"M") per echo.
     """
     file = resolve_data_file(path, _SONAR_FILE, _SONAR_FOLDER, "UCI Sonar (Mines vs Rocks)")
     X, classes = read_rows(file, 60, ("R", "M"), value_range=(0.0, 1.0))
     return Dataset(
         name="uci-sonar",
         X=X,
+        columns={"class": classes},
         metadata={
             "source": str(file),
-            "classes": classes,
             "class_counts": {"R": int((classes == "R").sum()), "M": int((classes == "M").sum())},
             "encoding": "energy in each of 60 frequency bands, in [0, 1] (as published)",
             "citation": "Sejnowski & Gorman (1988), UCI ML Repository, doi:10.24432/C5T01Q "
@@ -195,7 +194,7 @@ def uci_sonar_mines(path=None, seed: int = 0, train_fraction: float = 0.5):
     if not (isinstance(train_fraction, float) and 0.0 < train_fraction < 1.0):
         raise ValueError(f"train_fraction must be a float in (0, 1); got {train_fraction!r}.")
     full = uci_sonar(path)
-    classes = full.metadata["classes"]
+    classes = full.columns["class"]
     rng = np.random.default_rng(np.random.SeedSequence([int(seed), 0x50A4]))
     rocks = rng.permutation(np.flatnonzero(classes == "R"))
     n_train = int(round(train_fraction * rocks.size))
@@ -204,6 +203,7 @@ def uci_sonar_mines(path=None, seed: int = 0, train_fraction: float = 0.5):
     split = np.array(["train"] * n_train + ["test"] * test.size)
     y = np.where(split == "test", (classes[order] == "M").astype(np.int64), 0)
     meta = dict(full.metadata)
-    meta.update(classes=classes[order], row_index=order, seed=int(seed), train_passes=1,
-                normal_classes=["R"], novel_classes=["M"], task="uci-sonar-mines")
-    return Dataset(name="uci-sonar-mines", X=full.X[order], y=y, split=split, metadata=meta)
+    meta.update(seed=int(seed), train_passes=1, normal_classes=["R"], novel_classes=["M"],
+                task="uci-sonar-mines")
+    return Dataset(name="uci-sonar-mines", X=full.X[order], y=y, split=split,
+                   columns={"class": classes[order], "row_index": order}, metadata=meta)

@@ -56,14 +56,14 @@ def test_wall_following_task_split(shared_data):
     _need(shared_data, WF, "sensor_readings_24.data")
     task = datasets.load("uci-wall-following-novelty", path=shared_data)
     train, test = task.train(), task.test()
-    assert set(train.metadata["classes"][: len(train)]) <= {"Move-Forward", "Slight-Right-Turn"}
+    assert set(train.columns["class"]) <= {"Move-Forward", "Slight-Right-Turn"}
     assert train.y.sum() == 0
     assert len(test) == 5456 - 2728
-    novel = np.isin(task.metadata["classes"][task.split == "test"],
+    novel = np.isin(task.columns["class"][task.split == "test"],
                     ["Sharp-Right-Turn", "Slight-Left-Turn"])
     np.testing.assert_array_equal(test.y, novel.astype(int))
     # time order is kept: training rows come from the first half of the file
-    assert task.metadata["row_index"][task.split == "train"].max() < 2728
+    assert task.columns["row_index"][task.split == "train"].max() < 2728
 
 
 def test_sonar_shape_counts_and_mines_task(shared_data):
@@ -73,7 +73,7 @@ def test_sonar_shape_counts_and_mines_task(shared_data):
     assert ds.metadata["class_counts"] == {"R": 97, "M": 111}
     task = datasets.load("uci-sonar-mines", path=shared_data, seed=0)
     train, test = task.train(), task.test()
-    assert len(train) == 48 and set(train.metadata["classes"][:48]) == {"R"}
+    assert len(train) == 48 and set(train.columns["class"]) == {"R"}
     assert test.y.sum() == 111 and len(test) == 49 + 111
     other = datasets.load("uci-sonar-mines", path=shared_data, seed=1)
     assert not np.array_equal(task.X, other.X)

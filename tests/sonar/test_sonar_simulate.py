@@ -24,17 +24,27 @@ def test_negative_seed_is_refused():
 
 
 def test_write_dataset_npz_and_csv(tmp_path):
+    import csv
+    import json
+
     ds = sonar.simulate("a", seed=0)
     npz = sonar.write_dataset(ds, tmp_path / "a.npz")
-    with np.load(npz) as f:
+    with np.load(npz, allow_pickle=False) as f:
         np.testing.assert_array_equal(f["X"], ds.X)
         np.testing.assert_array_equal(f["distance"], ds.distance)
-    csv = sonar.write_dataset(ds, tmp_path / "a.csv")
-    header = csv.read_text().splitlines()[0].split(",")
-    assert header[:2] == ["s0", "s1"] and header[-1] == "distance"
-    table = np.loadtxt(csv, delimiter=",", skiprows=1)
-    assert table.shape == (100, 17)
-    np.testing.assert_allclose(table[:, :16], ds.X, atol=1e-9)
+        np.testing.assert_array_equal(f["run"], ds.run)
+        ids = json.loads(str(f["feature_ids"]))
+        assert [set(i) for i in ids] == [set(map(str, f)) for f in ds.feature_ids]
+        assert json.loads(str(f["metadata"]))["map"] == ds.metadata["map"]
+    path = sonar.write_dataset(ds, tmp_path / "a.csv")
+    with open(path, newline="") as fh:
+        rows = list(csv.reader(fh))
+    header, body = rows[0], rows[1:]
+    assert header[:2] == ["s0", "s1"] and header[16:] == ["distance", "run", "features"]
+    assert len(body) == 100
+    np.testing.assert_allclose(np.array([r[:16] for r in body], dtype=float), ds.X, atol=1e-9)
+    np.testing.assert_allclose([float(r[16]) for r in body], ds.distance, atol=1e-9)
+    assert [set(filter(None, r[18].split(";"))) for r in body] == [set(map(str, f)) for f in ds.feature_ids]
     with pytest.raises(ValueError, match=".npz or .csv"):
         sonar.write_dataset(ds, tmp_path / "a.txt")
 
