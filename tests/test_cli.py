@@ -139,6 +139,21 @@ def test_simulate(tmp_path, capsys):
         assert data["X"].ndim == 2 and set(np.unique(data["run"])) == {0, 1}
 
 
+def test_a_simulated_task_csv_runs_through_a_detector(tmp_path):
+    """A task export carries text columns (split, feature ids); only the sensors are read."""
+    pytest.importorskip("novelty.sonar")
+    task_csv, out = tmp_path / "task.csv", tmp_path / "novelty.csv"
+    assert main(["simulate", "paper-a-to-a-star", "--seed", "1", "--out", str(task_csv)]) == 0
+    task = novelty.datasets.load("paper-a-to-a-star", seed=1)
+    assert main(["run", "hsom", "--data", str(task_csv), "--out", str(out)]) == 0
+    rows = out.read_text().splitlines()
+    assert rows[0].split(",")[:3] == ["scan", "novelty", "y"] and len(rows) == len(task) + 1
+    expected = novelty.make("hsom").stream(task.X)
+    got = np.array([float(r.split(",")[1]) for r in rows[1:]])
+    np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
+    assert [int(float(r.split(",")[2])) for r in rows[1:]] == task.y.tolist()
+
+
 @pytest.mark.parametrize("argv, message", [
     (["run", "hsomm", "--data", "DATA"], "Unknown detector 'hsomm'. Did you mean 'hsom'"),
     (["run", "hsom", "--data", "DATA", "--param", "n_row=3"], "did you mean 'n_rows'"),

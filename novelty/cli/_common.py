@@ -65,6 +65,8 @@ def parse_params(items: Sequence[str] | None) -> dict[str, Any]:
 # ----------------------------------------------------------------- scan files
 #: columns of a scan file that are not sensors
 META_COLUMNS = ("y", "label", "distance", "run", "split", "time", "timestamp")
+#: further non-sensor columns a dataset export may hold (text, not carried to the output)
+TEXT_COLUMNS = ("features", "class", "row_index")
 
 
 def _read_npz(path: Path) -> tuple[np.ndarray, dict]:
@@ -104,20 +106,29 @@ def _read_csv(path: Path) -> tuple[np.ndarray, dict]:
         raise UserError(f"{path} has a header but no scans.")
     width = len(header or body[0])
     header = header or [f"s{i}" for i in range(width)]
-    values = np.empty((len(body), width))
     for i, row in enumerate(body):
         if len(row) != width:
             raise UserError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
-        for j, cell in enumerate(row):
+    names = [name.lower() for name in header]
+    sensors = [j for j, name in enumerate(names) if name not in META_COLUMNS + TEXT_COLUMNS]
+    values = np.empty((len(body), len(sensors)))
+    for i, row in enumerate(body):
+        for k, j in enumerate(sensors):
             try:
-                values[i, j] = float(cell)
+                values[i, k] = float(row[j])
             except ValueError:
-                raise UserError(f"{path}, line {i + first_line}: column {header[j]!r} holds {cell!r}, "
+                raise UserError(f"{path}, line {i + first_line}: column {header[j]!r} holds {row[j]!r}, "
                                 "which is not a number.") from None
-    meta = [j for j, name in enumerate(header) if name.lower() in META_COLUMNS]
-    extras = {header[j].lower(): values[:, j] for j in meta}
-    X = np.delete(values, meta, axis=1)
-    return X, extras
+    extras = {names[j]: _column([row[j] for row in body]) for j in range(width) if names[j] in META_COLUMNS}
+    return values, extras
+
+
+def _column(cells: list[str]) -> np.ndarray:
+    """A metadata column: numbers where every cell is one, else text (e.g. split)."""
+    try:
+        return np.array([float(c) for c in cells])
+    except ValueError:
+        return np.array(cells)
 
 
 def read_scans(path) -> tuple[np.ndarray, dict]:

@@ -10,13 +10,17 @@ from ._common import UserError, add_command
 
 DESCRIPTION = """Simulate a robot's sonar scans along a corridor and write them to a file.
 
-ENV is an environment of the sonar simulator (e.g. paper-a, paper-a-star,
-paper-b, paper-c, paper-control). --out takes .npz (every array: X, y,
-distance, poses, run) or .csv (sensors, then y and distance)."""
+ENV is an environment of the sonar simulator (paper-a, paper-a-star,
+paper-b, paper-c, paper-control), or any simulated task of the dataset
+registry (e.g. inspection-easy, paper-a-to-a-star: training and test scans
+with their labels; --runs does not apply). --out takes .npz (X and every
+per-scan array: y, split, distance, poses, run, feature ids, metadata) or
+.csv (sensors, then the per-scan ground truth)."""
 
 EXAMPLES = [
     "novelty simulate paper-a --out corridor-a.npz",
     "novelty simulate paper-a-star --runs 5 --seed 1 --out a-star.csv",
+    "novelty simulate inspection-hard --seed 3 --out inspection.csv",
 ]
 
 
@@ -41,6 +45,17 @@ def _simulator():
     return simulate
 
 
+def _task(args):
+    """A registered task of that name, built with the seed, or None."""
+    from .. import datasets
+
+    if args.environment not in datasets.registry:
+        return None
+    accepted = datasets.registry.parameters(args.environment)
+    options = {"seed": args.seed} if accepted is None or "seed" in accepted else {}
+    return datasets.load(args.environment, **options)
+
+
 def run(args) -> int:
     if args.runs < 1:
         raise UserError(f"--runs must be at least 1; got {args.runs}.")
@@ -49,12 +64,15 @@ def run(args) -> int:
         raise UserError(f"--out must end in .npz or .csv; got {args.out}.")
     try:
         data = _simulator()(args.environment, runs=args.runs, seed=args.seed)
-    except KeyError as exc:  # an unknown environment, whichever way the simulator says it
-        raise UserError(str(exc.args[0]) if exc.args else f"Unknown environment {args.environment!r}.") from None
+    except (KeyError, ValueError) as exc:  # not an environment: perhaps a registered task
+        data = _task(args)
+        if data is None:
+            raise UserError(str(exc.args[0]) if exc.args else f"Unknown environment {args.environment!r}.") from None
     if out.suffix.lower() == ".npz":
         data.to_npz(out)
     else:
         data.to_csv(out)
-    print(f"Wrote {len(data)} scans of {data.n_sensors} sensors ({args.runs} run(s) of "
-          f"{args.environment}, seed {args.seed}) to {out}.", file=sys.stderr)
+    what = f"{args.runs} run(s) of " if data.split is None else "task "
+    print(f"Wrote {len(data)} scans of {data.n_sensors} sensors ({what}{args.environment}, "
+          f"seed {args.seed}) to {out}.", file=sys.stderr)
     return 0
