@@ -7,16 +7,19 @@ give the same winners, weights and efficacies bit for bit
 :func:`scorer` for a kernel on every call and falls back to the reference
 when they answer ``None``:
 
-- the pair has no kernel (only ``SOM`` + ``StanleySynapse`` has one; exact
-  types, since a subclass may change the arithmetic);
+- the pair has no kernel: learning is compiled for ``SOM``,
+  ``GrowingNeuralGas`` and ``GrowWhenRequired`` (with Stanley firing
+  counters) with a ``StanleySynapse`` (exact types, since a subclass may
+  change the arithmetic), batch scoring for ``SOM`` with any synapse;
 - the state is not in the plain layout the kernel writes to in place;
 - numba is missing or failed to compile (a ``RuntimeWarning``, once);
 - the environment variable ``NOVELTY_NO_KERNELS`` is set to a non-empty value
   other than ``0`` when the first kernel is asked for (for comparisons).
 
 Compiling in the background. numba is imported only when the first kernel
-is asked for, so ``import novelty`` does not pay for it. Compiling the kernel
-takes seconds the first time; numba caches the machine code on disk
+is asked for, so ``import novelty`` does not pay for it. Compiling a module
+of kernels (one for the SOM, one for the growing networks, each on its
+first use) takes seconds; numba caches the machine code on disk
 (``cache=True``, in ``NUMBA_CACHE_DIR`` when set) and later processes load it
 in a fraction of a second. So that no call waits for the compiler, it runs
 in a background thread: meanwhile learning runs the reference loop in small
@@ -44,6 +47,7 @@ from ..clusterers.som import SOM
 from ..habituation.stanley import StanleySynapse
 
 __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
+
 
 class _Compiled:
     """One module of kernels, compiled (or loaded from numba's cache) in a background thread."""
@@ -108,7 +112,10 @@ def kernels_enabled() -> bool:
 
 
 def wait(timeout: float | None = None):
-    """Compile or load every kernel now and block until done; the SOM module or None."""
+    """Compile (or load) every module of kernels now and block until done.
+
+    Returns the SOM module, or None when kernels are unavailable.
+    """
     _GROWING.wait(timeout)
     return _SOM.wait(timeout)
 
