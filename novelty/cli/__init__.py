@@ -40,6 +40,7 @@ COMMANDS = {
     "score": "novelty.cli.score",
     "simulate": "novelty.cli.simulate",
     "plot": "novelty.cli.plot",
+    "reproduce": "novelty.cli.reproduce",
 }
 
 _EPILOG = """examples:
