@@ -6,7 +6,9 @@ The references are :func:`novelty.filter.learn_stream` driving
 a Stanley bank too) and :class:`~novelty.habituation.stanley.StanleySynapse`.
 As in :mod:`._som_stanley`, the arithmetic is numpy's, operation by
 operation, so the results are bit-identical (distances summed in numpy's
-pairwise order, see :func:`._pairwise.pairwise_plan`).
+pairwise order, see :func:`._pairwise.pairwise_plan`); the one library
+function involved, ``exp`` in the GWR's activity, is discussed where it is
+used.
 
 State lives in fixed-capacity arrays: ``W`` (capacity x features), the
 efficacies, the unit ids and the edge-age matrix ``A`` (capacity x capacity,
@@ -319,7 +321,11 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
         _stanley_step(y, n, s, is_nb, stimulus, dt[i], p)
         # adapt, steps 5-11
         _connect(A, s, t, 0)
-        activity = math.exp(-math.sqrt(d_s))  # ((x - w_s)**2).sum() is d_s
+        # ((x - w_s)**2).sum() is d_s. sqrt is correctly rounded everywhere; exp
+        # is the C library's here and numpy's in the reference: the same
+        # function on x86-64 without AVX-512, where numpy uses its own SIMD exp
+        # and the last bit may differ (it matters only at a_T exactly).
+        activity = math.exp(-math.sqrt(d_s))
         if activity < a_t and h[s] < h_t and (max_units < 0 or n < max_units):
             r = n
             for k in range(W.shape[1]):
