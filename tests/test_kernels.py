@@ -11,8 +11,10 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import os
 import subprocess
 import sys
+import threading
 import warnings
 
 import numpy as np
@@ -394,6 +396,23 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
         expected = ref.stream(X)
     np.testing.assert_array_equal(got, expected)
     assert_same_state(det, ref)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork()")
+def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
+    monkeypatch.setattr(_kernels, "_SOM", _kernels._Compiled("_som_stanley"))
+    blocker = threading.Event()
+    _kernels._SOM.thread = threading.Thread(target=blocker.wait)  # "compiling" in the parent
+    _kernels._SOM.thread.start()
+    try:
+        pid = os.fork()
+        if pid == 0:  # the child: its compiler thread is gone; it must start one and get the kernel
+            ok = _kernels._SOM.wait(timeout=60) is not None
+            os._exit(0 if ok else 1)
+        _, status = os.waitpid(pid, 0)
+        assert os.waitstatus_to_exitcode(status) == 0
+    finally:
+        blocker.set()
 
 
 def test_read_only_and_strided_inputs():

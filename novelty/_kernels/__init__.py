@@ -106,6 +106,18 @@ _SOM = _Compiled("_som_stanley")
 _GROWING = _Compiled("_growing")
 
 
+def _after_fork_in_child() -> None:
+    # A compiler thread does not survive fork(); a child forked while one was
+    # running would wait for it forever, so it starts its own when it needs one.
+    for compiled in (_SOM, _GROWING):
+        if compiled.module is None and compiled.error is None:
+            compiled.thread = None
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_after_fork_in_child)
+
+
 def kernels_enabled() -> bool:
     """Whether compiled kernels are in use (waits for them to be compiled)."""
     return wait() is not None
