@@ -435,3 +435,14 @@ def test_import_novelty_does_not_import_numba():
             "novelty._kernels.wait()\n"
             "assert 'numba' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
+def test_hot_path_accepts_huge_finite_scans_and_rejects_nan():
+    det = novelty.make("hsom").fit(np.zeros((2, 4)))
+    huge = np.full(4, 1e308)  # finite, though its sum overflows
+    assert det.score_one(huge) == det.novelty(huge[None, :])[0]
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        det.score_one(np.array([0.0, np.nan, 0.0, 0.0]))
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        det.learn_one(np.array([0.0, np.inf, 0.0, 0.0]))
