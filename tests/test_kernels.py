@@ -328,6 +328,19 @@ def test_batch_scoring_equals_score_one(som, data, n_test):
         np.testing.assert_array_equal(batch, det.novelty(probe))
 
 
+@pytest.mark.parametrize("clusterer", ["gng", "gwr", "online-kmeans"])
+def test_other_networks_batch_scoring_equals_reference(clusterer):
+    """The scoring kernel serves every clusterer whose winner is the nearest unit."""
+    det = HabituatingFilter(clusterer=clusterer).fit(corridor(1500))
+    assert _kernels.scorer(det.clusterer_, det.synapse_) is not None
+    probe = np.concatenate([corridor(300, seed=3), np.round(corridor(200, seed=4), 1)])
+    got = det.novelty(probe)
+    np.testing.assert_array_equal(got, [det.score_one(x) for x in probe])
+    with reference_only():
+        np.testing.assert_array_equal(got, det.novelty(probe))
+        np.testing.assert_array_equal(got, [det.score_one(x) for x in probe])
+
+
 def test_threaded_scoring_equals_reference(monkeypatch):
     """Large batches are split across threads; the result does not depend on it."""
     monkeypatch.setattr(_kernels, "_SCORE_CHUNK", 1000)

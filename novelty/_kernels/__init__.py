@@ -43,6 +43,7 @@ import numpy as np
 
 from ..clusterers.gng import GrowingNeuralGas
 from ..clusterers.gwr import GrowWhenRequired
+from ..clusterers.kmeans import OnlineKMeans
 from ..clusterers.som import SOM
 from ..habituation.stanley import StanleySynapse
 
@@ -195,17 +196,25 @@ def learner(clusterer, synapse) -> Callable | None:
     return kernel
 
 
+#: clusterers whose winner is the first unit of least squared distance, ``match``
+#: and ``winners`` alike: batch scoring is the same kernel for all of them
+_NEAREST_UNIT = (SOM, GrowingNeuralGas, GrowWhenRequired, OnlineKMeans)
+
+
 def scorer(clusterer, synapse) -> Callable | None:
     """A function ``(clusterer, synapse, X) -> novelty`` equal to ``efficacy_[winners(X)]``, or None.
 
-    Scoring only reads the efficacies, so any synapse model with a plain
-    ``efficacy_`` array will do.
+    Scoring only reads the weights and the efficacies, so any synapse model
+    with a plain ``efficacy_`` array will do.
     """
-    if type(clusterer) is not SOM or not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
+    if type(clusterer) not in _NEAREST_UNIT:
+        return None
+    W, y = getattr(clusterer, "weights_", None), getattr(synapse, "efficacy_", None)
+    if not (_plain(W, 2) and _plain(y, 1) and y.shape[0] == W.shape[0]):
         return None
     if _SOM.module is None and _SOM.get() is None:
         return None
-    return _score_som
+    return _score_nearest
 
 
 # ---------------------------------------------------------------- parameters
@@ -396,36 +405,34 @@ def _threads() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _score_params(som) -> np.ndarray:
-    key = ("score", som.n_columns)  # scoring reads no other parameter
-    params = _params.get(key)
-    if params is None:
-        params = _params[key] = np.ones(len(_SOM.module.PARAMS))
-        params[0] = som.n_columns
+def _score_params() -> np.ndarray:
+    params = _params.get("score")
+    if params is None:  # scoring reads none of them; ones keep every division defined
+        params = _params["score"] = np.ones(len(_SOM.module.PARAMS))
     return params
 
 
-def _score_part(som, y, X, out, plan, params) -> None:
+def _score_part(W, y, X, out, plan, params) -> None:
     for lo in range(0, X.shape[0], _SCORE_CHUNK):
         block = _c(X[lo : lo + _SCORE_CHUNK])  # a read-only batch is copied block by block
         m = block.shape[0]
-        _SOM.module.som_stanley_stream(som.weights_, y, block, _NO_DT, np.empty(m, dtype=np.int64),
-                                   out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)
+        _SOM.module.som_stanley_stream(W, y, block, _NO_DT, np.empty(m, dtype=np.int64),
+                                       out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)
 
 
-def _score_som(som, syn, X: np.ndarray) -> np.ndarray:
+def _score_nearest(net, syn, X: np.ndarray) -> np.ndarray:
     global _pool
     n = X.shape[0]
     out = np.empty(n)
     plan = _plan(X.shape[1])
-    params = _score_params(som)
+    params = _score_params()
     if n == 1:  # score_one: the shortest path
-        _SOM.module.som_stanley_stream(som.weights_, syn.efficacy_, _c(X), _NO_DT,
+        _SOM.module.som_stanley_stream(net.weights_, syn.efficacy_, _c(X), _NO_DT,
                                        np.empty(1, dtype=np.int64), out, np.empty(1), plan,
                                        params, False, 0, 0)
         return out
     if n < 2 * _SCORE_CHUNK or _threads() == 1:
-        _score_part(som, syn.efficacy_, X, out, plan, params)
+        _score_part(net.weights_, syn.efficacy_, X, out, plan, params)
         return out
     # The kernel releases the GIL (nogil): contiguous parts score in parallel.
     threads = min(_threads(), n // _SCORE_CHUNK)
@@ -434,7 +441,7 @@ def _score_som(som, syn, X: np.ndarray) -> np.ndarray:
 
         _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="novelty-score")
     bounds = np.linspace(0, n, threads + 1).astype(int)
-    jobs = [_pool.submit(_score_part, som, syn.efficacy_, X[a:b], out[a:b], plan, params)
+    jobs = [_pool.submit(_score_part, net.weights_, syn.efficacy_, X[a:b], out[a:b], plan, params)
             for a, b in zip(bounds[:-1], bounds[1:])]
     for job in jobs:
         job.result()
