@@ -178,7 +178,10 @@ def _growing_ready(net, syn) -> bool:
 
 
 def learner(clusterer, synapse) -> Callable | None:
-    """A function ``(clusterer, synapse, X, dt, stimulus) -> novelty`` equal to ``learn_stream``, or None."""
+    """A function ``(clusterer, synapse, X, dt, stimulus) -> novelty``, or None.
+
+    The function gives what ``learn_stream`` gives, state and all.
+    """
     kind = type(clusterer)
     if kind is SOM:
         if type(synapse) is not StanleySynapse or \
@@ -292,7 +295,11 @@ _HANDOVER_BLOCK = 256
 
 
 def _handing_over(compiled: _Compiled, kernel: Callable) -> Callable:
-    """``kernel``'s stand-in while ``compiled`` compiles: the reference, block by block, then the kernel."""
+    """``kernel``'s stand-in while ``compiled`` compiles.
+
+    It runs the reference block by block and hands over to ``kernel`` as
+    soon as it is ready.
+    """
 
     def learn(net, syn, X, dt, stimulus, winners=None):
         from ..filter import learn_stream

@@ -91,7 +91,7 @@ def _sqdist(W, j, x, plan, stack):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _two_nearest(W, n, x, plan, stack, d):
-    """Winner, its squared distance and runner-up: ``argmin``, then ``argmin`` with the winner at inf."""
+    """Winner, its squared distance and the runner-up (``argmin`` with the winner at inf)."""
     for j in range(n):
         d[j] = _sqdist(W, j, x, plan, stack)
     s1 = 0

@@ -11,12 +11,13 @@ results are bit-identical, not merely close:
   ``((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))``, the tail added one
   by one (fewer than eight features: one by one); more than 128 features are
   split in two halves (the first a multiple of eight) summed separately and
-  added. :func:`._pairwise.pairwise_plan` lists those blocks, :func:`_block_cols` sums
-  one block in that order;
+  added. :func:`._pairwise.pairwise_plan` lists those blocks,
+  :func:`_block_cols` sums one block in that order;
 - the winner is the first unit with the least distance (``np.argmin``);
 - the weight update is ``w + eta * (x - w)`` per element;
 - the Euler step is ``y + (h / tau) * (alpha * (y0 - y) - S)`` over
-  ``ceil(dt)`` sub-steps; the exact step ``y_inf + (y - y_inf) * exp(-alpha * dt / tau)``.
+  ``ceil(dt)`` sub-steps; the exact step
+  ``y_inf + (y - y_inf) * exp(-alpha * dt / tau)``.
 
 numba compiles without fast-math, so LLVM neither reorders these sums nor
 fuses multiplies into adds. ``error_model="numpy"`` drops Python's
@@ -184,14 +185,14 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, l
 
     The novelty is the winner's efficacy before the row is learned. With
     ``learn`` the weights ``W`` and efficacies ``y`` are updated in place
-    (``learn_stream``); without, only the outputs are written (``match``,
-    batch scoring). ``params`` holds the values named in ``PARAMS``;
-    ``table_radius`` is the grid radius of the SOM's neighbour table and ``t``
-    its update count, both returned as they are after the call.
+    (``learn_stream``); without, only the outputs are written (batch scoring
+    and ``score_one``, for any clusterer whose winner is the nearest unit).
+    ``params`` holds the values named in ``PARAMS``; ``table_radius`` is the
+    grid radius of the SOM's neighbour table and ``t`` its update count, both
+    returned as they are after the call.
 
     Scoring and learning share this one function so that numba compiles the
-    distance code once: compile time, not run time, is what a user waits for
-    on the first call.
+    distance code once (seconds of compiling per function on a fresh install).
     """
     n_units = W.shape[0]
     n_features = W.shape[1]
@@ -209,7 +210,6 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, l
     acc = np.empty((8, n_units))
     vstack = np.empty((plan.shape[0], n_units))
     radius = table_radius
-    # with learning off nothing below reads dt
     y_hit = y0 - stimulus / alpha  # efficacy approached under the stimulus
     y_rest = y0 - 0.0 / alpha  # and without it (forgetting)
     for i in range(X.shape[0]):
@@ -218,7 +218,7 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, l
         winners[i] = winner
         novelty[i] = y[winner]
         distances[i] = distance
-        if not learn:
+        if not learn:  # scoring: nothing below, not even dt, is read
             continue
 
         # The winner, its square grid neighbourhood (habituate with the
