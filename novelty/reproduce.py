@@ -172,7 +172,9 @@ class _Runner:
 
     def fresh(self):
         params = dict(self.params)
-        params.setdefault("random_state", self.seed)
+        valid = self.novelty.registry.detectors.parameters(self.detector)
+        if valid is None or "random_state" in valid:  # None: it checks its parameters itself
+            params.setdefault("random_state", self.seed)
         return self.novelty.make(self.detector, **params)
 
     def traverse(self, env: str):
@@ -443,8 +445,12 @@ def _panel(ax, trial: Trial, top: bool, bottom: bool, ymax: float) -> None:
 def _columns(fig_title: str, columns: list[tuple[str, list[Trial]]], path, seed_note: str = ""):
     plt = _pyplot()
     rows = max(len(trials) for _, trials in columns)
-    fig, axes = plt.subplots(rows, len(columns), figsize=(5.2 * len(columns), 0.95 * rows + 1.3),
-                             squeeze=False)
+    # inches: titles and feature names; axis label; each trial (smaller when A needed many pairs)
+    top, bottom, panel = 0.85, 0.6, (1.0 if rows <= 8 else 0.6)
+    height = top + bottom + panel * rows
+    fig, axes = plt.subplots(rows, len(columns), figsize=(5.4 * len(columns), height), squeeze=False)
+    fig.subplots_adjust(left=0.055, right=0.99, top=1 - top / height, bottom=bottom / height,
+                        hspace=0.22, wspace=0.1)
     for c, (title, trials) in enumerate(columns):
         for r in range(rows):
             ax = axes[r, c]
@@ -453,15 +459,15 @@ def _columns(fig_title: str, columns: list[tuple[str, list[Trial]]], path, seed_
                 continue
             _panel(ax, trials[r], top=(r == 0), bottom=(r == len(trials) - 1), ymax=1.0)
             if r == len(trials) - 1:
-                ax.set_xlabel("distance along the route (m)", fontsize=8)
+                ax.set_xlabel("distance along the route (m)", fontsize=8, labelpad=1)
             if c == 0:
                 ax.set_ylabel("novelty", fontsize=7)
-        axes[0, c].set_title(title, fontsize=9, pad=14)
-    fig.suptitle(fig_title + seed_note, fontsize=10)
-    fig.text(0.5, 0.005, "Shaded: the map's features (solid foot: right-hand wall, followed; hatched: "
-             "left). Dashed: resting activity 0.0476.", ha="center", va="bottom", fontsize=7, color="0.3")
-    fig.tight_layout(rect=(0, 0.02, 1, 0.98))
-    fig.savefig(path, dpi=110)
+        axes[0, c].set_title(title, fontsize=9, pad=13)
+    fig.suptitle(fig_title + seed_note, fontsize=10, y=1 - 0.08 / height, va="top")
+    fig.text(0.5, 0.04 / height, "Shaded: the map's features (solid foot: right-hand wall, followed; "
+             "hatched: left). Dashed: resting activity 0.0476.", ha="center", va="bottom", fontsize=7,
+             color="0.3")
+    fig.savefig(path, dpi=100)
     plt.close(fig)
     return Path(path)
 
