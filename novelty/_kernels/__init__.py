@@ -330,8 +330,37 @@ def _stanley_params(syn) -> np.ndarray:
                      syn.tau_neighbour, tau_f, syn.alpha, syn.y0], dtype=np.float64)
 
 
+def _growing_state(net, syn):
+    """The network's own arrays, if the kernel can work on them in place; else None."""
+    per_unit = net.firing_.efficacy_ if type(net) is GrowWhenRequired else net.errors_
+    A, ids = net.edge_ages_, net.unit_ids_
+    if (_plain(per_unit, 1) and type(A) is np.ndarray and A.dtype == np.int32
+            and A.flags.c_contiguous and A.flags.writeable and type(ids) is np.ndarray
+            and ids.dtype == np.int64 and ids.flags.c_contiguous and ids.flags.writeable):
+        return net.weights_, per_unit, A, syn.efficacy_, ids
+    return None
+
+
+def _roomy_state(net, syn, extra: int):
+    """Copies of the network's arrays with room for ``extra`` more units."""
+    n = net.weights_.shape[0]
+    cap = n + extra
+    W = np.zeros((cap, net.weights_.shape[1]))
+    W[:n] = net.weights_
+    u = np.zeros(cap)  # GWR: firing counters; GNG: errors
+    u[:n] = net.firing_.efficacy_ if type(net) is GrowWhenRequired else net.errors_
+    A = np.full((cap, cap), -1, dtype=np.int32)
+    A[:n, :n] = net.edge_ages_
+    y = np.zeros(cap)
+    y[:n] = syn.efficacy_
+    ids = np.zeros(cap, dtype=np.int64)
+    ids[:n] = net.unit_ids_
+    return W, u, A, y, ids
+
+
 def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> np.ndarray:
-    """GNG or GWR: the kernel on arrays with room to grow, enlarged whenever it stops full."""
+    """GNG or GWR: the kernel on the network's own arrays while no unit is added, then on
+    copies with room to grow, enlarged whenever the kernel stops for want of room."""
     module = _GROWING.module
     gwr = type(net) is GrowWhenRequired
     X, dt = _c(X), _c(dt)
@@ -348,23 +377,17 @@ def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> 
                      dtype=np.float64)
     novelty = np.empty(X.shape[0])
     age_dtype = net.edge_ages_.dtype
+    state = _growing_state(net, syn)  # most single scans add no unit: no copies
     start = 0
-    while True:
+    while start < X.shape[0]:
         n = net.weights_.shape[0]
-        # a GWR may add a unit per input, a GNG one per insertion_interval inputs
-        rest = X.shape[0] - start
-        room = rest if gwr else rest // net.insertion_interval + 1
-        cap = n + max(1, min(room, max(n, 16)))  # doubled at most per call: few wasted rows
-        W = np.zeros((cap, X.shape[1]))
-        W[:n] = net.weights_
-        A = np.full((cap, cap), -1, dtype=np.int32)
-        A[:n, :n] = net.edge_ages_
-        y = np.zeros(cap)
-        y[:n] = syn.efficacy_
-        ids = np.zeros(cap, dtype=np.int64)
-        ids[:n] = net.unit_ids_
-        u = np.zeros(cap)  # GWR: firing counters; GNG: errors
-        u[:n] = net.firing_.efficacy_ if gwr else net.errors_
+        if state is None:
+            # a GWR may add a unit per input, a GNG one per insertion_interval inputs;
+            # at most doubling per call keeps the wasted rows few
+            rest = X.shape[0] - start
+            room = rest if gwr else rest // net.insertion_interval + 1
+            state = _roomy_state(net, syn, max(1, min(room, max(n, 16))))
+        W, u, A, y, ids = state
         out = novelty[start:]
         if gwr:
             done, n, next_id = module.gwr_stream(W, u, A, y, ids, X[start:], dt[start:], out,
@@ -375,20 +398,21 @@ def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> 
                 W, u, A, y, ids, X[start:], dt[start:], out, plan, g, p, float(stimulus), n,
                 int(net.next_unit_id_), int(net.n_inputs_))
             net.n_inputs_ = int(n_inputs)
-        net.weights_ = W[:n].copy()
-        net.edge_ages_ = A[:n, :n].astype(age_dtype)
-        net.unit_ids_ = ids[:n].copy()
+        if n != W.shape[0] or W is not net.weights_:  # units added or deleted: trim
+            net.weights_ = W[:n].copy()
+            net.edge_ages_ = A[:n, :n].astype(age_dtype)
+            net.unit_ids_ = ids[:n].copy()
+            syn.efficacy_ = y[:n].copy()
+            if gwr:
+                net.firing_.efficacy_ = u[:n].copy()
+            else:
+                net.errors_ = u[:n].copy()
         net.next_unit_id_ = int(next_id)
-        syn.efficacy_ = y[:n].copy()
-        if gwr:
-            net.firing_.efficacy_ = u[:n].copy()
-        else:
-            net.errors_ = u[:n].copy()
         if done < 0:
             raise RuntimeError("GrowingNeuralGas: the unit of largest error has no neighbour.")
         start += int(done)
-        if start >= X.shape[0]:
-            return novelty
+        state = None
+    return novelty
 
 
 _growing_handing_over = _handing_over(_GROWING, _learn_growing)

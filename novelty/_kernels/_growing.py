@@ -15,8 +15,10 @@ efficacies, the unit ids and the edge-age matrix ``A`` (capacity x capacity,
 -1 = no edge), of which the first ``n`` rows are in use. Deleting units shifts
 the later rows down, as ``np.delete`` does, so rows keep the reference's
 numbering. A call stops early, returning the number of inputs it learned,
-when the network is full and the next input might add a unit; the caller
-then enlarges the arrays and calls again. Networks have few units, so the
+when the network is full and the next input might add a unit (GNG: an
+insertion step; GWR: an input that will add one); the caller then enlarges
+the arrays and calls again. So a call can also work on the network's own
+arrays, without copies, until an input needs room. Networks have few units, so the
 distances are computed row by row (no transposed copy).
 """
 
@@ -228,7 +230,7 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
     """Learn the rows of ``X`` with a GNG and a Stanley bank ``y`` (parameters ``g``, ``p``).
 
     Returns ``[inputs learned, n units, next id, n_inputs]``; stops early
-    when the arrays are full and an insertion may come.
+    when the arrays are full and the next input is an insertion step.
     """
     cap = W.shape[0]
     eps_b, eps_n, interval, ins_decay, err_decay = g[0], g[1], int(g[2]), g[3], g[4]
@@ -240,8 +242,8 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
     dummy = np.empty(cap)
     done = 0
     for i in range(X.shape[0]):
-        if n == cap:
-            break
+        if n == cap and (n_inputs + 1) % interval == 0:
+            break  # this input may insert a unit and there is no room: the caller makes some
         x = X[i]
         s1, d1, s2 = _two_nearest(W, n, x, plan, stack, d)
         novelty[i] = y[s1]
@@ -299,7 +301,7 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
     """Learn the rows of ``X`` with a GWR (counters ``h``, parameters ``ph``) and a Stanley bank ``y``.
 
     Returns ``[inputs learned, n units, next id]``; stops early when the
-    arrays are full (any input may add a unit).
+    arrays are full and the next input would add a unit.
     """
     cap = W.shape[0]
     a_t, h_t, eps_b, eps_n = g[0], g[1], g[2], g[3]
@@ -311,22 +313,26 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
     dummy = np.empty(cap)
     done = 0
     for i in range(X.shape[0]):
-        if n == cap:
-            break
         x = X[i]
         s, d_s, t = _two_nearest(W, n, x, plan, stack, d)
+        # Step 7's test needs only d_s and h_s, which nothing changes before
+        # step 7, so it is taken first: an input that adds a unit when there is
+        # no room is left untouched for the caller, who makes room.
+        # ((x - w_s)**2).sum() is d_s. sqrt is correctly rounded everywhere; exp
+        # is the C library's here and numpy's in the reference: the same
+        # function on x86-64 without AVX-512, where numpy uses its own SIMD exp
+        # and the last bit may differ (it matters only at a_T exactly).
+        activity = math.exp(-math.sqrt(d_s))
+        grow = activity < a_t and h[s] < h_t and (max_units < 0 or n < max_units)
+        if grow and n == cap:
+            break
         novelty[i] = y[s]
         _mark_neighbours(A, n, s, is_nb)
         is_nb[t] = True  # match(): the neighbours after step 5 include t
         _stanley_step(y, n, s, is_nb, stimulus, dt[i], p)
         # adapt, steps 5-11
         _connect(A, s, t, 0)
-        # ((x - w_s)**2).sum() is d_s. sqrt is correctly rounded everywhere; exp
-        # is the C library's here and numpy's in the reference: the same
-        # function on x86-64 without AVX-512, where numpy uses its own SIMD exp
-        # and the last bit may differ (it matters only at a_T exactly).
-        activity = math.exp(-math.sqrt(d_s))
-        if activity < a_t and h[s] < h_t and (max_units < 0 or n < max_units):
+        if grow:
             r = n
             for k in range(W.shape[1]):
                 W[r, k] = 0.5 * (W[s, k] + x[k])
