@@ -87,7 +87,8 @@ def run(args) -> int:
     a_pairs = sum(1 for t in trials if t.experiment == "A") // 2
     if args.settle:
         settled = reproduce.is_resting([t for t in trials if t.experiment == "A"][-1])
-        print(f"\nA: {a_pairs} pairs of runs ({'settled' if settled else 'not settled'}; the paper needed 3).")
+        state = "settled" if settled else "not settled"
+        print(f"\nA: {a_pairs} pairs of runs ({state}; the paper needed 3).")
     out.mkdir(parents=True, exist_ok=True)
     reproduce.write_table1_csv(rows, out / "table1.csv")
     reproduce.write_table1_markdown(rows, out / "table1.md", title)
@@ -108,4 +109,5 @@ def _check_matplotlib() -> None:
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        raise UserError("The figures need matplotlib (pip install matplotlib), or pass --no-figures.") from None
+        raise UserError("The figures need matplotlib (pip install matplotlib), "
+                        "or pass --no-figures.") from None
