@@ -10,7 +10,8 @@ pairwise order, see :func:`._pairwise.pairwise_plan`); the one library
 function involved, ``exp`` in the GWR's activity, is discussed where it is
 used.
 
-State lives in fixed-capacity arrays: ``W`` (capacity x features), the
+State lives in fixed-capacity arrays: ``W`` (capacity x features; the
+kernel works on a transposed copy, so that distances vectorise), the
 efficacies, the unit ids and the edge-age matrix ``A`` (capacity x capacity,
 -1 = no edge), of which the first ``n`` rows are in use. Deleting units shifts
 the later rows down, as ``np.delete`` does, so rows keep the reference's
@@ -18,8 +19,7 @@ numbering. A call stops early, returning the number of inputs it learned,
 when the network is full and the next input might add a unit (GNG: an
 insertion step; GWR: an input that will add one); the caller then enlarges
 the arrays and calls again. So a call can also work on the network's own
-arrays, without copies, until an input needs room. Networks have few units, so the
-distances are computed row by row (no transposed copy).
+arrays, without copies, until an input needs room.
 """
 
 from __future__ import annotations
@@ -28,6 +28,8 @@ import math
 
 import numpy as np
 from numba import njit
+
+from ._distances import distances_cols, transposed, untransposed
 
 #: layout of a Stanley bank's parameter vector
 STANLEY = ("exact", "forget", "tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0")
@@ -41,61 +43,10 @@ _NO_EDGE = -1
 
 # ----------------------------------------------------------------- distances
 @njit(cache=True, error_model="numpy", inline="always")
-def _block(W, j, x, lo, n):
-    """Sum of (W[j, k] - x[k])**2 over one block of at most 128 features, numpy's order.
-
-    Eight running sums over blocks of eight, combined pairwise, then the tail
-    one by one (fewer than eight: all one by one); starting at 0.0 changes
-    nothing for non-negative squares.
-    """
-    end = lo + n - n % 8
-    res = 0.0
-    if n >= 8:
-        r0 = r1 = r2 = r3 = r4 = r5 = r6 = r7 = 0.0
-        for k in range(lo, end, 8):
-            d0 = W[j, k] - x[k]
-            d1 = W[j, k + 1] - x[k + 1]
-            d2 = W[j, k + 2] - x[k + 2]
-            d3 = W[j, k + 3] - x[k + 3]
-            d4 = W[j, k + 4] - x[k + 4]
-            d5 = W[j, k + 5] - x[k + 5]
-            d6 = W[j, k + 6] - x[k + 6]
-            d7 = W[j, k + 7] - x[k + 7]
-            r0 += d0 * d0
-            r1 += d1 * d1
-            r2 += d2 * d2
-            r3 += d3 * d3
-            r4 += d4 * d4
-            r5 += d5 * d5
-            r6 += d6 * d6
-            r7 += d7 * d7
-        res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
-    for k in range(end, lo + n):
-        d = W[j, k] - x[k]
-        res += d * d
-    return res
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _sqdist(W, j, x, plan, stack):
-    if plan.shape[0] == 1:
-        return _block(W, j, x, plan[0, 0], plan[0, 1])
-    sp = 0
-    for p in range(plan.shape[0]):
-        if plan[p, 1] > 0:
-            stack[sp] = _block(W, j, x, plan[p, 0], plan[p, 1])
-            sp += 1
-        else:
-            stack[sp - 2] = stack[sp - 2] + stack[sp - 1]
-            sp -= 1
-    return stack[0]
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _two_nearest(W, n, x, plan, stack, d):
+def _two_nearest(WT, n, x, plan, acc, stack):
     """Winner, its squared distance and the runner-up (``argmin`` with the winner at inf)."""
-    for j in range(n):
-        d[j] = _sqdist(W, j, x, plan, stack)
+    distances_cols(WT, x, plan, acc, stack, n)
+    d = stack[0]
     s1 = 0
     for j in range(1, n):
         if d[j] < d[s1]:
@@ -184,15 +135,15 @@ def _prune(A, n, row, max_age, isolated):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _delete_units(n, gone, W, A, ids, a, b, c):
-    """np.delete of the rows marked in ``gone`` from W, A (rows and columns), ids, a, b and c."""
+def _delete_units(n, gone, WT, A, ids, a, b, c):
+    """np.delete of the units marked in ``gone`` from WT (columns), A (rows and columns), ids, a, b, c."""
     keep = 0
     for j in range(n):
         if gone[j]:
             continue
         if keep != j:
-            for k in range(W.shape[1]):  # element loops: slice assignment compiles slowly
-                W[keep, k] = W[j, k]
+            for k in range(WT.shape[0]):  # element loops: slice assignment compiles slowly
+                WT[k, keep] = WT[k, j]
             ids[keep] = ids[j]
             a[keep] = a[j]
             b[keep] = b[j]
@@ -235,8 +186,9 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
     cap = W.shape[0]
     eps_b, eps_n, interval, ins_decay, err_decay = g[0], g[1], int(g[2]), g[3], g[4]
     max_age, max_units = int(g[5]), int(g[6])
-    stack = np.empty(plan.shape[0])
-    d = np.empty(cap)
+    WT = transposed(W, n)  # (features, units): the distances vectorise; written back at the end
+    acc = np.empty((8, cap))
+    stack = np.empty((plan.shape[0], cap))
     is_nb = np.zeros(cap, dtype=np.bool_)
     gone = np.zeros(cap, dtype=np.bool_)
     dummy = np.empty(cap)
@@ -245,22 +197,22 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
         if n == cap and (n_inputs + 1) % interval == 0:
             break  # this input may insert a unit and there is no room: the caller makes some
         x = X[i]
-        s1, d1, s2 = _two_nearest(W, n, x, plan, stack, d)
+        s1, d1, s2 = _two_nearest(WT, n, x, plan, acc, stack)
         novelty[i] = y[s1]
         _mark_neighbours(A, n, s1, is_nb)
         _stanley_step(y, n, s1, is_nb, stimulus, dt[i], p)
         # adapt, steps 3-9
         _age_edges(A, n, s1)
         E[s1] += d1  # ((x - w)**2).sum() is d1, the same numbers summed in the same order
-        for k in range(W.shape[1]):
-            W[s1, k] = W[s1, k] + eps_b * (x[k] - W[s1, k])
+        for k in range(WT.shape[0]):
+            WT[k, s1] = WT[k, s1] + eps_b * (x[k] - WT[k, s1])
         for j in range(n):
             if is_nb[j]:
-                for k in range(W.shape[1]):
-                    W[j, k] = W[j, k] + eps_n * (x[k] - W[j, k])
+                for k in range(WT.shape[0]):
+                    WT[k, j] = WT[k, j] + eps_n * (x[k] - WT[k, j])
         _connect(A, s1, s2, 0)
         if _prune(A, n, s1, max_age, gone) > 0:
-            n = _delete_units(n, gone, W, A, ids, E, y, dummy)
+            n = _delete_units(n, gone, WT, A, ids, E, y, dummy)
         n_inputs += 1
         if n_inputs % interval == 0 and n < max_units:
             q = 0
@@ -272,11 +224,12 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
                 if A[q, j] >= 0 and (f < 0 or E[j] > E[f]):
                     f = j
             if f < 0:  # cannot happen after the first input: every unit has an edge
+                untransposed(WT, W, n)
                 return np.array([-1, n, next_id, n_inputs])
             E[q] *= ins_decay
             E[f] *= ins_decay
-            for k in range(W.shape[1]):
-                W[n, k] = 0.5 * (W[q, k] + W[f, k])
+            for k in range(WT.shape[0]):
+                WT[k, n] = 0.5 * (WT[k, q] + WT[k, f])
             E[n] = E[q]
             y[n] = p[6]
             ids[n] = next_id
@@ -290,6 +243,7 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
         for j in range(n):
             E[j] *= 1.0 - err_decay
         done = i + 1
+    untransposed(WT, W, n)
     return np.array([done, n, next_id, n_inputs])
 
 
@@ -306,15 +260,16 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
     cap = W.shape[0]
     a_t, h_t, eps_b, eps_n = g[0], g[1], g[2], g[3]
     max_age, max_units = int(g[4]), int(g[5])
-    stack = np.empty(plan.shape[0])
-    d = np.empty(cap)
+    WT = transposed(W, n)  # (features, units): the distances vectorise; written back at the end
+    acc = np.empty((8, cap))
+    stack = np.empty((plan.shape[0], cap))
     is_nb = np.zeros(cap, dtype=np.bool_)
     gone = np.zeros(cap, dtype=np.bool_)
     dummy = np.empty(cap)
     done = 0
     for i in range(X.shape[0]):
         x = X[i]
-        s, d_s, t = _two_nearest(W, n, x, plan, stack, d)
+        s, d_s, t = _two_nearest(WT, n, x, plan, acc, stack)
         # Step 7's test needs only d_s and h_s, which nothing changes before
         # step 7, so it is taken first: an input that adds a unit when there is
         # no room is left untouched for the caller, who makes room.
@@ -334,8 +289,8 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
         _connect(A, s, t, 0)
         if grow:
             r = n
-            for k in range(W.shape[1]):
-                W[r, k] = 0.5 * (W[s, k] + x[k])
+            for k in range(WT.shape[0]):
+                WT[k, r] = 0.5 * (WT[k, s] + x[k])
             h[r] = ph[6]
             y[r] = p[6]
             ids[r] = next_id
@@ -346,16 +301,17 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
             _connect(A, r, t, 0)
             _connect(A, s, t, _NO_EDGE)
         else:
-            for k in range(W.shape[1]):
-                W[s, k] = W[s, k] + eps_b * h[s] * (x[k] - W[s, k])
+            for k in range(WT.shape[0]):
+                WT[k, s] = WT[k, s] + eps_b * h[s] * (x[k] - WT[k, s])
             for j in range(n):
                 if A[s, j] >= 0:
-                    for k in range(W.shape[1]):
-                        W[j, k] = W[j, k] + eps_n * h[j] * (x[k] - W[j, k])
+                    for k in range(WT.shape[0]):
+                        WT[k, j] = WT[k, j] + eps_n * h[j] * (x[k] - WT[k, j])
         _age_edges(A, n, s)
         _mark_neighbours(A, n, s, is_nb)
         _stanley_step(h, n, s, is_nb, 1.0, 1.0, ph)
         if _prune(A, n, s, max_age, gone) > 0:
-            n = _delete_units(n, gone, W, A, ids, h, y, dummy)
+            n = _delete_units(n, gone, WT, A, ids, h, y, dummy)
         done = i + 1
+    untransposed(WT, W, n)
     return np.array([done, n, next_id])

@@ -12,7 +12,7 @@ results are bit-identical, not merely close:
   by one (fewer than eight features: one by one); more than 128 features are
   split in two halves (the first a multiple of eight) summed separately and
   added. :func:`._pairwise.pairwise_plan` lists those blocks,
-  :func:`_block_cols` sums one block in that order;
+  :func:`._distances.block_cols` sums one block in that order;
 - the winner is the first unit with the least distance (``np.argmin``);
 - the weight update is ``w + eta * (x - w)`` per element;
 - the Euler step is ``y + (h / tau) * (alpha * (y0 - y) - S)`` over
@@ -34,6 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ._distances import distances_cols, transposed, untransposed
 from ._pairwise import pairwise_plan  # noqa: F401  (re-exported for callers)
 
 # decay codes (SOM.decay)
@@ -42,104 +43,18 @@ CONSTANT, LINEAR, ASYMPTOTIC = 0, 1, 2
 
 # ------------------------------------------------------ distances, transposed
 @njit(cache=True, error_model="numpy", inline="always")
-def _sq(WT, k, j, x):
-    d = WT[k, j] - x[k]
-    return d * d
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _block_cols(WT, x, out, acc, lo, n):
-    """Sum of (WT[k, j] - x[k])**2 over one block of at most 128 features k, for every unit j.
-
-    numpy's order: eight running sums over the blocks of eight features,
-    combined pairwise, then the tail added one by one (fewer than eight
-    features: all of them one by one). Starting a sum at 0.0 changes nothing
-    (0.0 + s == s for the non-negative squares). The loops over units j are
-    innermost and contiguous, so they vectorise. Up to 23 features (the
-    paper's 16) the eight sums stay in registers, one pass over the units;
-    beyond, they go through ``acc`` (8 x units), one pass per block of eight.
-    """
-    n_units = WT.shape[1]
-    end = lo + n - n % 8
-    if 8 <= n < 16:
-        for j in range(n_units):
-            out[j] = ((_sq(WT, lo, j, x) + _sq(WT, lo + 1, j, x))
-                      + (_sq(WT, lo + 2, j, x) + _sq(WT, lo + 3, j, x))) + (
-                (_sq(WT, lo + 4, j, x) + _sq(WT, lo + 5, j, x))
-                + (_sq(WT, lo + 6, j, x) + _sq(WT, lo + 7, j, x)))
-    elif 16 <= n < 24:
-        for j in range(n_units):
-            r0 = _sq(WT, lo, j, x) + _sq(WT, lo + 8, j, x)
-            r1 = _sq(WT, lo + 1, j, x) + _sq(WT, lo + 9, j, x)
-            r2 = _sq(WT, lo + 2, j, x) + _sq(WT, lo + 10, j, x)
-            r3 = _sq(WT, lo + 3, j, x) + _sq(WT, lo + 11, j, x)
-            r4 = _sq(WT, lo + 4, j, x) + _sq(WT, lo + 12, j, x)
-            r5 = _sq(WT, lo + 5, j, x) + _sq(WT, lo + 13, j, x)
-            r6 = _sq(WT, lo + 6, j, x) + _sq(WT, lo + 14, j, x)
-            r7 = _sq(WT, lo + 7, j, x) + _sq(WT, lo + 15, j, x)
-            out[j] = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
-    elif n >= 24:
-        for m in range(8):
-            for j in range(n_units):
-                acc[m, j] = 0.0
-        for k in range(lo, end, 8):
-            for m in range(8):
-                xk = x[k + m]
-                for j in range(n_units):
-                    d = WT[k + m, j] - xk
-                    acc[m, j] += d * d
-        for j in range(n_units):
-            out[j] = ((acc[0, j] + acc[1, j]) + (acc[2, j] + acc[3, j])) + (
-                (acc[4, j] + acc[5, j]) + (acc[6, j] + acc[7, j]))
-    else:
-        for j in range(n_units):
-            out[j] = 0.0
-    for k in range(end, lo + n):
-        xk = x[k]
-        for j in range(n_units):
-            d = WT[k, j] - xk
-            out[j] += d * d
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def _winner_cols(WT, x, plan, acc, stack):
-    """Winner and its squared distance, weights as (features, units).
-
-    ``acc`` (8, units) and ``stack`` (plan length, units) are scratch.
-    """
-    if plan.shape[0] == 1 and plan[0, 1] == 16:
-        # The paper's 16 sonar readings: with the block size a constant, LLVM
-        # drops the other cases and their checks (about 1.4x faster).
-        _block_cols(WT, x, stack[0], acc, 0, 16)
-    else:
-        sp = 0
-        for p in range(plan.shape[0]):
-            if plan[p, 1] > 0:
-                _block_cols(WT, x, stack[sp], acc, plan[p, 0], plan[p, 1])
-                sp += 1
-            else:
-                a = stack[sp - 2]
-                b = stack[sp - 1]
-                for j in range(WT.shape[1]):
-                    a[j] = a[j] + b[j]
-                sp -= 1
+    """Winner and its squared distance (the first of the least, as ``np.argmin``)."""
+    n_units = WT.shape[1]
+    distances_cols(WT, x, plan, acc, stack, n_units)
     d = stack[0]
     best = 0
     best_d = d[0]
-    for j in range(1, WT.shape[1]):
+    for j in range(1, n_units):
         if d[j] < best_d:
             best = j
             best_d = d[j]
     return best, best_d
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _transposed(W):
-    WT = np.empty((W.shape[1], W.shape[0]))
-    for j in range(W.shape[0]):
-        for k in range(W.shape[1]):
-            WT[k, j] = W[j, k]
-    return WT
 
 
 # ---------------------------------------------------------------- the models
@@ -206,7 +121,7 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, l
                                                 params[13], params[14])
     # Distances to all units vectorise on a transposed copy (features x
     # units); it is copied back at the end.
-    WT = _transposed(W)
+    WT = transposed(W, n_units)
     acc = np.empty((8, n_units))
     vstack = np.empty((plan.shape[0], n_units))
     radius = table_radius
@@ -260,8 +175,5 @@ def som_stanley_stream(W, y, X, dt, winners, novelty, distances, plan, params, l
         if decay != CONSTANT:
             radius = int(math.floor(_scheduled(decay, radius0, radius1, t, decay_steps) + 0.5))
     if learn:
-        # explicit loops: a slice assignment compiles numba's shape-error path (seconds)
-        for j in range(n_units):
-            for k in range(n_features):
-                W[j, k] = WT[k, j]
+        untransposed(WT, W, n_units)
     return radius, t

@@ -1,0 +1,122 @@
+"""Squared distances to every unit at once, in numpy's summation order (shared by the kernels).
+
+Weights are held transposed, (features, units), so that the loops over the
+units are innermost and contiguous and vectorise. The order of the sums is
+numpy's (:func:`._pairwise.pairwise_plan`), so the distances equal
+``((W - x) ** 2).sum(axis=1)`` bit for bit. Every function here is inlined
+into the kernel that calls it (``inline="always"``), so importing this
+module compiles nothing. numba keys a cached kernel on its own source file
+only: after editing this file, clear the cache (``__pycache__/*.nb*`` or
+``NUMBA_CACHE_DIR``) or the kernels keep the old code; an installed release
+rewrites every file, which invalidates the cache.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+@njit(cache=True, error_model="numpy", inline="always")
+def sq(WT, k, j, x):
+    d = WT[k, j] - x[k]
+    return d * d
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def block_cols(WT, x, out, acc, lo, n, n_units):
+    """Sum of (WT[k, j] - x[k])**2 over one block of at most 128 features k, for every unit j.
+
+    numpy's order: eight running sums over the blocks of eight features,
+    combined pairwise, then the tail added one by one (fewer than eight
+    features: all of them one by one). Starting a sum at 0.0 changes nothing
+    (0.0 + s == s for the non-negative squares). The loops over units j are
+    innermost and contiguous, so they vectorise. Up to 23 features (the
+    paper's 16) the eight sums stay in registers, one pass over the units;
+    beyond, they go through ``acc`` (8 x units), one pass per block of eight.
+    Only the first ``n_units`` columns of ``WT`` are units (the others are room
+    for a growing network).
+    """
+    end = lo + n - n % 8
+    if 8 <= n < 16:
+        for j in range(n_units):
+            out[j] = ((sq(WT, lo, j, x) + sq(WT, lo + 1, j, x))
+                      + (sq(WT, lo + 2, j, x) + sq(WT, lo + 3, j, x))) + (
+                (sq(WT, lo + 4, j, x) + sq(WT, lo + 5, j, x))
+                + (sq(WT, lo + 6, j, x) + sq(WT, lo + 7, j, x)))
+    elif 16 <= n < 24:
+        for j in range(n_units):
+            r0 = sq(WT, lo, j, x) + sq(WT, lo + 8, j, x)
+            r1 = sq(WT, lo + 1, j, x) + sq(WT, lo + 9, j, x)
+            r2 = sq(WT, lo + 2, j, x) + sq(WT, lo + 10, j, x)
+            r3 = sq(WT, lo + 3, j, x) + sq(WT, lo + 11, j, x)
+            r4 = sq(WT, lo + 4, j, x) + sq(WT, lo + 12, j, x)
+            r5 = sq(WT, lo + 5, j, x) + sq(WT, lo + 13, j, x)
+            r6 = sq(WT, lo + 6, j, x) + sq(WT, lo + 14, j, x)
+            r7 = sq(WT, lo + 7, j, x) + sq(WT, lo + 15, j, x)
+            out[j] = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    elif n >= 24:
+        for m in range(8):
+            for j in range(n_units):
+                acc[m, j] = 0.0
+        for k in range(lo, end, 8):
+            for m in range(8):
+                xk = x[k + m]
+                for j in range(n_units):
+                    d = WT[k + m, j] - xk
+                    acc[m, j] += d * d
+        for j in range(n_units):
+            out[j] = ((acc[0, j] + acc[1, j]) + (acc[2, j] + acc[3, j])) + (
+                (acc[4, j] + acc[5, j]) + (acc[6, j] + acc[7, j]))
+    else:
+        for j in range(n_units):
+            out[j] = 0.0
+    for k in range(end, lo + n):
+        xk = x[k]
+        for j in range(n_units):
+            d = WT[k, j] - xk
+            out[j] += d * d
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def distances_cols(WT, x, plan, acc, stack, n_units):
+    """Squared distances from ``x`` to the first ``n_units`` units, into ``stack[0]``.
+
+    Weights as (features, units); ``acc`` (8, units) and ``stack`` (plan
+    length, units) are scratch. ``plan`` is numpy's summation order
+    (:func:`._pairwise.pairwise_plan`).
+    """
+    if plan.shape[0] == 1 and plan[0, 1] == 16:
+        # The paper's 16 sonar readings: with the block size a constant, LLVM
+        # drops the other cases and their checks (about 1.4x faster).
+        block_cols(WT, x, stack[0], acc, 0, 16, n_units)
+        return
+    sp = 0
+    for p in range(plan.shape[0]):
+        if plan[p, 1] > 0:
+            block_cols(WT, x, stack[sp], acc, plan[p, 0], plan[p, 1], n_units)
+            sp += 1
+        else:
+            a = stack[sp - 2]
+            b = stack[sp - 1]
+            for j in range(n_units):
+                a[j] = a[j] + b[j]
+            sp -= 1
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def transposed(W, n_rows):
+    """(features, units) copy of the first ``n_rows`` rows of ``W``, with W's rows of room."""
+    WT = np.empty((W.shape[1], W.shape[0]))
+    for j in range(n_rows):
+        for k in range(W.shape[1]):
+            WT[k, j] = W[j, k]
+    return WT
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def untransposed(WT, W, n_rows):
+    """Write the first ``n_rows`` units of ``WT`` back into ``W`` (element loops: a slice
+    assignment would compile numba's shape-error path, seconds of compiling)."""
+    for j in range(n_rows):
+        for k in range(W.shape[1]):
+            W[j, k] = WT[k, j]
