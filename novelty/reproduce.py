@@ -138,6 +138,13 @@ def is_resting(trial: Trial, integrated: float = RESTING_INTEGRATED,
     "the output of the novelty filter was only the resting activity of the
     output neuron throughout the run". In numbers: at most ``integrated``
     above the resting activity over the run and no scan above ``maximum``.
+
+    >>> flat = Trial("A", "6", "NL", np.full(100, 0.0476), np.arange(1, 101) / 10, 0.0476, run=5)
+    >>> is_resting(flat), round(flat.integrated, 6)
+    (True, 0.0)
+    >>> flat.novelty[30] = 0.42  # one scan still novel
+    >>> is_resting(flat)
+    False
     """
     return trial.integrated <= integrated and trial.maximum <= maximum
 

@@ -299,3 +299,12 @@ def test_reproduce_command_user_errors_are_one_line(argv, message, tmp_path, cap
     assert main(["reproduce", "--no-figures", "--out", str(tmp_path), *argv]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "Traceback" not in err and message in err
+
+
+def test_readme_shows_the_table_the_command_prints():
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    section = readme.split("## Reproducing the paper", 1)[1].split("\n## ", 1)[0]
+    assert "novelty reproduce" in section
+    assert table1_markdown(table1_rows(list(protocol(0).values()))) in section
