@@ -415,7 +415,8 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
 def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
     monkeypatch.setattr(_kernels, "_SOM", _kernels._Compiled("_som_stanley"))
     blocker = threading.Event()
-    _kernels._SOM.thread = threading.Thread(target=blocker.wait)  # "compiling" in the parent
+    _kernels._SOM.started = True  # "compiling" in the parent
+    _kernels._SOM.thread = threading.Thread(target=blocker.wait)
     _kernels._SOM.thread.start()
     try:
         pid = os.fork()

@@ -21,12 +21,14 @@ is asked for, so ``import novelty`` does not pay for it. Compiling a module
 of kernels (one for the SOM, one for the growing networks, each on its
 first use) takes seconds; numba caches the machine code on disk
 (``cache=True``, in ``NUMBA_CACHE_DIR`` when set) and later processes load it
-in a fraction of a second. So that no call waits for the compiler, it runs
-in a background thread: meanwhile learning runs the reference loop in small
-blocks and hands over to the kernel, mid-stream, as soon as it is ready
-(the two give identical states, so the hand-over is invisible in the
-results). The thread is not a daemon: a process that ends early waits for it,
-so that the cache gets written. :func:`wait` blocks until the kernels are
+in a fraction of a second (at once, when the cache holds them). So that no
+call waits for the compiler, a background thread has a child process compile
+the module into the cache (numba's compiler would hold this process's GIL)
+and then loads it from there; meanwhile learning runs the reference loop in small blocks and hands
+over to the kernel, mid-stream, as soon as it is ready (the two give
+identical states, so the hand-over is invisible in the results). The thread
+is not a daemon: a process that ends early waits for it, so that the cache
+gets written. :func:`wait` blocks until the kernels are
 ready (benchmarks, tests). Batch scoring splits large batches across threads
 (``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel releases the
 GIL.
@@ -35,6 +37,7 @@ GIL.
 from __future__ import annotations
 
 import os
+import sys
 import threading
 import warnings
 from typing import Callable
@@ -51,13 +54,15 @@ __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
 
 class _Compiled:
-    """One module of kernels, compiled (or loaded from numba's cache) in a background thread."""
+    """One module of kernels, compiled (in a child process) or loaded from numba's cache
+    (in a background thread) while the caller goes on with the reference."""
 
     def __init__(self, name: str):
         self.name = name
         self.module = None  # once ready
         self.failed = False  # numba missing, broken or disabled: never retried
-        self.thread: threading.Thread | None = None
+        self.started = False
+        self.thread: threading.Thread | None = None  # the background compiler, if one runs
         self.error: BaseException | None = None  # raised in the thread, warned about here
 
     def get(self):
@@ -76,21 +81,63 @@ class _Compiled:
                 stacklevel=4,
             )
             return None
-        if self.thread is None:
+        if not self.started:
             if os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0"):
                 self.failed = True
                 return None
+            self.started = True
+            if self._cached():
+                # Loading takes a fraction of a second: less than sharing the GIL
+                # with a loader thread would cost the caller, so load now.
+                self._compile()
+                return self.get()
             self.thread = threading.Thread(target=self._compile, name=f"novelty-{self.name}")
             self.thread.start()
         return None
 
     def _compile(self) -> None:
-        try:
-            import importlib
+        import importlib
 
-            self.module = importlib.import_module(f"{__name__}.{self.name}")
+        name = f"{__name__}.{self.name}"
+        try:
+            if name not in sys.modules and not self._cached():
+                self._compile_in_child(name)
+            self.module = importlib.import_module(name)  # loads what the child cached
         except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
             self.error = exc
+
+    def _cached(self) -> bool:
+        """Whether numba's disk cache seems to hold this module's kernels (an index file).
+
+        A stale index only costs speed: the import then compiles in this thread.
+        """
+        import glob
+
+        cache_dir = os.environ.get("NUMBA_CACHE_DIR")
+        # numba's cache: NUMBA_CACHE_DIR/<one folder per source folder>/, else __pycache__
+        folders = (glob.glob(os.path.join(cache_dir, "*")) if cache_dir
+                   else [os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__")])
+        return any(glob.glob(os.path.join(f, f"{self.name}.*.nbi")) for f in folders)
+
+    @staticmethod
+    def _compile_in_child(name: str) -> None:
+        """Compile in a child process, which leaves the machine code in numba's disk cache.
+
+        In a thread of this process numba's compiler holds the GIL for long
+        stretches: the main thread, learning with the reference meanwhile, was
+        measured 40x slower. A child that fails leaves no cache; the import in
+        the thread then compiles after all.
+        """
+        import subprocess
+
+        if not sys.executable:
+            return
+        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            p for p in (root, os.environ.get("PYTHONPATH")) if p))
+        subprocess.run([sys.executable, "-c", f"import {name}"], env=env, check=False,
+                       stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
 
     def wait(self, timeout: float | None = None):
         self.get()
@@ -100,7 +147,7 @@ class _Compiled:
 
     @property
     def compiling(self) -> bool:
-        return self.module is None and not self.failed and self.thread is not None
+        return self.started and self.module is None and not self.failed and self.error is None
 
 
 _SOM = _Compiled("_som_stanley")
@@ -112,7 +159,7 @@ def _after_fork_in_child() -> None:
     # running would wait for it forever, so it starts its own when it needs one.
     for compiled in (_SOM, _GROWING):
         if compiled.module is None and compiled.error is None:
-            compiled.thread = None
+            compiled.started, compiled.thread = False, None
 
 
 if hasattr(os, "register_at_fork"):
