@@ -54,8 +54,9 @@ __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
 
 class _Compiled:
-    """One module of kernels, compiled (in a child process) or loaded from numba's cache
-    (in a background thread) while the caller goes on with the reference."""
+    """One module of kernels: loaded at once when numba's disk cache holds it, else
+    compiled by a child process that a background thread waits for, while the
+    caller goes on with the reference."""
 
     def __init__(self, name: str):
         self.name = name
