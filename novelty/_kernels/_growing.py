@@ -29,7 +29,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._distances import distances_cols, transposed, untransposed
+from ._distances import block_cols, transposed, untransposed
 
 #: layout of a Stanley bank's parameter vector
 STANLEY = ("exact", "forget", "tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0")
@@ -45,7 +45,19 @@ _NO_EDGE = -1
 @njit(cache=True, error_model="numpy", inline="always")
 def _two_nearest(WT, n, x, plan, acc, stack):
     """Winner, its squared distance and the runner-up (``argmin`` with the winner at inf)."""
-    distances_cols(WT, x, plan, acc, stack, n)
+    # numpy's order over the plan's blocks (as _distances.distances_cols, without
+    # its 16-feature specialisation: that would make this module compile 1.5x longer)
+    sp = 0
+    for p in range(plan.shape[0]):
+        if plan[p, 1] > 0:
+            block_cols(WT, x, stack[sp], acc, plan[p, 0], plan[p, 1], n)
+            sp += 1
+        else:
+            a = stack[sp - 2]
+            b = stack[sp - 1]
+            for j in range(n):
+                a[j] = a[j] + b[j]
+            sp -= 1
     d = stack[0]
     s1 = 0
     for j in range(1, n):
