@@ -118,7 +118,6 @@ def test_som_distance_learns_online_before_scoring():
     assert det.raw_novelty([[1.0, 0.0]])[0] == pytest.approx(0.25, abs=1e-9)
 
 
-@pytest.mark.skipif("gng" not in novelty.registry.clusterers, reason="the 'gng' clusterer is not registered yet")
 def test_som_distance_takes_any_clusterer_by_name(blobs):
     det = SOMDistance(clusterer="gng", n_epochs=2).fit(blobs)
     assert novelty.registry.clusterers.name_of(det.clusterer_) == "gng"
