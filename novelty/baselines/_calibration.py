@@ -176,11 +176,11 @@ class CalibratedDetector(NoveltyDetector):
 
     def _fit_model(self, X: np.ndarray) -> None:
         """Learn the model from the whole of ``X`` (batch learners)."""
-        raise NotImplementedError
+        raise NotImplementedError(f"{type(self).__name__} is a batch learner and must define _fit_model.")
 
     def _learn_one_raw(self, x: np.ndarray) -> float:
         """Raw novelty of ``x`` before learning it, then learn it (online learners)."""
-        raise NotImplementedError
+        raise NotImplementedError(f"{type(self).__name__} learns online and must define _learn_one_raw.")
 
     def _reference_raw(self, X: np.ndarray) -> np.ndarray:
         """Raw scores of the training data ``X`` that calibrate the scale."""
