@@ -118,7 +118,12 @@ class NoveltyDetector(OutlierMixin, Component):
         y : ignored
         timestamps : array-like of shape (n_samples,), optional
             Time of each scan; the synapses then integrate over the elapsed
-            time instead of one step per scan.
+            time instead of one step per scan. A scan's stimulus is held over
+            the time since the previous scan (a zero-order hold: the robot
+            perceived the same thing all along), so a longer gap habituates
+            the winning neighbourhood more and, with forgetting, lets the
+            other units recover more. The first scan of a model counts as one
+            step.
         """
         X = check_batch(X, self)
         self._validate_params()
