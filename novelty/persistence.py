@@ -199,6 +199,13 @@ def _decode(spec: Any, prefix: str, npz) -> Component:
 
 def load(path: str | os.PathLike) -> Component:
     """Read a detector written by :func:`save` (or ``detector.save``)."""
+    with open(path, "rb") as fh:  # FileNotFoundError propagates as it is
+        magic = fh.read(4)
+    if magic == b"\x93NUM":
+        raise ModelFileError(f"{path} is a single numpy array, not a novelty model file.")
+    if magic != b"PK\x03\x04":
+        # np.load would call anything else "pickled data" and suggest allow_pickle
+        raise ModelFileError(f"{path} is not a novelty model file (not an .npz archive).")
     try:
         npz = np.load(path, allow_pickle=False)
     except FileNotFoundError:

@@ -429,3 +429,12 @@ def test_missing_array_entry(saved, tmp_path):
     del entries["root/synapse_/efficacy_"]
     with pytest.raises(ModelFileError, match=r"lacks the array 'root/synapse_/efficacy_'"):
         novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+def test_a_text_file_is_not_called_pickled_data(tmp_path):
+    """numpy would call any non-npy, non-zip file 'pickled data' and suggest allow_pickle."""
+    path = tmp_path / "notes.npz"
+    path.write_text("hello\n")
+    with pytest.raises(ModelFileError, match="not an .npz archive") as info:
+        novelty.load(path)
+    assert "pickle" not in str(info.value)
