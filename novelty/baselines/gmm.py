@@ -77,9 +77,9 @@ class GaussianMixtureDetector(CalibratedDetector):
     ----------
     n_components_ : int
         The number of components used.
-    weights_ : ndarray of shape (n_components_,)
-    means_ : ndarray of shape (n_components_, n_features)
-    covariances_ : ndarray of shape (n_components_, n_features, n_features)
+    weights_ : ndarray of shape (n_components,)
+    means_ : ndarray of shape (n_components, n_features)
+    covariances_ : ndarray of shape (n_components, n_features, n_features)
         Full covariance of each component, whatever ``covariance_type``.
     bic_ : ndarray of shape (n_tried,)
         BIC of each K tried (K = 1, 2, ...); only K itself when given.

@@ -92,7 +92,7 @@ class KohonenNoveltyFilter(CalibratedDetector):
     ----------
     filter_ : ndarray of shape (n_features, n_features)
         Phi; the novelty component of ``x`` is ``filter_ @ x``.
-    components_ : ndarray of shape (n_components_, n_features)
+    components_ : ndarray of shape (n_components, n_features)
         ``pca`` only: the familiar directions (orthonormal rows).
     n_components_ : int
         ``pca`` only: their number.

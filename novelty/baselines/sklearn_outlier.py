@@ -252,6 +252,9 @@ class OneClassSVMDetector(SklearnOutlierDetector):
 class LocalOutlierFactorDetector(SklearnOutlierDetector):
     """Local outlier factor (Breunig et al. 2000) through the scikit-learn adapter.
 
+    The parameters are those of ``sklearn.neighbors.LocalOutlierFactor``,
+    always with ``novelty=True``.
+
     Parameters
     ----------
     n_neighbors : int, default=20
@@ -261,9 +264,6 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
     leaf_size : int, default=30
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
-
-    The parameters are those of ``sklearn.neighbors.LocalOutlierFactor``,
-    always with ``novelty=True``.
     """
 
     _parameter_rules = {

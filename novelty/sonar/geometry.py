@@ -69,7 +69,7 @@ def segment_normals(p0: np.ndarray, p1: np.ndarray) -> np.ndarray:
 
 
 def mirror(directions: np.ndarray, normals: np.ndarray) -> np.ndarray:
-    """Specular reflection ``d - 2 (d . n) n`` of each direction in its normal."""
+    """Specular reflection ``d - 2 (d·n) n`` of each direction in its normal."""
     dn = np.sum(directions * normals, axis=-1, keepdims=True)
     return directions - 2.0 * dn * normals
 
