@@ -29,7 +29,8 @@ from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
 from ._component import Component, StateError, check_int_state
-from ._validation import check_batch, check_one, check_timestamps
+from ._validation import (check_batch, check_feature_names, check_one, check_timestamps, frame_names,
+                          scan_names)
 
 __all__ = ["NoveltyDetector"]
 
@@ -40,10 +41,29 @@ class NoveltyDetector(OutlierMixin, Component):
     Subclasses have a ``threshold`` parameter (on the novelty scale) and may
     have ``n_epochs`` (passes over the data in :meth:`fit`).
 
+    Scans are arrays, or, one at a time, dicts as in River: a dict scan is
+    read by key. The first scan learned fixes the features, in the sorted
+    order of its keys (``feature_names_in_``); every later dict scan must
+    have exactly these keys, in any order. A DataFrame with string column
+    names fixes them in its column order, and later batches must have the
+    same names in the same order (scikit-learn's rule).
+
+    Before anything is learned, :meth:`score_one` returns the novelty of a
+    first perception, so that River's score-then-learn loop works from the
+    first scan: for a habituating filter, the efficacy of an unhabituated
+    synapse (``y0``, 1.0 by default); for a baseline, the top of its
+    calibrated scale, 1.0 (nothing is familiar yet). The batch scoring
+    methods (:meth:`novelty`, ``score_samples``, ...) raise
+    ``NotFittedError`` until the detector has learned something.
+
     Attributes
     ----------
     n_features_in_ : int
         Number of features seen in the first batch.
+    feature_names_in_ : ndarray of shape (n_features_in_,)
+        Names of the features, when the first batch was a DataFrame with
+        string column names or the first scan a dict (strings as an object
+        array, integer keys as an int64 array). Saved with the model.
     last_time_ : float or None
         Timestamp of the last scan learned, when timestamps were given.
     """
@@ -67,6 +87,10 @@ class NoveltyDetector(OutlierMixin, Component):
     def _novelty_one(self, x: np.ndarray) -> float:
         return float(self._novelty(x[None, :])[0])
 
+    def _first_novelty(self) -> float:
+        """Novelty of a first perception, before anything is learned (parameters are valid)."""
+        return 1.0
+
     # ------------------------------------------------------------------ helpers
     def _is_fitted(self) -> bool:
         return hasattr(self, "n_features_in_")
@@ -89,14 +113,30 @@ class NoveltyDetector(OutlierMixin, Component):
         elif getattr(self, "last_time_", None) is not None:
             self.last_time_ += float(n)
 
-    def _begin(self, X: np.ndarray) -> None:
+    def _begin(self, X: np.ndarray, names: np.ndarray | None) -> None:
         self._start(X)
         self.n_features_in_ = X.shape[1]
+        if names is not None:
+            self.feature_names_in_ = names
+        elif hasattr(self, "feature_names_in_"):
+            del self.feature_names_in_
         self.last_time_ = None
+
+    def _names(self) -> np.ndarray | None:
+        return getattr(self, "feature_names_in_", None)
 
     def _check_state(self) -> None:
         # A model file could hold anything here; refuse it now rather than fail later.
-        check_int_state(self, "n_features_in_", low=1)
+        n = check_int_state(self, "n_features_in_", low=1)
+        names = self._names()
+        if names is not None and not (
+            isinstance(names, np.ndarray) and names.shape == (n,) and len(set(names.tolist())) == n
+            and (names.dtype.kind == "i" or (names.dtype == object and all(isinstance(v, str) for v in names)))
+        ):
+            raise StateError(
+                f"{type(self).__name__}.feature_names_in_ must hold {n} distinct names, all strings "
+                f"or all integers; got {names!r}."
+            )
         t = getattr(self, "last_time_", None)
         if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t)):
             raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number; got {t!r}.")
@@ -125,11 +165,12 @@ class NoveltyDetector(OutlierMixin, Component):
             other units recover more. The first scan of a model counts as one
             step.
         """
+        names = frame_names(X)
         X = check_batch(X, self)
         self._validate_params()
         # a refit starts a new life: no previous timestamp
         dt = np.ones(X.shape[0]) if timestamps is None else check_timestamps(timestamps, X.shape[0], None)
-        self._begin(X)
+        self._begin(X, names)
         for _ in range(getattr(self, "n_epochs", 1)):
             self._learn(X, dt)
         self._advance_clock(X.shape[0], timestamps)
@@ -154,13 +195,16 @@ class NoveltyDetector(OutlierMixin, Component):
         fitted = self._is_fitted()
         if fitted:
             self._check_online()
+        names = frame_names(X)
+        if fitted:
+            check_feature_names(self, names, self._names())
         X = check_batch(X, self, self.n_features_in_ if fitted else None)
         dt = self._elapsed(X.shape[0], timestamps)
         # Parameters may have changed through set_params since the last call; the
         # single-scan path skips this check to stay cheap.
         self._validate_params()
         if not fitted:
-            self._begin(X)
+            self._begin(X, names)
         out = self._learn(X, dt)
         self._advance_clock(X.shape[0], timestamps)
         return out
@@ -168,6 +212,7 @@ class NoveltyDetector(OutlierMixin, Component):
     def novelty(self, X) -> np.ndarray:
         """Novelty of each scan (higher = more novel), without learning."""
         self._check_fitted()
+        check_feature_names(self, frame_names(X), self._names())
         X = check_batch(X, self, self.n_features_in_)
         return self._novelty(X)
 
@@ -190,9 +235,16 @@ class NoveltyDetector(OutlierMixin, Component):
 
     # ----------------------------------------------------------- streaming (robot)
     def score_one(self, x) -> float:
-        """Novelty of one scan, without learning."""
-        self._check_fitted()
-        return self._novelty_one(check_one(x, self, self.n_features_in_))
+        """Novelty of one scan, without learning.
+
+        Before anything is learned: the novelty of a first perception (see
+        the class notes), once ``x`` is checked.
+        """
+        if not self._is_fitted():
+            check_one(x, self, None)
+            self._validate_params()
+            return self._first_novelty()
+        return self._novelty_one(check_one(x, self, self.n_features_in_, self._names()))
 
     def learn_one(self, x, t=None):
         """Learn one scan (``t``: its timestamp, optional)."""
@@ -204,12 +256,15 @@ class NoveltyDetector(OutlierMixin, Component):
         fitted = self._is_fitted()
         if fitted:
             self._check_online()
-        x = check_one(x, self, self.n_features_in_ if fitted else None)
+            x = check_one(x, self, self.n_features_in_, self._names())
+        else:
+            names = scan_names(x, self) if isinstance(x, dict) else None
+            x = check_one(x, self, None, names)
         timestamps = None if t is None else (t,)
         dt = self._elapsed(1, timestamps)
         if not fitted:
             self._validate_params()
-            self._begin(x[None, :])
+            self._begin(x[None, :], names)
         out = float(self._learn(x[None, :], dt)[0])
         self._advance_clock(1, timestamps)
         return out

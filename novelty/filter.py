@@ -211,6 +211,10 @@ class HabituatingFilter(NoveltyDetector):
         rows, _ = self.clusterer_.winners(check_batch(X, self, self.n_features_in_))
         return self.clusterer_.unit_ids_[rows]
 
+    def _first_novelty(self) -> float:
+        # A first perception wins a unit whose synapse has not habituated: y0.
+        return float(self._component(self.synapse, "synapse").initialize(1).efficacy_[0])
+
     @property
     def resting_novelty(self) -> float:
         """The novelty of a fully familiar input (the output neuron's resting activity)."""

@@ -438,3 +438,39 @@ def test_a_text_file_is_not_called_pickled_data(tmp_path):
     with pytest.raises(ModelFileError, match="not an .npz archive") as info:
         novelty.load(path)
     assert "pickle" not in str(info.value)
+
+
+@pytest.mark.parametrize("keys", [["sonar_3", "sonar_1", "bumper", "sonar_2", "odometry"], [4, 0, 3, 1, 2]])
+def test_feature_names_of_dict_scans_round_trip(tmp_path, keys):
+    det = novelty.make("hsom", n_rows=3, n_columns=4)
+    rng = np.random.default_rng(0)
+    for x in rng.uniform(size=(30, 5)):
+        det.learn_one(dict(zip(keys, x.tolist())))
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert loaded.feature_names_in_.dtype == det.feature_names_in_.dtype
+    assert loaded.feature_names_in_.tolist() == sorted(keys)
+    x = dict(zip(keys[::-1], rng.uniform(size=5).tolist()))
+    assert loaded.score_one(x) == det.score_one(x)
+    with pytest.raises(ValueError, match="yet now missing"):
+        loaded.score_one({k: 0.5 for k in keys[1:]})
+
+
+@pytest.mark.parametrize("names, message", [
+    (np.array(["a", "a", "b", "c", "d"], dtype=object), "5 distinct names"),
+    (np.array(["a", "b"], dtype=object), "5 distinct names"),
+    (np.array([0.5, 1, 2, 3, 4]), "all strings or all integers"),
+])
+def test_bad_feature_names_in_a_file_are_refused(tmp_path, names, message):
+    det = fitted()
+    det.feature_names_in_ = names
+    if names.dtype == object:
+        det.save(tmp_path / "m.npz")
+    else:  # a float array is written as an array; tamper with the file instead
+        det.feature_names_in_ = np.arange(5)
+        det.save(tmp_path / "m.npz")
+        entries = read_entries(tmp_path / "m.npz")
+        entries["root/feature_names_in_"] = names
+        write_entries(tmp_path / "m.npz", entries)
+    with pytest.raises(ModelFileError, match=message):
+        novelty.load(tmp_path / "m.npz")

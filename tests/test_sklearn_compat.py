@@ -10,7 +10,7 @@ from sklearn.base import clone
 from sklearn.model_selection import GridSearchCV
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import MinMaxScaler
-from sklearn.utils.estimator_checks import parametrize_with_checks
+from sklearn.utils.estimator_checks import check_dataframe_column_names_consistency, parametrize_with_checks
 
 import novelty
 from novelty.registry import detectors
@@ -49,3 +49,10 @@ def test_clone_pipeline_and_grid_search():
                           scoring=neg_mean_novelty, cv=2).fit(X)
     assert search.best_params_["clusterer__learning_rate"] in (0.1, 0.25)
     assert search.best_estimator_.clusterer_.learning_rate == search.best_params_["clusterer__learning_rate"]
+
+
+@pytest.mark.parametrize("name", detectors.names())
+def test_dataframe_column_names_as_scikit_learn_checks_them(name):
+    """scikit-learn's own check of ``feature_names_in_`` (not in its default set; needs pandas)."""
+    pytest.importorskip("pandas", reason="pandas is not installed (it is not a dependency)")
+    check_dataframe_column_names_consistency(name, novelty.make(name))

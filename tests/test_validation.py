@@ -155,8 +155,6 @@ def test_unfitted_scoring_raises_not_fitted(method):
     with pytest.raises(NotFittedError, match="not fitted yet"):
         getattr(det, method)(np.zeros((1, 3)))
     with pytest.raises(NotFittedError):
-        det.score_one(np.zeros(3))
-    with pytest.raises(NotFittedError):
         det.stream(np.zeros((1, 3)), learn=False)
 
 

@@ -1,0 +1,228 @@
+"""The detector API's conventions: dict scans read by key, DataFrame column
+names, the first perception before any learning."""
+
+import numpy as np
+import pytest
+from sklearn.base import clone
+from sklearn.exceptions import NotFittedError
+
+import novelty
+from novelty.registry import detectors
+
+NAMES = ["front", "left", "right", "rear"]  # sorted: front, left, rear, right
+SORTED = sorted(NAMES)
+
+
+def scans(n=40, seed=0):
+    return np.random.default_rng(seed).uniform(size=(n, len(NAMES)))
+
+
+def as_dicts(X, order=NAMES):
+    """Column j of X is feature NAMES[j]; the keys are inserted in ``order``."""
+    return [{n: float(x[NAMES.index(n)]) for n in order} for x in X]
+
+
+def small_hsom(**params):
+    return novelty.make("hsom", n_rows=3, n_columns=3, **params)
+
+
+class Table:
+    """The least a DataFrame offers that the detectors use: ``columns`` and ``__array__``."""
+
+    def __init__(self, values, columns):
+        self.values, self.columns = np.asarray(values, dtype=np.float64), list(columns)
+        self.shape = self.values.shape
+
+    def __array__(self, dtype=None, copy=None):
+        return self.values if dtype is None else self.values.astype(dtype)
+
+    def __len__(self):
+        return self.shape[0]
+
+
+def online_detectors():
+    out = []
+    for name in detectors.names():
+        det = novelty.make(name)
+        if det.supports_online:
+            out.append(pytest.param(det, id=name))
+    return out
+
+
+# ------------------------------------------------------------- dict scans
+def test_river_loop_with_dict_scans_equals_the_stream_in_sorted_key_order():
+    X = scans()
+    det = small_hsom()
+    got = []
+    for x in as_dicts(X):
+        s = det.score_one(x)
+        det.learn_one(x)
+        got.append(s)
+    ref = small_hsom()
+    order = [NAMES.index(n) for n in SORTED]
+    expected = [ref.score_one(X[0, order])] + list(ref.stream(X[:, order]))
+    # score_one before learning is y0; then each scan scored before it is learned
+    assert got[0] == 1.0
+    np.testing.assert_array_equal(got[1:], expected[2:])
+    np.testing.assert_array_equal(det.feature_names_in_, SORTED)
+    assert det.feature_names_in_.dtype == object
+
+
+@pytest.mark.parametrize("det", online_detectors())
+def test_river_loop_works_from_the_first_scan_for_every_online_detector(det):
+    X = scans(12)
+    first = clone(det).score_learn_one(as_dicts(X)[0])
+    out = []
+    for x in as_dicts(X):
+        s = det.score_one(x)
+        det.learn_one(x)
+        out.append(s)
+    assert out[0] == first  # the novelty of a first perception, learned or not
+    assert all(0.0 <= s <= 1.0 for s in out)
+    np.testing.assert_array_equal(det.feature_names_in_, SORTED)
+
+
+@pytest.mark.parametrize("name", ["hsom", "gwr-novelty", "som-wang-hsu", "kohonen-filter",
+                                  "isolation-forest", "gmm"])
+def test_any_key_order_gives_identical_results(name):
+    X = scans(30)
+    runs = []
+    for order in (NAMES, NAMES[::-1], [NAMES[2], NAMES[0], NAMES[3], NAMES[1]]):
+        det = novelty.make(name)
+        if det.supports_online:
+            out = [det.score_learn_one(x) for x in as_dicts(X, order)]
+        else:
+            det.fit(Table(X[:, [NAMES.index(n) for n in SORTED]], SORTED))
+            out = []
+        # scoring reads dicts by key in whatever order they come
+        out += [det.score_one(dict(reversed(list(x.items())))) for x in as_dicts(X[::-1], order)]
+        runs.append(out)
+    assert runs[0] == runs[1] == runs[2]
+
+
+def test_the_same_features_reversed_are_not_a_new_perception():
+    # The reversed dict used to be read by insertion order: a different, fully novel scan.
+    det = small_hsom()
+    x = dict(zip(NAMES, [0.1, 0.9, 0.3, 0.7]))
+    det.learn_one(x)
+    reversed_x = dict(reversed(list(x.items())))
+    assert det.score_one(reversed_x) == det.score_one(x) == pytest.approx(0.6997, abs=1e-4)
+
+
+def test_integer_keys_are_sorted_numerically():
+    det = small_hsom()
+    det.learn_one({2: 0.3, 0: 0.1, 1: 0.2, 10: 0.4})
+    np.testing.assert_array_equal(det.feature_names_in_, [0, 1, 2, 10])
+    assert det.feature_names_in_.dtype == np.int64
+    twin = small_hsom()
+    twin.learn_one(np.array([0.1, 0.2, 0.3, 0.4]))
+    np.testing.assert_array_equal(det.clusterer_.weights_, twin.clusterer_.weights_)
+
+
+@pytest.mark.parametrize("x, message", [
+    ({"front": 0.1, "left": 0.2, "rear": 0.3}, r"yet now missing:\n- right\n"),
+    ({**dict(zip(NAMES, [0.1] * 4)), "top": 0.5}, r"unseen at fit time:\n- top\n"),
+    ({"front": 0.1, "left": 0.2, "rear": 0.3, "up": 0.4},
+     r"unseen at fit time:\n- up\nFeature names seen at fit time, yet now missing:\n- right\n"),
+    ({0: 0.1, 1: 0.2, 2: 0.3, 3: 0.4}, r"unseen at fit time:\n- 0\n- 1\n- 2\n- 3\n"),
+])
+@pytest.mark.parametrize("method", ["score_one", "learn_one", "score_learn_one"])
+def test_a_missing_or_extra_key_is_refused_by_name_and_changes_nothing(x, message, method):
+    det = small_hsom()
+    for d in as_dicts(scans(5)):
+        det.learn_one(d)
+    weights, efficacy = det.clusterer_.weights_.copy(), det.synapse_.efficacy_.copy()
+    with pytest.raises(ValueError, match=r"keys of x do not match the features HabituatingFilter learned"):
+        getattr(det, method)(x)
+    with pytest.raises(ValueError, match=message):
+        getattr(det, method)(x)
+    np.testing.assert_array_equal(det.clusterer_.weights_, weights)
+    np.testing.assert_array_equal(det.synapse_.efficacy_, efficacy)
+
+
+def test_keys_of_mixed_types_are_refused():
+    det = small_hsom()
+    with pytest.raises(ValueError, match=r"all strings or all integers.*int, str"):
+        det.learn_one({"a": 0.1, 1: 0.2})
+    assert not hasattr(det, "n_features_in_")
+    with pytest.raises(ValueError, match=r"all strings or all integers.*bool"):
+        det.score_one({True: 0.1, False: 0.2})
+
+
+def test_a_dict_scan_for_a_model_learned_from_arrays_is_refused():
+    det = small_hsom().fit(scans())
+    with pytest.raises(ValueError, match=r"learned from arrays without feature names.*4 features"):
+        det.score_one(dict(zip(NAMES, [0.5] * 4)))
+
+
+def test_an_array_scan_for_a_model_learned_from_dicts_is_read_in_the_names_order():
+    det = small_hsom()
+    for d in as_dicts(scans()):
+        det.learn_one(d)
+    x = dict(zip(NAMES, [0.1, 0.9, 0.3, 0.7]))
+    assert det.score_one(np.array([x[n] for n in det.feature_names_in_])) == det.score_one(x)
+
+
+# -------------------------------------------------------- the first perception
+def test_score_one_before_learning_is_y0_and_learns_nothing():
+    det = small_hsom()
+    assert det.score_one(np.full(4, 0.5)) == 1.0
+    assert novelty.make("hsom", y0=0.8, alpha=1.2).score_one([0.5, 0.5]) == 0.8
+    assert novelty.make("gwr-wang-hsu").score_one({"a": 1.0}) == 1.0
+    assert not hasattr(det, "n_features_in_") and not hasattr(det, "clusterer_")
+    with pytest.raises(NotFittedError):
+        det.novelty(np.zeros((1, 4)))
+
+
+def test_score_one_before_learning_checks_the_scan_and_the_parameters():
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        small_hsom().score_one([0.5, np.nan])
+    with pytest.raises(ValueError, match=r"The 'stimulus' parameter of HabituatingFilter"):
+        small_hsom(stimulus=-1.0).score_one([0.5, 0.5])
+    with pytest.raises(ValueError, match=r"'y0' parameter"):
+        novelty.make("hsom", y0="high").score_one([0.5, 0.5])
+
+
+@pytest.mark.parametrize("name", ["isolation-forest", "gmm", "parzen", "kohonen-filter", "som-distance"])
+def test_a_baseline_scores_a_first_perception_at_the_top_of_its_scale(name):
+    det = novelty.make(name)
+    assert det.score_one(np.full(3, 0.5)) == 1.0
+    with pytest.raises(NotFittedError):
+        det.score_samples(np.zeros((1, 3)))
+
+
+# ------------------------------------------------------------- DataFrames
+def test_a_table_fixes_the_feature_names_and_later_tables_must_match():
+    X = scans()
+    det = small_hsom().fit(Table(X, NAMES))
+    np.testing.assert_array_equal(det.feature_names_in_, NAMES)  # column order, as scikit-learn
+    np.testing.assert_array_equal(det.novelty(Table(X, NAMES)), small_hsom().fit(X).novelty(X))
+    with pytest.raises(ValueError, match=r"must be in the same order as they were in fit"):
+        det.novelty(Table(X, NAMES[::-1]))
+    with pytest.raises(ValueError, match=r"unseen at fit time:\n- a\n- b\n- c\n- d\n"):
+        det.predict(Table(X, list("abcd")))
+    with pytest.raises(ValueError, match=r"should match those that were passed during fit"):
+        det.partial_fit(Table(X, NAMES[::-1]))
+    with pytest.warns(UserWarning, match="X does not have valid feature names, but HabituatingFilter"):
+        det.score_samples(X)
+    # a dict scan is read by key against the table's names
+    x = X[0]
+    assert det.score_one(dict(zip(NAMES[::-1], x[::-1].tolist()))) == det.score_one(x)
+
+
+def test_a_refit_without_names_forgets_them():
+    det = small_hsom().fit(Table(scans(), NAMES))
+    det.fit(scans())
+    assert not hasattr(det, "feature_names_in_")
+    with pytest.warns(UserWarning, match="X has feature names, but HabituatingFilter was fitted without"):
+        det.novelty(Table(scans(), NAMES))
+
+
+def test_pandas_dataframes_when_pandas_is_installed():
+    pd = pytest.importorskip("pandas", reason="pandas is not installed (it is not a dependency)")
+    X = scans()
+    det = small_hsom().fit(pd.DataFrame(X, columns=NAMES))
+    np.testing.assert_array_equal(det.feature_names_in_, NAMES)
+    np.testing.assert_array_equal(det.novelty(pd.DataFrame(X, columns=NAMES)), small_hsom().fit(X).novelty(X))
+    with pytest.raises(ValueError, match="same order"):
+        det.novelty(pd.DataFrame(X[:, ::-1], columns=NAMES[::-1]))
