@@ -113,7 +113,7 @@ class NoveltyDetector(OutlierMixin, Component):
         elif getattr(self, "last_time_", None) is not None:
             self.last_time_ += float(n)
 
-    def _begin(self, X: np.ndarray, names: np.ndarray | None) -> None:
+    def _begin(self, X: np.ndarray, names: np.ndarray | None = None) -> None:
         self._start(X)
         self.n_features_in_ = X.shape[1]
         if names is not None:
