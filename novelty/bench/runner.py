@@ -11,7 +11,7 @@ from .backends import execute
 from .progress import Progress
 from .results import ResultsStore, provenance
 from .suite import Suite
-from .summary import ranking_text, summary_markdown
+from .summary import paired_text, ranking_text, summary_markdown
 
 __all__ = ["run_bench", "BenchReport"]
 
@@ -28,10 +28,13 @@ class BenchReport:
     interrupted: bool = False
     files: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    reference: str | None = None        # the paired comparison's reference (None: the first ranked)
 
     @property
     def table(self) -> str:
-        return ranking_text(self.rows)
+        """The ranked table, then the paired comparison with the reference."""
+        paired = paired_text(self.rows, self.reference)
+        return ranking_text(self.rows) + (f"\n\n{paired}" if paired else "")
 
 
 def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, scheduler: str | None = None,
@@ -49,7 +52,7 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     cells = list({c.id: c for c in suite.cells()}.values())
     done = store.done()
     todo = [c for c in cells if c.id not in done]
-    report = BenchReport(store.out, [], skipped=len(cells) - len(todo))
+    report = BenchReport(store.out, [], skipped=len(cells) - len(todo), reference=suite.reference)
     stream = progress if progress is not None else sys.stderr
     if report.skipped and not quiet:
         print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
@@ -73,8 +76,8 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     if suite.threshold != "max":
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"
-    summary.write_text(summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes),
-                       encoding="utf-8")
+    summary.write_text(summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes,
+                                        suite.reference), encoding="utf-8")
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
         from .plots import matplotlib_missing, plot_run

@@ -12,6 +12,8 @@ The TOML form::
     threshold = "max"      # or a quantile of the training novelty, e.g. 0.99
     memory = true          # peak memory by a second, traced run of each cell;
                            # "first-seed": of the cells of the first seed only
+    reference = "parzen"   # optional: the detector (label) of the paired comparison;
+                           # default: the detector ranked first
 
     [[detectors]]
     name = "hsom"                               # registry name
@@ -177,6 +179,7 @@ class Suite:
     threshold: Any = "max"
     memory: bool | str = True
     skipped: list[str] = field(default_factory=list)  # optional entries not registered
+    reference: str | None = None  # label of the detector the others are paired with
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)
@@ -204,6 +207,9 @@ class Suite:
         dupes = sorted({x for x in labels if labels.count(x) > 1})
         if dupes:
             raise SuiteError(f"Two detectors are labelled {dupes[0]!r}; give them distinct 'label's.")
+        if self.reference is not None and self.reference not in labels:
+            raise SuiteError(f"The reference {self.reference!r} is not a detector of suite {self.name!r}; "
+                             f"expected one of {', '.join(labels)}.")
         for spec in self.detectors:
             check_detector(spec)
         for spec in self.tasks:
@@ -357,7 +363,8 @@ def suite_from_dict(data: dict, source: str = "suite") -> Suite:
 
     _known_keys(data, {"suite", "detectors", "tasks"}, source)
     head = _table(data.get("suite"), f"{source}: [suite]")
-    _known_keys(head, {"name", "seeds", "threshold", "memory", "description"}, f"{source}: [suite]")
+    _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference"},
+                f"{source}: [suite]")
     seeds = head.get("seeds", [0])
     if isinstance(seeds, int) and not isinstance(seeds, bool):
         seeds = list(range(seeds))
@@ -387,8 +394,11 @@ def suite_from_dict(data: dict, source: str = "suite") -> Suite:
     memory = head.get("memory", True)
     if not isinstance(memory, bool) and memory != "first-seed":
         raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")
+    reference = head.get("reference")
+    if reference is not None and not isinstance(reference, str):
+        raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
     suite = Suite(detectors, tasks, list(seeds), str(head.get("name", source)),
-                  head.get("threshold", "max"), memory, skipped)
+                  head.get("threshold", "max"), memory, skipped, reference)
     return suite.check()
 
 

@@ -5,6 +5,12 @@ the ranking is by the mean of that score over seeds, and its spread is the
 standard deviation over seeds (``ddof=1``; blank with a single seed). The
 other columns are means over every successful cell of the detector. A
 per-task table gives the mean and spread of the ROC AUC on each task.
+
+The paired comparison (:func:`paired_text`) sets each detector against a
+reference detector on the (task, seed) cells both completed: the mean and
+standard error of the per-cell difference of ROC AUC, and the cells won, tied
+and lost (see :func:`novelty.bench.stats.paired_comparison`). The reference
+is the suite's ``reference``, or else the detector ranked first.
 """
 
 from __future__ import annotations
@@ -15,7 +21,10 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-__all__ = ["rank_detectors", "per_task", "format_table", "summary_markdown", "ranking_text"]
+from . import stats
+
+__all__ = ["rank_detectors", "per_task", "format_table", "summary_markdown", "ranking_text",
+           "paired_text", "reference_of"]
 
 
 def _num(value) -> float:
@@ -127,6 +136,36 @@ def ranking_text(rows: Sequence[dict]) -> str:
     return format_table(header, body)
 
 
+def reference_of(rows: Sequence[dict], reference: str | None = None) -> str | None:
+    """``reference`` if given, else the detector ranked first (``None`` for no rows)."""
+    if reference is not None:
+        return reference
+    records = rank_detectors(rows)
+    return records[0]["detector"] if records else None
+
+
+def _signed(mean: float, se: float) -> str:
+    if math.isnan(mean):
+        return "-"
+    return f"{mean:+.3f}" + ("" if math.isnan(se) else f" ± {se:.3f}")
+
+
+def paired_text(rows: Sequence[dict], reference: str | None = None) -> str:
+    """Each detector's ROC AUC minus the reference's, cell by cell, detectors in rank order."""
+    reference = reference_of(rows, reference)
+    if reference is None:
+        return ""
+    order = [r["detector"] for r in rank_detectors(rows)]
+    records = stats.paired_comparison(stats.cell_table(rows, detectors=order), reference)
+    header = ["detector", "cells", f"ΔROC AUC vs {reference} (mean ± se)", "wins", "ties", "losses"]
+    body = [[
+        r["detector"], str(r["n"]),
+        "(reference)" if r["detector"] == reference else _signed(r["mean_diff"], r["se"]),
+        *(("-", "-", "-") if r["detector"] == reference else (str(r["wins"]), str(r["ties"]), str(r["losses"]))),
+    ] for r in records]
+    return format_table(header, body)
+
+
 def per_task_text(rows: Sequence[dict]) -> str:
     """ROC AUC per detector and task (mean ± sd over seeds), detectors in rank order."""
     order = [r["detector"] for r in rank_detectors(rows)]
@@ -139,9 +178,11 @@ def per_task_text(rows: Sequence[dict]) -> str:
     return format_table(["detector", *tasks], body)
 
 
-def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequence[str] = ()) -> str:
-    """The ``summary.md`` of a run."""
+def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequence[str] = (),
+                     reference: str | None = None) -> str:
+    """The ``summary.md`` of a run (``reference``: the detector of the paired comparison)."""
     rows = list(rows)
+    chosen = reference_of(rows, reference)
     seeds = sorted({r["seed"] for r in rows})
     failed = [r for r in rows if r.get("status") != "ok"]
     parts = [
@@ -162,6 +203,21 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "training time, peak memory (MiB, traced), model size in units.",
         "",
         ranking_text(rows),
+    ]
+    if chosen is not None:
+        parts += [
+            "",
+            f"## Paired comparison with {chosen}",
+            "",
+            f"Each detector's ROC AUC minus {chosen}'s on the same cell (same task, same seed), over "
+            f"the cells both completed: mean ± standard error of the differences (positive: better "
+            f"than {chosen}), and the cells won, tied and lost. The reference is "
+            + ("the suite's `reference`." if reference is not None else
+               "the detector ranked first (set `reference` in the suite or `--reference` to choose)."),
+            "",
+            paired_text(rows, chosen),
+        ]
+    parts += [
         "",
         "## ROC AUC per task",
         "",

@@ -13,9 +13,10 @@ Each cell streams the task's training scans through the detector (as many
 passes as the task says), sets an alarm threshold from the training novelty,
 then scores the test scans without learning. Results go to --out:
 results.csv and results.jsonl (one row a cell, with provenance), summary.md
-(the ranking) and plots/. Rerunning the same command resumes: finished cells
-are skipped. A suite is a TOML file (see benchmarks/suites/), the embedded
---quick suite, or --detector/--task options."""
+(the ranking, each detector paired with a reference detector cell by cell)
+and plots/. Rerunning the same command resumes: finished cells are skipped.
+A suite is a TOML file (see benchmarks/suites/), the embedded --quick suite,
+or --detector/--task options. The exit code is 1 if every cell failed."""
 
 EXAMPLES = [
     "novelty bench --quick --out results/quick",
@@ -39,6 +40,9 @@ def add_parser(subparsers):
     parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",
                         help="a task with its options (repeatable; replaces the suite's)")
     parser.add_argument("--seeds", metavar="S,S,..|N", help="seeds, as a list '0,1,2' or a count '3'")
+    parser.add_argument("--reference", metavar="NAME",
+                        help="the detector (its label in the table) each other is paired with, cell by "
+                        "cell (default: the suite's 'reference', else the detector ranked first)")
     parser.add_argument("--threshold", metavar="max|Q",
                         help="alarm threshold: 'max' of the training novelty, or a quantile Q in (0, 1]")
     parser.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
@@ -87,6 +91,8 @@ def build_suite(args):
         suite.threshold = parse_value(args.threshold)
     if args.no_memory:
         suite.memory = False
+    if args.reference:
+        suite.reference = args.reference
     return suite.check()
 
 
@@ -109,11 +115,17 @@ def run(args) -> int:
     print(report.table)
     for note in report.notes:
         print(note)
+    summary = os.path.join(args.out, "summary.md")
     if report.failed:
-        print(f"{report.failed} cell(s) failed; their errors are in {os.path.join(args.out, 'summary.md')}.")
+        print(f"{report.failed} of {len(report.rows)} cell(s) failed; their errors are in {summary}.")
     print(f"Results in {args.out}: results.csv, results.jsonl, summary.md"
           + (", plots/" if any(p.suffix == ".png" for p in report.files) else "") + ".")
     if report.interrupted:
         print("Interrupted: rerun the same command to resume.", file=sys.stderr)
         return 130
+    if report.rows and report.failed == len(report.rows):
+        first = next(r.get("error", "") for r in report.rows)
+        print(f"novelty bench: every cell failed ({report.failed} of {report.failed}), nothing was "
+              f"measured; the first error: {first} (all errors in {summary}).", file=sys.stderr)
+        return 1
     return 0

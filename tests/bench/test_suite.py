@@ -86,6 +86,9 @@ optional = true
     ('[[detectors]]\nname = "hsom"', "has no tasks"),
     ('[suite]\nseeds = [-1]\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "non-negative integers"),
     ('[suite]\nthreshold = 2\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "quantile in (0, 1]"),
+    ('[suite]\nreference = "parzen"\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"',
+     "reference 'parzen' is not a detector of suite 'suite.toml'; expected one of hsom"),
+    ('[suite]\nreference = 3\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "TASK"', "a detector's label"),
     ('detectors = "hsom"', "array of tables"),
     ('[[detectors]\nname = "hsom"', "not valid TOML"),
 ])
@@ -95,6 +98,22 @@ def test_bad_suites_are_refused_with_one_clear_line(tmp_path, toy_registered, bo
         load_suite(path)
     text = str(info.value)
     assert message in text and "\n" not in text.strip()
+
+
+def test_the_reference_detector_by_label(tmp_path, toy_registered):
+    path = write(tmp_path, f"""
+[suite]
+reference = "small"
+[[detectors]]
+name = "hsom"
+label = "small"
+params = {{ n_rows = 3 }}
+[[detectors]]
+name = "parzen"
+[[tasks]]
+name = "{toy_registered.TASK}"
+""")
+    assert load_suite(path).reference == "small"
 
 
 def test_a_missing_suite_file():

@@ -1,0 +1,55 @@
+"""``novelty bench``: the reference option and the exit code when cells fail."""
+
+import sys
+from pathlib import Path
+
+import pytest
+
+import novelty
+from novelty.cli import main
+
+sys.path.insert(0, str(Path(__file__).parents[1] / "bench"))
+import toy  # noqa: E402
+
+
+@pytest.fixture
+def toy_task():
+    from novelty.datasets import registry as datasets
+
+    datasets.register(toy.TASK, toy.toy_task, description="A tiny synthetic task (tests).", replace=True)
+    novelty.register_detector(toy.BROKEN, toy.broken_detector, replace=True)
+    yield toy.TASK
+    datasets.unregister(toy.TASK)
+    novelty.registry.detectors.unregister(toy.BROKEN)
+
+
+def bench(tmp_path, *detectors, extra=()):
+    argv = ["bench", "--task", f"{toy.TASK} n_test=24", "--seeds", "1", "--out", str(tmp_path / "b"),
+            "--no-plots", "--no-memory", "--quiet", *extra]
+    for d in detectors:
+        argv += ["--detector", d]
+    return main(argv)
+
+
+def test_the_paired_comparison_is_printed_against_the_reference(toy_task, tmp_path, capsys):
+    assert bench(tmp_path, "hsom n_rows=3 n_columns=3", "parzen", extra=["--reference", "parzen"]) == 0
+    out = capsys.readouterr().out
+    assert out.index("| # | detector") < out.index("ΔROC AUC vs parzen (mean ± se)")
+    assert "## Paired comparison with parzen" in (tmp_path / "b" / "summary.md").read_text()
+
+
+def test_an_unknown_reference_is_a_user_error(toy_task, tmp_path, capsys):
+    assert bench(tmp_path, "hsom", extra=["--reference", "lof"]) == 2
+    assert "reference 'lof' is not a detector" in capsys.readouterr().err
+
+
+def test_a_partial_failure_exits_0_and_says_how_many_failed(toy_task, tmp_path, capsys):
+    assert bench(tmp_path, "hsom", toy.BROKEN) == 0
+    assert "1 of 2 cell(s) failed" in capsys.readouterr().out
+
+
+def test_a_bench_where_every_cell_fails_exits_1(toy_task, tmp_path, capsys):
+    assert bench(tmp_path, toy.BROKEN) == 1
+    err = capsys.readouterr().err
+    assert "every cell failed (1 of 1), nothing was measured" in err
+    assert "FloatingPointError: this detector always fails" in err
