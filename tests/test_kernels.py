@@ -460,3 +460,13 @@ def test_hot_path_accepts_huge_finite_scans_and_rejects_nan():
         det.score_one(np.array([0.0, np.nan, 0.0, 0.0]))
     with pytest.raises(ValueError, match="NaN or infinity"):
         det.learn_one(np.array([0.0, np.inf, 0.0, 0.0]))
+
+
+def test_a_som_with_its_own_neighbour_rate_learns_by_the_reference_loop():
+    """The kernel shares one rate between winner and neighbours; the option (ours) takes the reference."""
+    X = np.random.default_rng(0).random((50, 4))
+    paper = novelty.make("hsom", n_rows=3, n_columns=3).fit(X)
+    own = novelty.make("hsom", n_rows=3, n_columns=3, neighbour_learning_rate=0.25).fit(X)
+    assert _kernels.learner(own.clusterer_, own.synapse_) is None
+    np.testing.assert_array_equal(paper.clusterer_.weights_, own.clusterer_.weights_)
+    np.testing.assert_array_equal(paper.synapse_.efficacy_, own.synapse_.efficacy_)

@@ -317,3 +317,30 @@ def test_an_update_moves_the_winner_and_neighbours_closer(case):
     assert np.all(d_after <= d_before)
     others = np.setdiff1d(np.arange(som.n_units_), moved)
     np.testing.assert_array_equal(som.weights_[others], before[others])
+
+
+# ------------------------------------------- a neighbour rate of its own (ours)
+def test_neighbour_learning_rate_by_hand():
+    """Not in the paper: the winner moves by eta = 0.25, its neighbours by their own 0.5."""
+    som = som_with_weights(2, 2, [[0, 0], [1, 0], [0, 1], [1, 1]], neighbour_learning_rate=0.5)
+    x = np.array([0.75, 0.25])
+    som.adapt(x, som.match(x))
+    expected = [[0.375, 0.125], [0.9375, 0.0625], [0.375, 0.625], [0.875, 0.625]]
+    np.testing.assert_array_equal(som.weights_, expected)
+
+
+def test_neighbour_learning_rate_none_is_the_papers_shared_rate():
+    assert SOM().neighbour_learning_rate is None
+    rng = np.random.default_rng(3)
+    X = rng.random((200, 4))
+    shared = SOM(n_rows=4, n_columns=4).initialize(X, random_state=0)
+    same = SOM(n_rows=4, n_columns=4, neighbour_learning_rate=0.25).initialize(X, random_state=0)
+    for x in X:
+        shared.adapt(x, shared.match(x))
+        same.adapt(x, same.match(x))
+    np.testing.assert_array_equal(shared.weights_, same.weights_)
+
+
+def test_neighbour_learning_rate_out_of_range_is_refused():
+    with pytest.raises(ValueError, match="neighbour_learning_rate"):
+        SOM(neighbour_learning_rate=1.5).initialize(np.zeros((1, 2)), random_state=0)

@@ -232,7 +232,8 @@ def learner(clusterer, synapse) -> Callable | None:
     """
     kind = type(clusterer)
     if kind is SOM:
-        if type(synapse) is not StanleySynapse or \
+        # the kernel shares one rate between the winner and its neighbours
+        if type(synapse) is not StanleySynapse or clusterer.neighbour_learning_rate is not None or \
                 not _som_ready(clusterer, getattr(synapse, "efficacy_", None)):
             return None
         compiled, kernel, handing_over = _SOM, _learn_som_stanley, _som_handing_over

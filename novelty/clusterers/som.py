@@ -12,7 +12,9 @@ towards the input with the same learning rate:
     w_j <- w_j + eta(t) * (v - w_j)                                      (2)
 
 The paper keeps eta = 0.25 and the radius at 1 throughout ("so that the network
-was always learning"). For users who want a converging map, ``decay`` makes
+was always learning"). ``neighbour_learning_rate`` (ours, not in the paper)
+gives the neighbours a rate of their own, eta_n instead of eta(t) in (2) for
+every unit but the winner; None, the default, is the paper's shared rate. For users who want a converging map, ``decay`` makes
 both fall from their initial to their final values over ``decay_steps``
 updates t:
 
@@ -53,6 +55,9 @@ class SOM(Clusterer):
         Columns of the map grid.
     learning_rate : float, default=0.25
         eta in equation (2), for the winner and its neighbours alike.
+    neighbour_learning_rate : float or None, default=None
+        Not in the paper: a constant rate eta_n for the neighbours, the
+        winner keeping eta(t). None (the paper) uses eta(t) for both.
     radius : int or float, default=1
         Neighbourhood radius in grid steps (square: Chebyshev distance).
     decay : {"constant", "linear", "asymptotic"}, default="constant"
@@ -97,6 +102,7 @@ class SOM(Clusterer):
         "n_rows": Interval(numbers.Integral, 1, None),
         "n_columns": Interval(numbers.Integral, 1, None),
         "learning_rate": Interval(numbers.Real, 0, 1),
+        "neighbour_learning_rate": Interval(numbers.Real, 0, 1, allow_none=True),
         "radius": Interval(numbers.Real, 0, None),
         "decay": Options(("constant", "linear", "asymptotic")),
         "decay_steps": Interval(numbers.Integral, 1, None),
@@ -117,6 +123,7 @@ class SOM(Clusterer):
         radius_final=0.0,
         init="uniform",
         init_range=(0.0, 1.0),
+        neighbour_learning_rate=None,
     ):
         self.n_rows = n_rows
         self.n_columns = n_columns
@@ -128,6 +135,7 @@ class SOM(Clusterer):
         self.radius_final = radius_final
         self.init = init
         self.init_range = init_range
+        self.neighbour_learning_rate = neighbour_learning_rate
 
     def _validate_params(self) -> None:
         super()._validate_params()
@@ -191,9 +199,13 @@ class SOM(Clusterer):
         return Match(winner, float(d[winner]), self._neighbour_table[winner])
 
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
-        rows = np.append(match.neighbours, match.winner)
         W = self.weights_
-        W[rows] += self.current_learning_rate() * (x - W[rows])
+        if self.neighbour_learning_rate is None:
+            rows = np.append(match.neighbours, match.winner)
+            W[rows] += self.current_learning_rate() * (x - W[rows])
+        else:
+            W[match.winner] += self.current_learning_rate() * (x - W[match.winner])
+            W[match.neighbours] += self.neighbour_learning_rate * (x - W[match.neighbours])
         self.n_updates_ += 1
         if self.decay != "constant" and self.current_radius() != self._table_radius:
             self._rebuild_scratch()

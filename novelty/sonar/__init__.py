@@ -22,7 +22,7 @@ published; this subpackage rebuilds the setting:
 from __future__ import annotations
 
 from .controller import RunVariation, WallFollower, WaypointFollower
-from .environments import Environment, environment_names, get_environment
+from .environments import Environment, corridor_a, environment_names, get_environment
 from .materials import MATERIALS, Material
 from .preprocessing import bin_by_distance, preprocess
 from .ranger import PolaroidRanger
@@ -35,7 +35,7 @@ __all__ = [
     "Environment", "get_environment", "environment_names", "feature_table",
     "PolaroidRanger", "Robot", "NOMAD_200", "Material", "MATERIALS",
     "RunVariation", "WallFollower", "WaypointFollower",
-    "preprocess", "bin_by_distance", "Feature", "MapBuilder", "WorldMap",
+    "preprocess", "bin_by_distance", "Feature", "MapBuilder", "WorldMap", "corridor_a",
     "plot_map", "plot_scans",
 ]
 

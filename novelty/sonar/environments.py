@@ -14,7 +14,8 @@ marked "chosen". The maps are built so that the paper's comparisons follow
 from geometry, not from tuning:
 
 - A: doors set 0.12 m into the walls (chosen), a thin crack near the start
-  (stated), a door on the right at about 3 m (stated).
+  (stated), a door on the right at about 3 m (stated), and further office
+  doors on both sides (chosen; :func:`corridor_a` can leave them out).
 - A*: A with that door open; a low cardboard box in the doorway stopped the
   robot but "did not appear on the sonar scans" (stated), so the doorway
   reads as a deep opening into an office.
@@ -53,7 +54,7 @@ from .layout import FRAME_EDGE_RANGE, Board, Crack, Door, corridor_wall
 from .world import MapBuilder, WorldMap
 
 __all__ = ["Environment", "get_environment", "environment_names", "corridor_environment",
-           "ROUTE_LENGTH"]
+           "corridor_a", "ROUTE_LENGTH"]
 
 #: Length (m) of every paper route (Marsland et al., 2000, section 4.2).
 ROUTE_LENGTH = 10.0
@@ -154,19 +155,37 @@ def _left_doors_ab():
             Door("door-l0", -2.0), Door("door-l4", 13.0)]
 
 
-def _build_a(open_door: bool = False) -> Environment:
+def corridor_a(open_door: bool = False, extra_doors: bool = True) -> Environment:
+    """Corridor A (or A* with ``open_door``), with or without the doors the paper does not name.
+
+    The paper names two features of A: a thin crack near the start and a
+    door on the right at about 3 m (section 4.1, figure 4). It also says
+    that doors lead from the corridors into offices, without saying where,
+    so the map adds ``extra_doors`` (chosen): a second door on the right at
+    7.6 m, three on the left (1.6, 5.2 and 9.1 m) and one beyond each end
+    of the route on each side, as in an office corridor. They are
+    perceptions the paper's runs may not have had; ``extra_doors=False``
+    leaves only the two named features (see docs/reproduction.md for what
+    they change).
+    """
     door = Door("door-r1-open" if open_door else "door-r1", 3.0, open=open_door,
                 description="door on the right at about 3 m" + (", opened" if open_door else ""))
-    right = [Crack("crack-1", 0.8, description="thin crack near the start"), door,
-             Door("door-r2", 7.6), Door("door-r0", -2.6), Door("door-r3", 12.4)]
+    right = [Crack("crack-1", 0.8, description="thin crack near the start"), door]
+    left = []
+    if extra_doors:
+        right += [Door("door-r2", 7.6), Door("door-r0", -2.6), Door("door-r3", 12.4)]
+        left = _left_doors_ab()
     if open_door:
         desc = ("Corridor A* (Marsland et al. 2000): A with the door on the right at 3 m open; "
                 "a low box in the doorway is below the sonar beam.")
     else:
         desc = ("Corridor A (Marsland et al. 2000): 1.7 m wide, painted breezeblock, varnished "
                 "wooden doors in shallow recesses, a thin crack near the start.")
-    return corridor_environment("a-star" if open_door else "a", 1.7, "breezeblock",
-                                "breezeblock", right, _left_doors_ab(), desc)
+    name = "a-star" if open_door else "a"
+    if not extra_doors:
+        name += "-named"
+        desc += " Only the features the paper names: the crack and the door on the right."
+    return corridor_environment(name, 1.7, "breezeblock", "breezeblock", right, left, desc)
 
 
 def _build_b() -> Environment:
@@ -229,8 +248,8 @@ def _build_control() -> Environment:
 
 
 _BUILDERS = {
-    "a": functools.partial(_build_a, False),
-    "a-star": functools.partial(_build_a, True),
+    "a": functools.partial(corridor_a, False),
+    "a-star": functools.partial(corridor_a, True),
     "b": _build_b,
     "c": _build_c,
     "control": _build_control,

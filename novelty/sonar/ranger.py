@@ -41,7 +41,9 @@ loss the ranger's time-varying gain makes up for; Polaroid, 1987).
 Readings then get Gaussian range noise of standard deviation ``noise_sd +
 noise_fraction * range`` (the module's stated accuracy is about 1 % of the
 range; Polaroid, 1987), and each reading is lost (maximum range) with
-probability ``dropout``.
+probability ``dropout``. With ``resolution`` set, readings are finally
+rounded to its multiples: 0.0254 m gives the whole inches the Nomad 200
+reports (Nomadic Technologies, 1997); the default keeps them continuous.
 
 References
 ----------
@@ -69,7 +71,10 @@ from .geometry import elevation_offset, mirror, ray_segment_distances, segment_n
 from .robot import NOMAD_200, Robot
 from .world import WorldMap
 
-__all__ = ["PolaroidRanger", "RingEchoes"]
+__all__ = ["PolaroidRanger", "RingEchoes", "INCH"]
+
+#: One inch (m): the Nomad 200 reports sonar ranges in whole inches.
+INCH = 0.0254
 
 _RAYS_PER_CHUNK = 6000
 
@@ -127,6 +132,11 @@ class PolaroidRanger:
         missed echo now and then, about one reading in 1000.
     multipath : bool, default=True
         Whether to follow one specular bounce.
+    edges : bool, default=True
+        Whether edges (door frames, the lips of a crack) send echoes.
+    resolution : float or None, default=None
+        Step (m) to which readings are rounded (``INCH`` for the Nomad's
+        whole inches); None keeps them continuous.
     footprint_margin : float, default=0.05
         Distance (m) beyond a sonar's echo still counted as inside its
         footprint (about the pulse's spatial length), for ground truth.
@@ -143,6 +153,12 @@ class PolaroidRanger:
     dropout: float = 0.001
     multipath: bool = True
     footprint_margin: float = 0.05
+    edges: bool = True
+    resolution: float | None = None
+
+    def __post_init__(self):
+        if self.resolution is not None and not self.resolution > 0:
+            raise ValueError(f"resolution must be a positive step in metres or None; got {self.resolution!r}.")
 
     # ------------------------------------------------------------------ beam
     @property
@@ -202,7 +218,10 @@ class PolaroidRanger:
         noisy = clean + sd * rng.standard_normal(ranges.shape)
         lost = rng.random(ranges.shape) < self.dropout
         out = np.clip(noisy, self.min_range, self.max_range)
-        return np.where(heard & ~lost, out, self.max_range)
+        out = np.where(heard & ~lost, out, self.max_range)
+        if self.resolution is not None:
+            out = np.round(out / self.resolution) * self.resolution
+        return out
 
 
 class _Scene:
@@ -361,7 +380,7 @@ class _Scene:
         flat_pos = sensor_pos.reshape(-1, 2)
         flat_axis = sensor_axis.reshape(-1)
         m = flat_pos.shape[0]
-        if w.edges.shape[0] == 0:
+        if w.edges.shape[0] == 0 or not self.ranger.edges:
             return np.full(m, np.inf), np.full(m, -1, dtype=np.intp)
         vec = w.edges[None, :, :] - flat_pos[:, None, :]                      # (m, e, 2)
         r = np.linalg.norm(vec, axis=2)

@@ -109,3 +109,27 @@ def test_environment_names_are_forgiving_and_unknown_ones_explained():
     assert sonar.get_environment("A*") is sonar.get_environment("paper-a-star")
     with pytest.raises(ValueError, match="known: a, a-star"):
         sonar.get_environment("corridor-z")
+
+
+def test_corridor_a_without_extra_doors_keeps_only_the_papers_features():
+    """The paper names A's crack and its door on the right at about 3 m; the other doors are chosen."""
+    named = {f["id"] for f in sonar.get_environment(sonar.corridor_a(extra_doors=False)).feature_table()}
+    assert named == {"crack-1", "door-r1"}
+    opened = sonar.corridor_a(open_door=True, extra_doors=False).feature_table()
+    assert {f["id"] for f in opened} == {"crack-1", "door-r1-open", "door-r1-open-frame"}
+    full = {f["id"] for f in sonar.corridor_a().feature_table()}
+    assert full == {f["id"] for f in sonar.feature_table("a")} and len(full) > 2
+
+
+def test_switches_at_their_defaults_keep_the_simulated_runs_unchanged():
+    """The defaults of the simulator's switches give the runs they gave before the switches existed.
+
+    The two sums were computed from ``simulate("a", seed=0)`` before the
+    switches (whole inches, edge echoes, A's extra doors) were added.
+    """
+    explicit = sonar.simulate(sonar.corridor_a(extra_doors=True), seed=0,
+                              ranger=sonar.PolaroidRanger(edges=True, resolution=None))
+    default = sonar.simulate("a", seed=0)
+    np.testing.assert_array_equal(explicit.X, default.X)
+    assert float(default.X.sum()) == pytest.approx(568.203831371467, rel=1e-12)
+    assert float((default.X ** 2).sum()) == pytest.approx(443.8602519121565, rel=1e-12)

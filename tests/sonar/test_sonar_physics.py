@@ -8,6 +8,7 @@ import pytest
 from novelty.sonar import NOMAD_200, PolaroidRanger
 from novelty.sonar.geometry import elevation_offset, mirror, ray_segment_distances
 from novelty.sonar.materials import MATERIALS
+from novelty.sonar.ranger import INCH
 from novelty.sonar.world import MapBuilder
 
 QUIET = PolaroidRanger(noise_sd=0.0, noise_fraction=0.0, dropout=0.0)
@@ -152,3 +153,27 @@ def test_edge_behind_a_silent_pane_is_not_heard():
     echoes = PolaroidRanger(noise_sd=0.0, noise_fraction=0.0, dropout=0.0,
                             multipath=False).cast(b.build(), pose)
     assert np.isinf(echoes.ranges[0, RIGHT])
+
+
+def test_readings_in_whole_inches_are_the_continuous_ones_rounded():
+    """The Nomad reports whole inches; ``resolution`` rounds each reading to the nearest."""
+    ranges = np.array([0.5, 1.0, 2.345, np.inf])
+    continuous = PolaroidRanger().read(ranges, np.random.default_rng(4))
+    inches = PolaroidRanger(resolution=INCH).read(ranges, np.random.default_rng(4))
+    np.testing.assert_allclose(inches / INCH, np.round(inches / INCH), atol=1e-9)
+    assert np.all(np.abs(inches - continuous) <= INCH / 2 + 1e-12)
+    assert QUIET.resolution is None
+
+
+def test_resolution_must_be_positive():
+    with pytest.raises(ValueError, match="resolution"):
+        PolaroidRanger(resolution=0.0)
+
+
+def test_without_edge_echoes_an_edge_alone_is_silent():
+    b = MapBuilder()
+    b.edge((0.0, 0.0), heard_to=1.0)
+    pose = [[0.0, 0.5 + NOMAD_200.sonar_ring_radius, 0.0]]
+    silent = PolaroidRanger(noise_sd=0.0, noise_fraction=0.0, dropout=0.0, edges=False)
+    assert np.isfinite(QUIET.cast(b.build(), pose).ranges[0, RIGHT])
+    assert np.isinf(silent.cast(b.build(), pose).ranges[0, RIGHT])
