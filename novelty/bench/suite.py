@@ -26,6 +26,11 @@ The TOML form::
     name = "inspection-easy"
     options = { n_scans = 200 }                 # optional, given to the task
 
+    [[tasks]]                                   # the user's own scans: the task "files"
+    path = "scans.csv"                          # relative to the suite file
+    options = { label = "novel", train_rows = 500, columns = "sonar*" }
+    label = "my-corridor"                       # optional (default: the file's name)
+
 Every detector entry expands over the Cartesian product of its ``grid``;
 the label of each then carries its grid values, ``hsom-5x5[alpha=1.2]``.
 """
@@ -262,6 +267,12 @@ def check_task(spec: TaskSpec) -> None:
             check_parameters(f"task '{spec.name}'", spec.options, valid)
     except RegistryError as exc:
         raise SuiteError(str(exc)) from None
+    if spec.name == FILES_TASK:
+        if "path" not in spec.options:
+            raise SuiteError(f"Task {spec.label!r}: the {FILES_TASK!r} task needs path= (a .csv or .npz file).")
+        for key in _FILE_OPTIONS:
+            if key in spec.options and not Path(str(spec.options[key])).is_file():
+                raise SuiteError(f"Task {spec.label!r}: data file not found: {spec.options[key]}")
 
 
 def _resolve_components(suite: Suite) -> tuple:
@@ -356,8 +367,36 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     return specs
 
 
-def suite_from_dict(data: dict, source: str = "suite") -> Suite:
-    """Build and check a :class:`Suite` from parsed TOML."""
+#: the task made from the user's own files (:func:`novelty.datasets.files.files`)
+FILES_TASK = "files"
+#: its options that name files, read relative to the suite file
+_FILE_OPTIONS = ("path", "test_path")
+
+
+def _resolved(options: dict, base: Path | None) -> dict:
+    """File options made absolute against the suite's folder (a suite runs from anywhere)."""
+    if base is None:
+        return options
+    return {k: str(base / v) if k in _FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
+
+
+def _files_task(entry: dict, where: str, base: Path | None) -> TaskSpec:
+    """``[[tasks]] path = "scans.csv"``: the ``files`` task on that file."""
+    if entry.get("name", FILES_TASK) != FILES_TASK:
+        raise SuiteError(f"{where}: a task with a 'path' is the {FILES_TASK!r} task; "
+                         f"got name {entry['name']!r}.")
+    path = entry["path"]
+    if not isinstance(path, str) or not path:
+        raise SuiteError(f"{where}: path must be a file name; got {path!r}.")
+    options = _table(entry.get("options"), f"{where}: options")
+    if "path" in options:
+        raise SuiteError(f"{where}: give the path once (path = ..., not also in options).")
+    return TaskSpec(FILES_TASK, _resolved({"path": path, **options}, base),
+                    entry.get("label", Path(path).stem))
+
+
+def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None) -> Suite:
+    """Build and check a :class:`Suite` from parsed TOML (file paths relative to ``base``)."""
     from ..datasets import registry as datasets
     from ..registry import detectors as detector_registry
 
@@ -382,15 +421,20 @@ def suite_from_dict(data: dict, source: str = "suite") -> Suite:
     tasks: list[TaskSpec] = []
     for i, entry in enumerate(_entries(data, "tasks", source)):
         where = f"{source}: tasks[{i}]"
-        _known_keys(entry, {"name", "options", "label", "optional"}, where)
+        _known_keys(entry, {"name", "options", "label", "optional", "path"}, where)
+        if "path" in entry:
+            tasks.append(_files_task(entry, where, base))
+            continue
         name = entry.get("name")
         if not isinstance(name, str) or not name:
-            raise SuiteError(f"{where}: every task needs a 'name' (a dataset registry name).")
+            raise SuiteError(f"{where}: every task needs a 'name' (a dataset registry name) or a 'path'.")
         if entry.get("optional") and name not in datasets:
             skipped.append(name)
             continue
-        tasks.append(TaskSpec(name, _table(entry.get("options"), f"{where}: options"),
-                              entry.get("label", name)))
+        options = _table(entry.get("options"), f"{where}: options")
+        if name == FILES_TASK:
+            options = _resolved(options, base)
+        tasks.append(TaskSpec(name, options, entry.get("label", name)))
     memory = head.get("memory", True)
     if not isinstance(memory, bool) and memory != "first-seed":
         raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")
@@ -405,7 +449,7 @@ def suite_from_dict(data: dict, source: str = "suite") -> Suite:
 def load_suite(path) -> Suite:
     """Read and check a suite file."""
     path = Path(path)
-    return suite_from_dict(_read_toml(path), source=path.name)
+    return suite_from_dict(_read_toml(path), source=path.name, base=path.parent.resolve())
 
 
 def quick_suite_path() -> Path:
@@ -438,4 +482,7 @@ def task_from_text(text: str) -> TaskSpec:
         raise SuiteError(f"Cannot read task {text!r}: {exc}.") from None
     if not words:
         raise SuiteError("An empty --task was given.")
-    return TaskSpec(words[0], parse_assignments(words[1:], "task option"))
+    options = parse_assignments(words[1:], "task option")
+    if words[0] == FILES_TASK:
+        options = _resolved(options, Path.cwd())
+    return TaskSpec(words[0], options)

@@ -20,11 +20,14 @@ for instance ``novelty/cli/reproduce.py``::
 and ``"reproduce": "novelty.cli.reproduce"`` in :data:`COMMANDS`.
 User errors (unknown names, bad parameters, missing or malformed files, bad
 data) are printed as one line on stderr with exit code 2, never a traceback.
+A closed output pipe (``novelty list | head``) ends the command quietly with
+exit code 141, as a shell reports a command stopped by SIGPIPE.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 from typing import Sequence
 
@@ -85,7 +88,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     prog = f"novelty {args._command}"
     try:
-        return int(args._run(args) or 0)
+        code = int(args._run(args) or 0)
+        sys.stdout.flush()  # a closed pipe is found here, not in Python's flush at exit
+        return code
+    except BrokenPipeError:
+        return _output_closed()
     except user_errors() as exc:
         print(f"{prog}: error: {one_line(exc)}", file=sys.stderr)
         return 2
@@ -98,6 +105,25 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{prog}: internal error: {type(exc).__name__}: {one_line(exc)} "
               "(rerun with 'novelty --traceback ...' and report it)", file=sys.stderr)
         return 1
+
+
+#: exit code of a command whose reader closed the pipe (128 + SIGPIPE, as a shell reports it)
+EXIT_PIPE_CLOSED = 141
+
+
+def _output_closed() -> int:
+    """The reader of standard output went away (``novelty list | head``): stop quietly.
+
+    What is still buffered for standard output goes to the null device, so that
+    Python's flush at exit does not report the broken pipe either.
+    """
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (AttributeError, OSError, ValueError):  # not a real file (a test's capture)
+        pass
+    return EXIT_PIPE_CLOSED
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -4,15 +4,17 @@ from __future__ import annotations
 
 import argparse
 import csv
-import io
 import sys
 from pathlib import Path
 from typing import Any, Sequence
 
 import numpy as np
 
+from ..datasets.files import PREPROCESSING
+from ..sonar.preprocessing import PAPER_THRESHOLD
+
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
-           "write_novelty", "add_command"]
+           "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell"]
 
 
 class UserError(Exception):
@@ -63,119 +65,86 @@ def parse_params(items: Sequence[str] | None) -> dict[str, Any]:
 
 
 # ----------------------------------------------------------------- scan files
-#: columns of a scan file that are not sensors
-META_COLUMNS = ("y", "label", "distance", "run", "split", "time", "timestamp")
-#: further non-sensor columns a dataset export may hold (text, not carried to the output)
-TEXT_COLUMNS = ("features", "class", "row_index")
+def add_data_options(parser, data_help: str = "scans: .csv or .npz") -> None:
+    """``--data`` and the options that say which of its columns are what."""
+    parser.add_argument("--data", required=True, metavar="FILE", help=data_help)
+    group = parser.add_argument_group("columns of the data file")
+    group.add_argument("--columns", metavar="C,C,..",
+                       help="sensor columns: names, patterns ('field.ranges*') or 0-based indices "
+                       "(default: every column without another role)")
+    group.add_argument("--label", metavar="COLUMN",
+                       help="label column, non-zero = novel (default: a column named y or label)")
+    group.add_argument("--time", metavar="COLUMN",
+                       help="time column, used as timestamps, never as a sensor (default: a column "
+                       "named time, timestamp, field.header.stamp or %%time; ROS stamps: ns)")
+    group.add_argument("--preprocess", choices=PREPROCESSING, default="none",
+                       help="'paper': ranges (m) become 1 - min(r, T) / T, the paper's sonar "
+                       "preprocessing (default: none, the values as they are)")
+    group.add_argument("--range-threshold", type=float, default=PAPER_THRESHOLD, metavar="T",
+                       help=f"T of --preprocess paper, in metres (default {PAPER_THRESHOLD:g})")
+    group.add_argument("--bin-length", type=float, metavar="M",
+                       help="average the scans over each M metres of travel (needs a distance column)")
 
 
-def _read_npz(path: Path) -> tuple[np.ndarray, dict]:
+def data_options(args) -> dict:
+    """The options of :func:`novelty.datasets.files.read_scans` given on the command line."""
+    return dict(columns=args.columns, label=args.label, time=args.time, preprocess=args.preprocess,
+                threshold=args.range_threshold, bin_length=args.bin_length)
+
+
+def read_scans(args):
+    """The scans of ``--data`` as a :class:`~novelty.datasets.Dataset` (see :mod:`novelty.datasets.files`)."""
+    from ..datasets.files import read_scans as read
+
     try:
-        npz = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
-        raise UserError(f"Cannot read {path} as an .npz file: {exc}") from None
-    with npz:
-        names = list(npz.files)
-        if "X" in names:
-            X = npz["X"]
-        elif len(names) == 1:
-            X = npz[names[0]]
-        else:
-            raise UserError(f"{path} has no array named 'X' (it has {', '.join(names) or 'none'}).")
-        extras = {k: npz[k] for k in names if k in META_COLUMNS}
-    return X, extras
+        return read(args.data, **data_options(args))
+    except FileNotFoundError as exc:
+        raise UserError(str(exc)) from None
 
 
-def _read_csv(path: Path) -> tuple[np.ndarray, dict]:
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
-    if not rows:
-        raise UserError(f"{path} is empty.")
-
-    def numeric(cell: str) -> bool:
-        try:
-            float(cell)
-            return True
-        except ValueError:
-            return False
-
-    header = None if all(numeric(c) for c in rows[0]) else [c.strip() for c in rows[0]]
-    first_line = 2 if header else 1
-    body = rows[1:] if header else rows
-    if not body:
-        raise UserError(f"{path} has a header but no scans.")
-    width = len(header or body[0])
-    header = header or [f"s{i}" for i in range(width)]
-    for i, row in enumerate(body):
-        if len(row) != width:
-            raise UserError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
-    names = [name.lower() for name in header]
-    sensors = [j for j, name in enumerate(names) if name not in META_COLUMNS + TEXT_COLUMNS]
-    values = np.empty((len(body), len(sensors)))
-    for i, row in enumerate(body):
-        for k, j in enumerate(sensors):
-            try:
-                values[i, k] = float(row[j])
-            except ValueError:
-                raise UserError(f"{path}, line {i + first_line}: column {header[j]!r} holds {row[j]!r}, "
-                                "which is not a number.") from None
-    extras = {names[j]: _column([row[j] for row in body]) for j in range(width) if names[j] in META_COLUMNS}
-    return values, extras
+def carried_columns(data) -> dict:
+    """The per-scan values a novelty output carries beside the novelty."""
+    columns = {name: getattr(data, name) for name in ("y", "distance", "run") if getattr(data, name) is not None}
+    if "time" in data.columns:
+        columns["time"] = data.columns["time"]
+    return columns
 
 
-def _column(cells: list[str]) -> np.ndarray:
-    """A metadata column: numbers where every cell is one, else text (e.g. split)."""
-    try:
-        return np.array([float(c) for c in cells])
-    except ValueError:
-        return np.array(cells)
+def alarms(det, novelty: np.ndarray) -> np.ndarray | None:
+    """1 where the novelty is above the detector's ``threshold`` (as ``predict`` says -1), else 0."""
+    threshold = getattr(det, "threshold", None)
+    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
+        return None
+    return (np.asarray(novelty) > threshold).astype(np.int8)
 
 
-def read_scans(path) -> tuple[np.ndarray, dict]:
-    """Scans from a CSV (one row a scan, optional header) or an NPZ (array ``X``).
-
-    Columns (or arrays) named ``y``, ``label``, ``distance``, ``run``,
-    ``split``, ``time``/``timestamp`` are not sensors: they are returned in
-    the second value and carried to the output.
-    """
-    path = Path(path)
-    if not path.exists():
-        raise UserError(f"Data file not found: {path}")
-    if path.is_dir():
-        raise UserError(f"{path} is a folder; expected a .csv or .npz file of scans.")
-    X, extras = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
-    X = np.asarray(X)
-    if X.ndim != 2 or X.shape[0] == 0 or X.shape[1] == 0:
-        raise UserError(f"{path}: expected a table of scans (rows) by sensors (columns); got shape {X.shape}.")
-    if not np.issubdtype(X.dtype, np.number) or not np.all(np.isfinite(X)):
-        raise UserError(f"{path}: the scans must be finite numbers.")
-    if "timestamp" in extras and "time" not in extras:
-        extras["time"] = extras.pop("timestamp")
-    return X.astype(np.float64), extras
-
-
-def write_novelty(path, novelty: np.ndarray, extras: dict) -> None:
-    """One row a scan: ``scan, novelty`` and the carried columns; ``-`` or ``None`` is stdout."""
+def write_novelty(path, novelty: np.ndarray, data, alarm: np.ndarray | None = None) -> None:
+    """One row a scan: ``scan, novelty, alarm`` and the carried columns; ``-`` or ``None`` is stdout."""
     columns = {"scan": np.arange(novelty.size), "novelty": novelty}
-    for name in ("y", "label", "distance", "run", "time"):
-        if name in extras and np.asarray(extras[name]).shape == novelty.shape:
-            columns[name] = np.asarray(extras[name])
+    if alarm is not None:
+        columns["alarm"] = alarm
+    columns.update(carried_columns(data))
     if path not in (None, "-") and Path(path).suffix.lower() == ".npz":
         with open(path, "wb") as fh:
             np.savez(fh, **columns)
         return
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(list(columns))
-    for i in range(novelty.size):
-        writer.writerow([_cell(columns[c][i]) for c in columns])
     if path in (None, "-"):
-        sys.stdout.write(buffer.getvalue())
+        _write_rows(sys.stdout, columns, novelty.size)
     else:
-        Path(path).write_text(buffer.getvalue(), encoding="utf-8")
+        with open(path, "w", newline="", encoding="utf-8") as fh:
+            _write_rows(fh, columns, novelty.size)
 
 
-def _cell(value) -> str:
+def _write_rows(fh, columns: dict, n: int) -> None:
+    # a row at a time: a reader that stops early (| head) is noticed at the next row
+    writer = csv.writer(fh, lineterminator="\n")
+    writer.writerow(list(columns))
+    for i in range(n):
+        writer.writerow([format_cell(columns[c][i], exact=c == "time") for c in columns])
+
+
+def format_cell(value, exact: bool = False) -> str:
+    """A value as CSV text: floats to 10 digits, or exactly (timestamps: every digit counts)."""
     if isinstance(value, (float, np.floating)):
-        return f"{float(value):.10g}"
+        return repr(float(value)) if exact else f"{float(value):.10g}"
     return str(value.item() if hasattr(value, "item") else value)

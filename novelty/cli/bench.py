@@ -15,15 +15,20 @@ then scores the test scans without learning. Results go to --out:
 results.csv and results.jsonl (one row a cell, with provenance), summary.md
 (the ranking, each detector paired with a reference detector cell by cell)
 and plots/. Rerunning the same command resumes: finished cells are skipped.
-A suite is a TOML file (see benchmarks/suites/), the embedded --quick suite,
-or --detector/--task options. The exit code is 1 if every cell failed."""
+A suite is a TOML file (see benchmarks/suites/ in the source tree), the
+embedded --quick suite, or --detector/--task options. Your own scans are the
+task 'files' (--task 'files path=scans.csv ...' or a suite's [[tasks]] path =
+"scans.csv"; see 'novelty list datasets'). The exit code is 1 if every cell
+failed."""
 
 EXAMPLES = [
     "novelty bench --quick --out results/quick",
-    "novelty bench benchmarks/suites/paper.toml --out results/paper --jobs 2",
+    "novelty bench benchmarks/suites/habituation.toml --out results/habituation --jobs 2",
     "novelty bench suite.toml --out results --backend dask --scheduler tcp://10.0.0.5:8786",
     "novelty bench --detector hsom --detector 'habituating clusterer=som n_rows=5' "
     "--task inspection-easy --seeds 0,1,2 --out results/mine",
+    "novelty bench --detector hsom --detector lof "
+    "--task 'files path=scans.csv label=novel train_rows=200' --out results/mine",
 ]
 
 

@@ -1,25 +1,38 @@
-"""``novelty run``: stream a file of scans through a detector, write each scan's novelty."""
+"""``novelty run``: stream scans through a detector, write each scan's novelty."""
 
 from __future__ import annotations
 
+import csv
 import sys
 
-from ._common import UserError, add_command, parse_params, read_scans, write_novelty
+import numpy as np
+
+from ..sonar.preprocessing import PAPER_THRESHOLD
+from ._common import (UserError, add_command, add_data_options, alarms, format_cell, parse_params,
+                      read_scans, write_novelty)
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 
-The novelty of each scan is computed before the scan is learned. Scans are
-rows of a CSV (optional header; columns named y, label, distance, run, time
-are carried to the output, not used as sensors; a 'time' column gives the
-synapses real elapsed time) or the array X of an .npz file. Writes one row a
-scan (scan, novelty, ...) to --out (CSV, or .npz by extension; default:
-standard output). A batch-only detector is fitted on all the scans, then
-scores them."""
+The novelty of each scan is computed before the scan is learned; the alarm
+is 1 where the novelty is above the detector's threshold (--param
+threshold=...), as predict() says -1. Scans are rows of a CSV (optional
+header) or the array X of an .npz file; --columns chooses the sensors, and
+columns named y/label, distance, run, time are carried to the output, not
+used as sensors (a time column gives the synapses real elapsed time). Writes
+one row a scan (scan, novelty, alarm, ...) to --out (CSV, or .npz by
+extension; default: standard output). A batch-only detector is fitted on all
+the scans, then scores them.
+
+With --data - the scans are read from standard input, a CSV line at a time
+(a header line first, or none), and each scan's row is written and flushed
+as soon as it is scored: for a live sensor feed."""
 
 EXAMPLES = [
     "novelty run hsom --data scans.csv",
     "novelty run hsom --data scans.csv --param n_rows=5 --param alpha=1.2 --out novelty.csv",
     "novelty run habituating --data corridor-a.npz --param clusterer=som --passes 5 --save a.npz",
+    "novelty run hsom --data ranges.csv --columns 'sonar*' --preprocess paper --time stamp",
+    "rostopic echo -p /sonar | novelty run hsom --data - --columns 'field.ranges*' --preprocess paper",
 ]
 
 
@@ -27,7 +40,7 @@ def add_parser(subparsers):
     parser = add_command(subparsers, "run", "stream scans through a detector and write their novelty",
                          DESCRIPTION, EXAMPLES)
     parser.add_argument("detector", metavar="DETECTOR", help="detector name (see 'novelty list detectors')")
-    parser.add_argument("--data", required=True, metavar="FILE", help="scans: .csv or .npz")
+    add_data_options(parser, "scans: .csv or .npz, or - for CSV lines on standard input")
     parser.add_argument("--param", "-p", action="append", metavar="k=v",
                         help="detector parameter (repeatable); values are JSON-ish: 5, 1.2, true, som")
     parser.add_argument("--passes", type=int, default=1, metavar="N",
@@ -43,18 +56,122 @@ def run(args) -> int:
     if args.passes < 1:
         raise UserError(f"--passes must be at least 1; got {args.passes}.")
     det = check_detector(DetectorSpec(args.detector, parse_params(args.param)))
-    X, extras = read_scans(args.data)
-    if getattr(det, "supports_online", True):
-        for i in range(args.passes):
-            novelty = det.stream(X, timestamps=extras.get("time") if i == 0 else None)
+    if args.data == "-":
+        n = _run_stream(det, args)
     else:
-        print(f"novelty run: {args.detector} learns in batch only: fitted on all the scans, then scored.",
-              file=sys.stderr)
-        novelty = det.fit(X).novelty(X)
-    write_novelty(args.out, novelty, extras)
+        n = _run_file(det, args)
     if args.save:
         det.save(args.save)
     if args.out not in (None, "-"):
-        print(f"Wrote the novelty of {X.shape[0]} scans to {args.out}"
+        print(f"Wrote the novelty of {n} scans to {args.out}"
               + (f"; model saved to {args.save}" if args.save else "") + ".", file=sys.stderr)
     return 0
+
+
+def _run_file(det, args) -> int:
+    data = read_scans(args)
+    timestamps = data.columns.get("time")
+    if getattr(det, "supports_online", True):
+        for i in range(args.passes):
+            novelty = det.stream(data.X, timestamps=timestamps if i == 0 else None)
+    else:
+        print(f"novelty run: {args.detector} learns in batch only: fitted on all the scans, then scored.",
+              file=sys.stderr)
+        novelty = det.fit(data.X).novelty(data.X)
+    write_novelty(args.out, novelty, data, alarms(det, novelty))
+    return len(data)
+
+
+def _run_stream(det, args) -> int:
+    """Score and learn standard input a line at a time, writing each scan's row at once."""
+    if not getattr(det, "supports_online", True):
+        raise UserError(f"{args.detector} learns in batch only; it cannot score a stream (--data -).")
+    if args.passes != 1 or args.bin_length is not None:
+        raise UserError("--passes and --bin-length need the whole file; not with --data -.")
+    if args.out not in (None, "-"):
+        raise UserError("With --data - the novelty goes to standard output (no --out).")
+    scans = StreamReader(sys.stdin, columns=args.columns, label=args.label, time=args.time,
+                         preprocess=args.preprocess, threshold=args.range_threshold)
+    writer = None
+    n = 0
+    for x, extras in scans:
+        novelty = det.score_learn_one(x, extras.get("time"))
+        row = {"scan": n, "novelty": novelty}
+        alarm = alarms(det, np.array([novelty]))
+        if alarm is not None:
+            row["alarm"] = int(alarm[0])
+        row.update(extras)
+        if writer is None:
+            writer = csv.DictWriter(sys.stdout, fieldnames=list(row), lineterminator="\n")
+            writer.writeheader()
+        writer.writerow({k: format_cell(v, exact=k == "time") for k, v in row.items()})
+        sys.stdout.flush()
+        n += 1
+    if n == 0:
+        raise UserError("No scans on standard input.")
+    return n
+
+
+class StreamReader:
+    """Scans from CSV lines as they arrive: a header line (or none), then one scan a line.
+
+    Yields ``(scan, extras)``: the sensor values (chosen and preprocessed as
+    for a file) and the carried values of that line (``y``, ``distance``,
+    ``run``, ``time`` in seconds). Nothing is read ahead of the line scored.
+    """
+
+    def __init__(self, lines, columns=None, label=None, time=None, preprocess=None,
+                 threshold=PAPER_THRESHOLD):
+        self.lines = lines
+        self.options = dict(columns=columns, label=label, time=time)
+        self.preprocess, self.threshold = preprocess, threshold
+
+    def __iter__(self):
+        from ..datasets.files import header_of, plan_columns, sensors_to_scans
+
+        rows = csv.reader(iter(self.lines.readline, ""))
+        layout = None
+        for number, row in enumerate(rows, start=1):
+            if not row or not any(c.strip() for c in row):
+                continue
+            if layout is None:
+                header = header_of(row)
+                layout = plan_columns(header or [f"s{i}" for i in range(len(row))], **self.options)
+                if header:
+                    continue
+            if len(row) != len(layout.names):
+                raise UserError(f"standard input, line {number}: {len(row)} values, expected "
+                                f"{len(layout.names)}.")
+            try:
+                raw = np.array([[self._number(layout, j, row[j]) for j in layout.sensors]])
+                x = sensors_to_scans(raw, self.preprocess, self.threshold)[0]
+            except ValueError as exc:
+                raise UserError(f"standard input, line {number}: {exc}") from None
+            yield x, self._extras(layout, row, number)
+
+    @staticmethod
+    def _number(layout, j: int, cell: str) -> float:
+        try:
+            return float(cell)
+        except ValueError:
+            raise layout.not_a_number(j, cell) from None
+
+    @staticmethod
+    def _extras(layout, row, number: int) -> dict:
+        extras = {}
+        for name in ("label", "distance", "run", "time"):
+            j = getattr(layout, name)
+            if j is None:
+                continue
+            try:
+                value = float(row[j])
+            except ValueError:
+                raise UserError(f"standard input, line {number}: the {name} column "
+                                f"{layout.names[j]!r} holds {row[j]!r}, not a number.") from None
+            if name == "label":
+                extras["y"] = int(value != 0)
+            elif name == "run":
+                extras["run"] = int(value)
+            else:
+                extras[name] = value * (layout.time_scale if name == "time" else 1.0)
+        return extras

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import sys
 
-from ._common import add_command, read_scans, write_novelty
+from ._common import add_command, add_data_options, alarms, read_scans, write_novelty
 
 DESCRIPTION = """Score scans with a saved model, without learning anything.
 
 The model is a file written by 'novelty run --save' or detector.save(path).
-Scans are read as for 'novelty run'; the output is one row a scan."""
+Scans are read as for 'novelty run' (the same column options); the output
+is one row a scan: scan, novelty, alarm (novelty above the model's
+threshold) and the carried columns."""
 
 EXAMPLES = [
     "novelty score --model hsom.npz --data new-scans.csv",
@@ -21,7 +23,7 @@ def add_parser(subparsers):
     parser = add_command(subparsers, "score", "score scans with a saved model (no learning)",
                          DESCRIPTION, EXAMPLES)
     parser.add_argument("--model", required=True, metavar="FILE", help="a saved detector (.npz)")
-    parser.add_argument("--data", required=True, metavar="FILE", help="scans: .csv or .npz")
+    add_data_options(parser)
     parser.add_argument("--out", metavar="FILE", help="novelty per scan: .csv or .npz (default: stdout)")
     return parser
 
@@ -35,8 +37,9 @@ def run(args) -> int:
     if not Path(args.model).is_file():
         raise UserError(f"Model file not found: {args.model}")
     det = load(args.model)
-    X, extras = read_scans(args.data)
-    write_novelty(args.out, det.novelty(X), extras)
+    data = read_scans(args)
+    novelty = det.novelty(data.X)
+    write_novelty(args.out, novelty, data, alarms(det, novelty))
     if args.out not in (None, "-"):
-        print(f"Wrote the novelty of {X.shape[0]} scans to {args.out}.", file=sys.stderr)
+        print(f"Wrote the novelty of {len(data)} scans to {args.out}.", file=sys.stderr)
     return 0

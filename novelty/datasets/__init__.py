@@ -17,7 +17,10 @@ Built in:
   length=15.0``);
 - real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
-  ``uci-sonar-mines``.
+  ``uci-sonar-mines``;
+- the user's own scans, a CSV or NPZ file: ``files`` (``path=``, with
+  ``columns``, ``label``, ``time``, and ``train_rows``, ``split`` or
+  ``test_path``; see :mod:`novelty.datasets.files`).
 """
 
 from __future__ import annotations
@@ -44,6 +47,7 @@ _BUILTINS = {
     "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
     "uci-sonar": "novelty.datasets.uci:uci_sonar",
     "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
+    "files": "novelty.datasets.files:files",
 }
 
 registry = Registry("dataset", group="novelty.datasets", builtins=_BUILTINS)

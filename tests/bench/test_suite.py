@@ -159,3 +159,35 @@ def test_the_example_suites_read():
         if missing:  # the tasks of other issues may not be registered yet
             continue
         assert load_suite(path).cells(), path.name
+
+
+def test_a_task_from_the_users_file_by_path_relative_to_the_suite(tmp_path):
+    (tmp_path / "data").mkdir()
+    (tmp_path / "data" / "scans.csv").write_text("a,y\n1,0\n2,0\n3,1\n")
+    suite = load_suite(write(tmp_path, """
+[[detectors]]
+name = "hsom"
+
+[[tasks]]
+path = "data/scans.csv"
+options = { train_rows = 2 }
+
+[[tasks]]
+name = "files"
+label = "same"
+options = { path = "data/scans.csv", train_rows = 2 }
+"""))
+    expected = str(tmp_path / "data" / "scans.csv")
+    assert [(t.name, t.label, t.options) for t in suite.tasks] == [
+        ("files", "scans", {"path": expected, "train_rows": 2}),
+        ("files", "same", {"path": expected, "train_rows": 2})]
+
+
+@pytest.mark.parametrize("task, message", [
+    ('path = "missing.csv"', "data file not found: .*missing.csv"),
+    ('name = "files"', "the 'files' task needs path="),
+    ('name = "uci-sonar"\npath = "x.csv"', "a task with a 'path' is the 'files' task; got name 'uci-sonar'"),
+])
+def test_a_files_task_without_its_file_is_refused_before_running(tmp_path, task, message):
+    with pytest.raises(SuiteError, match=message):
+        load_suite(write(tmp_path, f'[[detectors]]\nname = "hsom"\n[[tasks]]\n{task}\n'))

@@ -1,0 +1,474 @@
+"""Scans and novelty tasks from the user's own files (CSV or NPZ).
+
+A file is a table: one row a scan, one column a sensor or a per-scan value.
+A CSV may have a header row (column names) or not (columns are then named
+``s0, s1, ...``); an NPZ holds an array ``X`` (its columns named ``s0, s1,
+...``) and any 1-D arrays of one value per scan, each a column by its name.
+
+Which columns are what:
+
+- ``columns``: the sensor readings, by name, by ``fnmatch`` pattern
+  (``"field.ranges*"``) or by 0-based index in the file, as a list or a
+  comma-separated string. Default: every column that is not one of those
+  below; a text column among them is refused with a message naming it.
+- ``label``: per-scan ground truth, 1 (or any non-zero number) novel, 0
+  normal. Default: a column named ``y`` or ``label``.
+- ``time``: per-scan timestamps, given to the detector as elapsed time, never
+  a sensor. Default: a column named ``time``, ``timestamp``,
+  ``field.header.stamp`` or ``%time``. ROS stamps (``%time``, ``*.stamp``)
+  are nanoseconds and are converted to seconds.
+- ``distance``, ``run``, ``split``: distance along the route (m), traversal
+  number, ``train``/``test`` part, by these names.
+
+A ``rostopic echo -p`` export (a ``%time`` column, ``field.*`` columns) mixes
+header fields with readings; its sensor columns must be chosen
+(``columns="field.ranges*"``), so that no timestamp or sequence number is
+ever read as a sensor.
+
+:func:`files` is the registered task ``files``: the scans of one file split
+into a training and a test part by rows (``train_rows``), by a column
+(``split``) or by a second file (``test_path``).
+"""
+
+from __future__ import annotations
+
+import csv
+import fnmatch
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess as paper_preprocess
+from ._files import _is_float
+from .base import Dataset
+
+__all__ = ["Table", "Layout", "read_table", "plan_columns", "read_scans", "files", "PREPROCESSING"]
+
+#: columns found by name that are never sensors
+LABEL_COLUMNS = ("y", "label")
+TIME_COLUMNS = ("time", "timestamp", "field.header.stamp", "%time")
+ROUTE_COLUMNS = ("distance", "run", "split")
+#: further per-scan columns of the project's own exports (text, never sensors)
+TEXT_COLUMNS = ("features", "class", "row_index")
+#: preprocessing applied to the sensor columns, by name
+PREPROCESSING = ("none", "paper")
+
+
+@dataclass(frozen=True)
+class Table:
+    """A file's columns, in file order: numbers (float64) or text (str)."""
+
+    source: str
+    names: tuple[str, ...]
+    values: tuple[np.ndarray, ...]
+
+    @property
+    def n_rows(self) -> int:
+        return self.values[0].shape[0] if self.values else 0
+
+
+# ------------------------------------------------------------------ reading
+def header_of(first_row: Sequence[str]) -> list[str] | None:
+    """The column names if ``first_row`` is a header (not all numbers), else ``None``."""
+    if all(_is_float(c) for c in first_row):
+        return None
+    return [c.strip() for c in first_row]
+
+
+def _column(cells: list[str]) -> np.ndarray:
+    try:
+        return np.array([float(c) for c in cells], dtype=np.float64)
+    except ValueError:
+        return np.array([c.strip() for c in cells])
+
+
+def _read_csv(path: Path) -> Table:
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+    if not rows:
+        raise ValueError(f"{path} is empty.")
+    header = header_of(rows[0])
+    body = rows[1:] if header else rows
+    if not body:
+        raise ValueError(f"{path} has a header but no scans.")
+    width = len(header or body[0])
+    first_line = 2 if header else 1
+    for i, row in enumerate(body):
+        if len(row) != width:
+            raise ValueError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
+    names = header or [f"s{i}" for i in range(width)]
+    return Table(str(path), tuple(names), tuple(_column([r[j] for r in body]) for j in range(width)))
+
+
+def _read_npz(path: Path) -> Table:
+    try:
+        npz = np.load(path, allow_pickle=False)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
+    with npz:
+        arrays = {k: npz[k] for k in npz.files}
+    if "X" not in arrays:
+        two_d = [k for k, a in arrays.items() if a.ndim == 2]
+        if len(two_d) != 1:
+            raise ValueError(f"{path} has no array named 'X' (it has {', '.join(arrays) or 'none'}).")
+        arrays["X"] = arrays.pop(two_d[0])
+    X = arrays.pop("X")
+    if X.ndim != 2:
+        raise ValueError(f"{path}: X must be a table of scans by sensors; got shape {X.shape}.")
+    names = [f"s{j}" for j in range(X.shape[1])]
+    values = [np.asarray(X[:, j]) for j in range(X.shape[1])]
+    for key, a in arrays.items():
+        if a.ndim == 1 and a.shape[0] == X.shape[0]:
+            names.append(key.removeprefix("column_"))
+            values.append(a.astype(np.float64) if np.issubdtype(a.dtype, np.number) else a.astype(str))
+    return Table(str(path), tuple(names), tuple(values))
+
+
+def read_table(path) -> Table:
+    """The columns of a CSV or NPZ file (see the module docstring)."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"Data file not found: {path}")
+    if path.is_dir():
+        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
+    table = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
+    if table.n_rows == 0:
+        raise ValueError(f"{path} has no scans.")
+    return table
+
+
+# ------------------------------------------------------------ choosing columns
+def is_ros_export(names: Sequence[str]) -> bool:
+    """A ``rostopic echo -p`` export: a ``%time`` column or ``field.*`` columns."""
+    return "%time" in names or any(n.startswith("field.") for n in names)
+
+
+def _is_ros_header(name: str) -> bool:
+    return name == "%time" or name.startswith("field.header.")
+
+
+def _nanoseconds(name: str) -> bool:
+    return name == "%time" or name.endswith(".stamp")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Which column of a file is what (indices into the file's columns)."""
+
+    names: tuple[str, ...]
+    sensors: tuple[int, ...]
+    label: int | None = None
+    time: int | None = None
+    distance: int | None = None
+    run: int | None = None
+    split: int | None = None
+
+    @property
+    def sensor_names(self) -> list[str]:
+        return [self.names[j] for j in self.sensors]
+
+    @property
+    def time_scale(self) -> float:
+        """Seconds per unit of the time column (ROS stamps are nanoseconds)."""
+        return 1e-9 if self.time is not None and _nanoseconds(self.names[self.time]) else 1.0
+
+    def not_a_number(self, j: int, cell) -> ValueError:
+        name = self.names[j]
+        hint = (f"choose the sensor columns with columns= (--columns), e.g. 'field.ranges*'"
+                if is_ros_export(self.names) else "choose the sensor columns with columns= (--columns)")
+        return ValueError(f"Column {name!r} holds text ({str(cell)[:30]!r}), not a sensor reading; {hint}.")
+
+
+def _find(names: Sequence[str], spec, what: str) -> list[int]:
+    """Indices of the columns ``spec`` names: a name, a pattern, or a 0-based index."""
+    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool) \
+            or isinstance(spec, str) and spec.strip().lstrip("-").isdigit():
+        j = int(spec)
+        if not 0 <= j < len(names):
+            raise ValueError(f"{what}: column index {j} is out of range; the file has {len(names)} "
+                             f"columns (0 to {len(names) - 1}).")
+        return [j]
+    if not isinstance(spec, str) or not spec.strip():
+        raise ValueError(f"{what}: expected a column name, pattern or index; got {spec!r}.")
+    spec = spec.strip()
+    if spec in names:
+        return [names.index(spec)]
+    found = [j for j, n in enumerate(names) if fnmatch.fnmatchcase(n, spec)]
+    if not found:
+        shown = ", ".join(names[:12]) + (", ..." if len(names) > 12 else "")
+        raise ValueError(f"{what}: no column {spec!r}; the file has {shown}.")
+    return found
+
+
+def _one(names: Sequence[str], spec, what: str) -> int | None:
+    if spec is None:
+        return None
+    found = _find(names, spec, what)
+    if len(found) != 1:
+        raise ValueError(f"{what}: {spec!r} names {len(found)} columns; expected one.")
+    return found[0]
+
+
+def _by_default(names: Sequence[str], candidates: Iterable[str]) -> int | None:
+    lowered = [n.lower() for n in names]
+    return next((lowered.index(c) for c in candidates if c in lowered), None)
+
+
+def _column_list(columns) -> list:
+    if isinstance(columns, str):
+        return [c for c in columns.split(",") if c.strip()]
+    if isinstance(columns, (list, tuple)):
+        return list(columns)
+    return [columns]
+
+
+def plan_columns(names: Sequence[str], columns=None, label=None, time=None, split=None) -> Layout:
+    """Decide which column is what (see the module docstring); names alone decide."""
+    names = tuple(names)
+    label_j = _one(names, label, "label") if label is not None else _by_default(names, LABEL_COLUMNS)
+    time_j = _one(names, time, "time") if time is not None else _by_default(names, TIME_COLUMNS)
+    split_j = _one(names, split, "split") if split is not None else _by_default(names, ("split",))
+    distance_j, run_j = _by_default(names, ("distance",)), _by_default(names, ("run",))
+    roles = {j for j in (label_j, time_j, split_j, distance_j, run_j) if j is not None}
+    if columns is not None:
+        chosen = [j for spec in _column_list(columns) for j in _find(names, spec, "columns")]
+        sensors = list(dict.fromkeys(chosen))
+        taken = sorted(roles & set(sensors))
+        if taken:
+            raise ValueError(f"columns: {names[taken[0]]!r} is the label, time, distance, run or split "
+                             "column, not a sensor.")
+    else:
+        if is_ros_export(names):
+            fields = [n for n in names if not _is_ros_header(n)]
+            ranges = [n for n in fields if n.startswith("field.ranges")]
+            example = "field.ranges*" if ranges else ",".join(fields[:3])
+            raise ValueError("This is a ROS 'rostopic echo -p' export: its header columns (%time, "
+                             "field.header.*) are not sensor readings. Choose the sensor columns with "
+                             f"columns= (--columns), e.g. {example!r}.")
+        skip = {n.lower() for n in TEXT_COLUMNS + TIME_COLUMNS + LABEL_COLUMNS + ROUTE_COLUMNS}
+        sensors = [j for j, n in enumerate(names) if j not in roles and n.lower() not in skip]
+    if not sensors:
+        raise ValueError("No sensor columns: every column is a label, time, distance, run or split column.")
+    return Layout(names, tuple(sensors), label_j, time_j, distance_j, run_j, split_j)
+
+
+# ------------------------------------------------------------ scans of a file
+def _numbers(table: Table, layout: Layout, j: int, what: str) -> np.ndarray:
+    values = table.values[j]
+    if values.dtype.kind in "US":
+        if what == "sensor":
+            raise layout.not_a_number(j, next(v for v in values if not _is_float(v)))
+        raise ValueError(f"{table.source}: the {what} column {layout.names[j]!r} must hold numbers.")
+    return values
+
+
+def _check_preprocess(preprocess) -> str:
+    choice = "none" if preprocess is None else preprocess
+    if choice not in PREPROCESSING:
+        raise ValueError(f"preprocess must be one of {', '.join(PREPROCESSING)}; got {preprocess!r}.")
+    return choice
+
+
+def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float = PAPER_THRESHOLD) -> np.ndarray:
+    """The detector's input from raw sensor values: checked, and preprocessed if asked."""
+    if _check_preprocess(preprocess) == "paper":
+        if np.isnan(X).any():
+            raise ValueError("The sensor columns hold NaN; the paper's preprocessing needs ranges "
+                             "(inf for no echo is accepted).")
+        X = paper_preprocess(X, threshold)
+    if not np.all(np.isfinite(X)):
+        raise ValueError("The sensor readings must be finite numbers (with preprocess='paper', "
+                         "inf is read as no echo).")
+    return X
+
+
+def read_scans(path, columns=None, label=None, time=None, preprocess=None,
+               threshold: float = PAPER_THRESHOLD, bin_length: float | None = None,
+               split=None) -> Dataset:
+    """The scans of a CSV or NPZ file as a :class:`~novelty.datasets.Dataset`.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.csv`` (header optional) or ``.npz`` (array ``X``) file.
+    columns : str, int or list, optional
+        Sensor columns: names, ``fnmatch`` patterns or 0-based indices (a
+        comma-separated string or a list). Default: every column without
+        another role.
+    label, time : str or int, optional
+        The label column (non-zero = novel) and the time column (timestamps,
+        never a sensor). Defaults: see the module docstring.
+    preprocess : {None, "none", "paper"}
+        ``"paper"``: ranges in metres become ``1 - min(r, threshold) / threshold``
+        (Marsland et al., 2000, section 4.1; :func:`novelty.sonar.preprocess`).
+    threshold : float, default=4.0
+        The range (m) mapped to 0 by the paper's preprocessing.
+    bin_length : float, optional
+        Average consecutive scans over each ``bin_length`` metres of travel
+        (the paper's 10 cm smoothing, section 4.2); needs a ``distance`` column.
+    split : str or int, optional
+        A column of ``train``/``test`` values (default: a column named ``split``).
+
+    Returns
+    -------
+    Dataset
+        ``X``, and ``y``, ``distance``, ``run``, ``split`` where the file has
+        them; ``columns["time"]`` the timestamps in seconds, if any.
+    """
+    table = read_table(path)
+    layout = plan_columns(table.names, columns, label, time, split)
+    raw = np.column_stack([_numbers(table, layout, j, "sensor") for j in layout.sensors])
+    X = sensors_to_scans(raw, preprocess, threshold)
+    fields: dict = {}
+    if layout.label is not None:
+        fields["y"] = (_numbers(table, layout, layout.label, "label") != 0).astype(np.int64)
+    if layout.distance is not None:
+        fields["distance"] = _numbers(table, layout, layout.distance, "distance")
+    if layout.run is not None:
+        fields["run"] = _numbers(table, layout, layout.run, "run").astype(np.int64)
+    if layout.split is not None:
+        fields["split"] = _split_values(table.values[layout.split], layout.names[layout.split])
+    columns_ = {}
+    if layout.time is not None:
+        columns_["time"] = _numbers(table, layout, layout.time, "time") * layout.time_scale
+    data = Dataset(Path(path).stem, X, columns=columns_, metadata={
+        "source": str(path), "sensor_columns": layout.sensor_names,
+        "time_column": None if layout.time is None else layout.names[layout.time],
+        "preprocess": _check_preprocess(preprocess)}, **fields)
+    return data if bin_length is None else smooth_by_distance(data, bin_length)
+
+
+def _split_values(values: np.ndarray, name: str) -> np.ndarray:
+    parts = np.char.lower(values.astype(str))
+    wrong = sorted(set(parts.tolist()) - {"train", "test"})
+    if wrong:
+        raise ValueError(f"The split column {name!r} must hold 'train' or 'test'; found {wrong[0]!r}.")
+    return parts
+
+
+def smooth_by_distance(data: Dataset, bin_length: float) -> Dataset:
+    """Average consecutive scans over each ``bin_length`` metres of travel.
+
+    The paper's smoothing (Marsland et al., 2000, section 4.2): "approximately
+    every 10 cm along the route the smoothed values of the sonar perceptions
+    over that 10 cm of travel were presented". Consecutive scans with the same
+    ``floor(distance / bin_length)`` (and the same run and split) become one:
+    the mean of their scans and distances, the last timestamp (the moment it
+    is presented), novel if any of them is.
+    """
+    if isinstance(bin_length, bool) or not isinstance(bin_length, (int, float)) or not bin_length > 0:
+        raise ValueError(f"bin_length must be a positive number of metres; got {bin_length!r}.")
+    if data.distance is None:
+        raise ValueError("Smoothing over travel (bin_length) needs a 'distance' column.")
+    keys = [np.floor(data.distance / bin_length + 1e-9)]
+    keys += [k for k in (data.run, data.split) if k is not None]
+    change = np.zeros(len(data), dtype=bool)
+    change[0] = True
+    for k in keys:
+        change[1:] |= k[1:] != k[:-1]
+    starts = np.flatnonzero(change)
+    counts = np.diff(np.append(starts, len(data)))
+    mean = lambda a: np.add.reduceat(a, starts, axis=0) / counts.reshape((-1,) + (1,) * (a.ndim - 1))  # noqa: E731
+    last = starts + counts - 1
+    return replace(
+        data,
+        X=mean(data.X),
+        distance=mean(data.distance),
+        y=None if data.y is None else np.maximum.reduceat(data.y, starts),
+        run=None if data.run is None else data.run[starts],
+        split=None if data.split is None else data.split[starts],
+        poses=None, feature_ids=None,
+        columns={name: v[last] for name, v in data.columns.items()},
+        metadata={**data.metadata, "bin_length_m": float(bin_length)},
+    )
+
+
+# ------------------------------------------------------------------ the task
+def files(path, test_path=None, columns=None, label=None, time=None, split=None, train_rows=None,
+          preprocess=None, threshold: float = PAPER_THRESHOLD, bin_length=None, train_passes: int = 1):
+    """Task: the user's own scans (CSV or NPZ), learned in a training part, scored in a test part.
+
+    The training and test parts come from one of (exactly one may be given;
+    without any, a column named ``split`` is used):
+
+    - ``test_path``: a second file of the same columns, the test part;
+    - ``split``: a column of ``train``/``test`` values;
+    - ``train_rows``: the first rows learned, the rest tested; an int
+      (a count) or a float in (0, 1) (a fraction of the rows).
+
+    The test part needs labels (``label``, or a ``y``/``label`` column): 1
+    (any non-zero number) novel, 0 normal. Column choice, timestamps and
+    preprocessing: see :func:`read_scans`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The scans (all of them, or the training part with ``test_path``).
+    test_path : str or Path, optional
+    columns, label, time, split, preprocess, threshold, bin_length
+        As in :func:`read_scans`.
+    train_rows : int or float, optional
+    train_passes : int, default=1
+        How many times a detector streams the training part.
+    """
+    if isinstance(train_passes, bool) or not isinstance(train_passes, int) or train_passes < 1:
+        raise ValueError(f"train_passes must be a positive int; got {train_passes!r}.")
+    given = [k for k, v in (("test_path", test_path), ("split", split), ("train_rows", train_rows))
+             if v is not None]
+    if len(given) > 1:
+        raise ValueError(f"Give one way to split the scans into training and test; got {' and '.join(given)}.")
+    options = dict(columns=columns, label=label, time=time, preprocess=preprocess, threshold=threshold,
+                   bin_length=bin_length)
+    if test_path is not None:
+        data = _joined(read_scans(path, **options), read_scans(test_path, **options))
+    else:
+        data = read_scans(path, split=split, **options)
+        if train_rows is not None:
+            data = replace(data, split=_split_by_rows(len(data), train_rows))
+        elif data.split is None:
+            raise ValueError(f"{path}: how are the scans split into training and test? Give train_rows, "
+                             "split (a column of train/test values) or test_path.")
+    test = data.split == "test"
+    if data.y is None:
+        raise ValueError(f"{path}: the test scans need labels; name the label column with label= (--label).")
+    if not test.any() or test.all():
+        raise ValueError(f"{path}: the split leaves no {'test' if not test.any() else 'training'} scans.")
+    return replace(data, name="files", metadata={
+        **data.metadata, "task": "files", "train_passes": train_passes,
+        "test_source": str(test_path) if test_path is not None else str(path),
+        "description": f"Learn the training scans of {Path(path).name}, score the test scans."})
+
+
+def _split_by_rows(n: int, train_rows) -> np.ndarray:
+    if isinstance(train_rows, bool) or not isinstance(train_rows, (int, float)):
+        raise ValueError(f"train_rows must be a count or a fraction in (0, 1); got {train_rows!r}.")
+    if isinstance(train_rows, float):
+        if not 0 < train_rows < 1:
+            raise ValueError(f"train_rows as a fraction must lie in (0, 1); got {train_rows!r}.")
+        train_rows = math.floor(train_rows * n)
+    if not 0 < train_rows < n:
+        raise ValueError(f"train_rows must leave scans on both sides: 1 to {n - 1} of {n}; got {train_rows}.")
+    return np.where(np.arange(n) < train_rows, "train", "test")
+
+
+def _joined(train: Dataset, test: Dataset) -> Dataset:
+    if train.n_sensors != test.n_sensors:
+        raise ValueError(f"The training file has {train.n_sensors} sensor columns, the test file "
+                         f"{test.n_sensors}.")
+    both = (train, test)
+
+    def stacked(field: str):
+        values = [getattr(d, field) for d in both]
+        return None if any(v is None for v in values) else np.concatenate(values)
+
+    columns = {k: np.concatenate([train.columns[k], test.columns[k]])
+               for k in train.columns if k in test.columns}
+    # the training file needs no labels: what is learned is familiar
+    y = None if test.y is None else np.concatenate(
+        [np.zeros(len(train), np.int64) if train.y is None else train.y, test.y])
+    return Dataset(train.name, np.vstack([train.X, test.X]), y=y, distance=stacked("distance"),
+                   run=stacked("run"), columns=columns, metadata=train.metadata,
+                   split=np.array(["train"] * len(train) + ["test"] * len(test)))

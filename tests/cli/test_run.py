@@ -1,0 +1,113 @@
+"""``novelty run`` on the user's files and on a live stream from standard input."""
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import novelty
+from novelty.cli import EXIT_PIPE_CLOSED, main
+from novelty.sonar.preprocessing import preprocess
+
+ENV = {**os.environ, "PYTHONPATH": str(Path(novelty.__file__).parents[1])}
+ROS = """%time,field.header.seq,field.header.stamp,field.header.frame_id,field.ranges0,field.ranges1
+1700000000000000000,1,1700000000000000000,sonar,1.0,inf
+1700000000500000000,2,1700000000500000000,sonar,2.0,3.0
+1700000001000000000,3,1700000001000000000,sonar,1.0,inf
+"""
+
+
+def novelty_command(*args, **kwargs):
+    return subprocess.Popen([sys.executable, "-m", "novelty.cli", *args], env=ENV, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kwargs)
+
+
+def rows(text: str) -> list[list[str]]:
+    return [line.split(",") for line in text.strip().splitlines()]
+
+
+def test_a_ros_export_is_scored_on_its_ranges_with_its_stamps(tmp_path, capsys):
+    path = tmp_path / "sonar.csv"
+    path.write_text(ROS)
+    assert main(["run", "hsom", "--data", str(path), "--columns", "field.ranges*", "--preprocess", "paper",
+                 "--param", "n_rows=3"]) == 0
+    table = rows(capsys.readouterr().out)
+    assert table[0] == ["scan", "novelty", "alarm", "time"]
+    assert [r[3] for r in table[1:]] == ["1700000000.0", "1700000000.5", "1700000001.0"]
+    X = preprocess([[1.0, np.inf], [2.0, 3.0], [1.0, np.inf]])
+    expected = novelty.make("hsom", n_rows=3).stream(X, timestamps=[0.0, 0.5, 1.0])
+    np.testing.assert_allclose([float(r[1]) for r in table[1:]], expected, rtol=1e-9)
+    assert [int(r[2]) for r in table[1:]] == (expected > 0.5).astype(int).tolist()
+
+
+def test_a_ros_export_without_chosen_columns_is_refused(tmp_path, capsys):
+    path = tmp_path / "sonar.csv"
+    path.write_text(ROS)
+    assert main(["run", "hsom", "--data", str(path)]) == 2
+    assert "Choose the sensor columns with columns= (--columns), e.g. 'field.ranges*'" in capsys.readouterr().err
+
+
+def test_score_takes_the_same_column_options(tmp_path, capsys):
+    path, model = tmp_path / "scans.csv", tmp_path / "m.npz"
+    path.write_text("when,a,b,note,novel\n0,0.1,0.2,x,0\n1,0.9,0.8,y,1\n")
+    det = novelty.make("hsom", n_rows=2).fit(np.array([[0.1, 0.2]]))
+    det.save(model)
+    assert main(["score", "--model", str(model), "--data", str(path), "--columns", "1,2", "--label", "novel",
+                 "--time", "when"]) == 0
+    table = rows(capsys.readouterr().out)
+    assert table[0] == ["scan", "novelty", "alarm", "y", "time"]
+    np.testing.assert_allclose([float(r[1]) for r in table[1:]], det.novelty([[0.1, 0.2], [0.9, 0.8]]))
+    assert [r[3] for r in table[1:]] == ["0", "1"]
+
+
+def test_stdin_is_scored_a_line_at_a_time_as_the_lines_arrive():
+    """Each scan's row comes back before the next line is written: nothing is read ahead."""
+    X = np.random.default_rng(0).random((4, 3))
+    proc = novelty_command("run", "hsom", "--data", "-", "--label", "y", stdin=subprocess.PIPE)
+    proc.stdin.write("a,b,c,y\n")
+    got = []
+    for i, x in enumerate(X):
+        proc.stdin.write(",".join(str(float(v)) for v in x) + f",{int(i == 3)}\n")
+        proc.stdin.flush()
+        if i == 0:
+            assert proc.stdout.readline() == "scan,novelty,alarm,y\n"
+        got.append(proc.stdout.readline().strip().split(","))
+    proc.stdin.close()
+    assert proc.wait(timeout=120) == 0 and proc.stdout.read() == ""
+    expected = novelty.make("hsom").stream(X)
+    np.testing.assert_allclose([float(r[1]) for r in got], expected, rtol=1e-9)
+    assert [r[0] for r in got] == ["0", "1", "2", "3"] and [r[3] for r in got] == ["0", "0", "0", "1"]
+
+
+@pytest.mark.parametrize("argv", [["list"], ["run", "hsom", "--data", "DATA"]])
+def test_a_closed_output_pipe_ends_the_command_quietly(argv, tmp_path):
+    data = tmp_path / "scans.csv"
+    np.savetxt(data, np.random.default_rng(0).random((20000, 4)), delimiter=",")
+    proc = novelty_command(*[str(data) if a == "DATA" else a for a in argv])
+    assert proc.stdout.readline()
+    proc.stdout.close()  # as 'head -1' does (the output, 20,000 rows, is more than a pipe holds)
+    assert proc.wait(timeout=120) == EXIT_PIPE_CLOSED
+    assert proc.stderr.read() == ""
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["run", "lof", "--data", "-"], "lof learns in batch only; it cannot score a stream"),
+    (["run", "hsom", "--data", "-", "--passes", "2"], "--passes and --bin-length need the whole file"),
+    (["run", "hsom", "--data", "-", "--out", "x.csv"], "the novelty goes to standard output"),
+])
+def test_what_a_stream_cannot_do_is_refused(argv, message, capsys):
+    assert main(argv) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_a_bad_line_on_stdin_names_its_line(monkeypatch, capsys):
+    import io
+
+    monkeypatch.setattr(sys, "stdin", io.StringIO("a,b\n0.1,0.2\n0.3,oops\n"))
+    assert main(["run", "hsom", "--data", "-"]) == 2
+    captured = capsys.readouterr()
+    assert len(rows(captured.out)) == 2  # the first scan was written before the bad line was read
+    assert "standard input, line 3: Column 'b' holds text ('oops')" in captured.err

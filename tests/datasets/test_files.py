@@ -1,0 +1,159 @@
+"""Scans and tasks from the user's own files: columns, labels, timestamps, splits, preprocessing."""
+
+import numpy as np
+import pytest
+
+from novelty.datasets import load
+from novelty.datasets.base import Dataset
+from novelty.datasets.files import files, plan_columns, read_scans, smooth_by_distance
+
+ROS_HEADER = ("%time,field.header.seq,field.header.stamp,field.header.frame_id,field.angle_min,"
+              "field.ranges0,field.ranges1,field.ranges2")
+ROS_ROWS = [
+    "1700000000000000000,1,1700000000050000000,laser,-1.5,1.0,2.0,inf",
+    "1700000000100000000,2,1700000000150000000,laser,-1.5,0.5,3.0,5.0",
+    "1700000000200000000,3,1700000000250000000,laser,-1.5,4.0,2.5,0.0",
+]
+
+
+def write(tmp_path, text: str, name: str = "scans.csv"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture
+def ros(tmp_path):
+    return write(tmp_path, "\n".join([ROS_HEADER, *ROS_ROWS]) + "\n", "scan.csv")
+
+
+@pytest.fixture
+def table(tmp_path):
+    """Six scans: two sensors, a time column, labels, a text column."""
+    rows = ["t,a,b,novel,note"] + [f"{i * 0.5},{i},{10 * i},{int(i >= 4)},n{i}" for i in range(6)]
+    return write(tmp_path, "\n".join(rows) + "\n")
+
+
+def test_default_columns_leave_out_label_time_distance_run_split_and_exports(tmp_path):
+    path = write(tmp_path, "s0,y,distance,run,split,time,features,s1\n1,0,0.1,0,train,5,,2\n3,1,0.2,0,test,6,f,4\n")
+    data = read_scans(path)
+    assert data.metadata["sensor_columns"] == ["s0", "s1"]
+    np.testing.assert_array_equal(data.X, [[1, 2], [3, 4]])
+    np.testing.assert_array_equal(data.y, [0, 1])
+    np.testing.assert_array_equal(data.columns["time"], [5, 6])
+    assert data.split.tolist() == ["train", "test"] and data.run.tolist() == [0, 0]
+
+
+def test_a_text_column_is_refused_by_name_unless_columns_are_chosen(table):
+    with pytest.raises(ValueError, match=r"Column 'note' holds text \('n0'\), not a sensor reading; "
+                                         r"choose the sensor columns"):
+        read_scans(table, label="novel", time="t")
+    data = read_scans(table, columns="a,b", label="novel", time="t")
+    np.testing.assert_array_equal(data.X[:, 1], [0, 10, 20, 30, 40, 50])
+    np.testing.assert_array_equal(data.y, [0, 0, 0, 0, 1, 1])
+    np.testing.assert_array_equal(data.columns["time"], np.arange(6) * 0.5)
+
+
+@pytest.mark.parametrize("columns, expected", [
+    ("b", ["b"]), ([2, 1], ["b", "a"]), ("1,2", ["a", "b"]), ("[ab]", ["a", "b"]), (["a", "a"], ["a"]),
+])
+def test_columns_by_name_index_and_pattern(columns, expected):
+    layout = plan_columns(["t", "a", "b", "novel"], columns, label="novel", time="t")
+    assert layout.sensor_names == expected
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(columns="z"), r"columns: no column 'z'; the file has t, a, b, novel"),
+    (dict(columns=7), r"column index 7 is out of range; the file has 4 columns \(0 to 3\)"),
+    (dict(columns="a,t", time="t"), r"'t' is the label, time, distance, run or split column"),
+    (dict(label="[ab]"), r"label: '\[ab\]' names 2 columns; expected one"),
+])
+def test_bad_column_choices_say_what_is_wrong(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        plan_columns(["t", "a", "b", "novel"], **kwargs)
+
+
+def test_a_ros_export_needs_its_sensor_columns_chosen(ros):
+    with pytest.raises(ValueError, match=r"ROS 'rostopic echo -p' export.*e\.g\. 'field\.ranges\*'"):
+        read_scans(ros)
+    with pytest.raises(ValueError, match=r"'field.header.frame_id' holds text \('laser'\)"):
+        read_scans(ros, columns="field.header.frame_id")
+
+
+def test_a_ros_export_reads_ranges_with_the_header_stamp_in_seconds(ros):
+    data = read_scans(ros, columns="field.ranges*", preprocess="paper")
+    assert data.metadata["sensor_columns"] == ["field.ranges0", "field.ranges1", "field.ranges2"]
+    assert data.metadata["time_column"] == "field.header.stamp"
+    # 1 - min(r, 4) / 4, inf (no echo) to 0
+    np.testing.assert_array_equal(data.X, [[0.75, 0.5, 0.0], [0.875, 0.25, 0.0], [0.0, 0.375, 1.0]])
+    np.testing.assert_allclose(np.diff(data.columns["time"]), [0.1, 0.1], atol=1e-6)
+    assert data.columns["time"][0] == pytest.approx(1700000000.05)
+
+
+def test_inf_ranges_need_the_paper_preprocessing(ros):
+    with pytest.raises(ValueError, match="must be finite numbers"):
+        read_scans(ros, columns="field.ranges*")
+
+
+def test_a_headerless_csv_names_its_columns_s0_s1(tmp_path):
+    data = read_scans(write(tmp_path, "1,2,3\n4,5,6\n"), columns="s0,s2")
+    np.testing.assert_array_equal(data.X, [[1, 3], [4, 6]])
+
+
+def test_an_npz_export_reads_back(tmp_path):
+    source = Dataset("d", np.arange(12.0).reshape(4, 3), y=[0, 0, 1, 0], split=["train"] * 2 + ["test"] * 2,
+                     distance=[0.0, 0.1, 0.2, 0.3], columns={"time": np.array([1.0, 2, 3, 4])})
+    source.to_npz(tmp_path / "d.npz")
+    data = read_scans(tmp_path / "d.npz", columns="s1,s2")
+    np.testing.assert_array_equal(data.X, source.X[:, 1:])
+    np.testing.assert_array_equal(data.y, source.y)
+    np.testing.assert_array_equal(data.columns["time"], [1, 2, 3, 4])
+    assert data.split.tolist() == source.split.tolist()
+
+
+def test_smoothing_averages_each_bin_of_travel_within_a_run():
+    data = Dataset("d", [[1.0], [3.0], [5.0], [7.0], [9.0]], y=[0, 1, 0, 0, 0],
+                   distance=[0.00, 0.05, 0.12, 0.00, 0.04], run=[0, 0, 0, 1, 1],
+                   columns={"time": np.array([1.0, 2, 3, 4, 5])})
+    smooth = smooth_by_distance(data, 0.1)
+    np.testing.assert_array_equal(smooth.X.ravel(), [2.0, 5.0, 8.0])
+    np.testing.assert_allclose(smooth.distance, [0.025, 0.12, 0.02])
+    assert smooth.y.tolist() == [1, 0, 0] and smooth.run.tolist() == [0, 0, 1]
+    assert smooth.columns["time"].tolist() == [2.0, 3.0, 5.0]  # the moment each is presented
+
+
+def test_the_files_task_splits_by_rows_count_and_fraction(table):
+    task = files(table, columns="a,b", label="novel", time="t", train_rows=4)
+    assert task.split.tolist() == ["train"] * 4 + ["test"] * 2 and task.train_passes == 1
+    assert files(table, columns="a,b", label="novel", train_rows=0.5).split.tolist().count("train") == 3
+
+
+def test_the_files_task_splits_by_a_column_and_by_a_second_file(tmp_path):
+    path = write(tmp_path, "a,phase,y\n1,train,0\n2,train,0\n3,test,1\n4,test,0\n")
+    task = files(path, split="phase")
+    assert task.split.tolist() == ["train", "train", "test", "test"]
+    np.testing.assert_array_equal(task.test().y, [1, 0])
+    train = write(tmp_path, "a\n1\n2\n", "train.csv")  # no labels: learned scans are familiar
+    test = write(tmp_path, "a,y\n3,1\n4,0\n", "test.csv")
+    task = files(train, test_path=test)
+    np.testing.assert_array_equal(task.X.ravel(), [1, 2, 3, 4])
+    np.testing.assert_array_equal(task.y, [0, 0, 1, 0])
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(train_rows=3, split="phase"), "one way to split the scans into training and test; got split and train_rows"),
+    (dict(), "how are the scans split"),
+    (dict(train_rows=6), r"1 to 5 of 6; got 6"),
+    (dict(train_rows=1.5), r"fraction must lie in \(0, 1\)"),
+    (dict(train_rows=3, label=None, columns="a,b,novel"), "the test scans need labels"),
+    (dict(train_rows=3, preprocess="log"), "preprocess must be one of none, paper; got 'log'"),
+])
+def test_the_files_task_refuses_what_it_cannot_split(table, kwargs, message):
+    options = dict(columns="a,b", label="novel", time="t") | kwargs
+    with pytest.raises(ValueError, match=message):
+        files(table, **options)
+
+
+def test_the_files_task_is_registered(table):
+    task = load("files", path=str(table), columns="a,b", label="novel", train_rows=4)
+    assert task.name == "files" and len(task.train()) == 4
