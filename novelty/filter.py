@@ -25,27 +25,36 @@ import numpy as np
 from sklearn.base import clone
 
 from . import _kernels
-from ._validation import Instance, Interval
+from ._component import StateError, check_array_state
+from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
+from .match_scale import ScaleCalibration, mismatch_novelty
 from .registry import InvalidParameterError, check_parameters
 
 __all__ = ["HabituatingFilter", "learn_stream", "hsom"]
 
 
 def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.ndarray,
-                 stimulus: float = 1.0) -> np.ndarray:
-    """Present the rows of ``X`` in order, learning; return each row's novelty.
+                 stimulus: float = 1.0, distances: np.ndarray | None = None) -> np.ndarray:
+    """Present the rows of ``X`` in order, learning; return each row's efficacy novelty.
 
     This is the reference implementation of the filter's learning loop: the
-    readable version any faster kernel must reproduce.
+    readable version any faster kernel must reproduce. The novelty of a row
+    is its winner's efficacy before the row is learned; a row the network
+    gives a unit of its own (``Growth.new_winner``) has that new unit's
+    (fresh) efficacy, and the new unit's synapse then fires for it.
+    ``distances``, if given, receives each row's squared distance to its
+    winner.
     """
     novelty = np.empty(X.shape[0])
     for i in range(X.shape[0]):
         x = X[i]
         match = clusterer.match(x)
         novelty[i] = synapse.efficacy_[match.winner]
+        if distances is not None:
+            distances[i] = match.distance
         # Habituate on the rows of this match before the network may renumber them.
         synapse.step(match.winner, match.neighbours, stimulus, dt[i])
         growth = clusterer.adapt(x, match)
@@ -53,6 +62,9 @@ def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.n
             synapse.shrink(growth.removed)
         if growth.added:
             synapse.grow(growth.added)
+            if growth.new_winner:
+                novelty[i] = synapse.efficacy_[-1]
+                synapse.fire(synapse.n_units_ - 1, stimulus, dt[i])
     return novelty
 
 
@@ -75,6 +87,31 @@ class HabituatingFilter(NoveltyDetector):
         Passes over the data in :meth:`fit` (the robot's repeated runs).
     random_state : int, numpy Generator or None, default=0
         Seed of the clusterer's initialisation.
+    novelty_rule : {"efficacy", "mismatch"}, default="efficacy"
+        How the winner's efficacy ``y_s`` and its match distance
+        ``d = ||x - w_s||`` make the novelty. ``"efficacy"``: ``y_s`` alone
+        (the paper). ``"mismatch"`` (habituation x mismatch, our extension,
+        see :mod:`novelty.match_scale`)::
+
+            n(x) = 1 - (1 - y_s) * exp(-d^2 / (2 sigma^2))
+
+        low only for an input that is close to a habituated unit.
+    match_scale : float or None, default=None
+        sigma, a distance. None: calibrated on the first
+        ``calibration_scans`` scans learned (below).
+    match_quantile : float, default=0.9
+        The calibrated sigma is this quantile of each calibration scan's
+        distance to its nearest distinct other calibration scan.
+    calibration_scans : int, default=200
+        How many of the first scans learned calibrate sigma (when it is not
+        given and the rule or the clusterer needs it). The scans are taken
+        one at a time, so the result does not depend on how they were
+        batched: sigma is re-estimated after each of them and then fixed. A
+        scan learned before two distinct scans were seen is scored by its
+        efficacy alone, and a growing network that takes the scale
+        (``GrowWhenRequired(activity_threshold="auto")``) adds no unit
+        before then; a model that has learned fewer scans scores with the
+        scale of those it has (a first batch of one scan: the efficacy).
 
     Attributes
     ----------
@@ -82,6 +119,12 @@ class HabituatingFilter(NoveltyDetector):
         The fitted network.
     synapse_ : Synapse
         The fitted synapse bank, one synapse per unit of ``clusterer_``.
+    match_scale_ : float or None
+        sigma in use: ``match_scale``, or calibrated (None until known, or
+        when neither the rule nor the clusterer needs one).
+    calibration_scans_ : ndarray of shape (n_scans, n_features)
+        The scans collected to calibrate sigma (only while calibrating and
+        after; at most ``calibration_scans``).
     n_features_in_ : int
         Number of features of the inputs.
 
@@ -106,16 +149,25 @@ class HabituatingFilter(NoveltyDetector):
         "threshold": Interval(numbers.Real, None, None),
         "stimulus": Interval(numbers.Real, 0, None),
         "n_epochs": Interval(numbers.Integral, 1, None),
+        "novelty_rule": Options(("efficacy", "mismatch")),
+        "match_scale": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
+        "match_quantile": Interval(numbers.Real, 0, 1),
+        "calibration_scans": Interval(numbers.Integral, 2, None),
     }
 
     def __init__(self, clusterer="som", synapse="stanley", threshold=0.5, stimulus=1.0,
-                 n_epochs=1, random_state=0):
+                 n_epochs=1, random_state=0, novelty_rule="efficacy", match_scale=None,
+                 match_quantile=0.9, calibration_scans=200):
         self.clusterer = clusterer
         self.synapse = synapse
         self.threshold = threshold
         self.stimulus = stimulus
         self.n_epochs = n_epochs
         self.random_state = random_state
+        self.novelty_rule = novelty_rule
+        self.match_scale = match_scale
+        self.match_quantile = match_quantile
+        self.calibration_scans = calibration_scans
 
     # ------------------------------------------------------------ construction
     @classmethod
@@ -180,34 +232,84 @@ class HabituatingFilter(NoveltyDetector):
         synapse.initialize(clusterer.n_units_)
         self.clusterer_ = clusterer
         self.synapse_ = synapse
+        needed = self.novelty_rule == "mismatch" or clusterer.uses_match_scale
+        self.match_scale_ = None if self.match_scale is None else float(self.match_scale)
+        if needed and self.match_scale is None:
+            self.calibration_scans_ = np.empty((0, X.shape[1]))
+        elif hasattr(self, "calibration_scans_"):
+            del self.calibration_scans_
+        self._rebuild_scratch()
+        if clusterer.uses_match_scale:
+            clusterer.calibrate(self.match_scale_)
 
-    # The three hooks below first ask novelty._kernels for a compiled kernel for
-    # this (clusterer, synapse) pair (issue 7); a kernel gives the same results
-    # as the reference code after it, which runs when there is none.
+    def _rebuild_scratch(self) -> None:
+        if not hasattr(self, "match_scale_"):  # a model file written before the scale existed
+            self.match_scale_ = None
+        scans = getattr(self, "calibration_scans_", None)
+        self._calibration = None if scans is None else ScaleCalibration(
+            scans, self.calibration_scans, self.match_quantile)
+
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        calibration = self._calibration
+        if calibration is None or calibration.full:
+            return self._learn_block(X, dt)
+        # Calibrating: one scan at a time, each scored with the scale of the
+        # scans before it, so that any batching gives the same numbers.
+        out = np.empty(X.shape[0])
+        i = 0
+        while i < X.shape[0] and not calibration.full:
+            out[i] = self._learn_block(X[i : i + 1], dt[i : i + 1])[0]
+            if calibration.add(X[i]):
+                self.match_scale_ = calibration.scale
+                if self.clusterer_.uses_match_scale:
+                    self.clusterer_.calibrate(self.match_scale_)
+            i += 1
+        self.calibration_scans_ = calibration.scans
+        if i < X.shape[0]:
+            out[i:] = self._learn_block(X[i:], dt[i:])
+        return out
+
+    # The hooks below first ask novelty._kernels for a compiled kernel for this
+    # (clusterer, synapse) pair; a kernel gives the same results as the
+    # reference code after it, which runs when there is none.
+    def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        distances = np.empty(X.shape[0]) if self.novelty_rule == "mismatch" else None
         kernel = _kernels.learner(self.clusterer_, self.synapse_)
         if kernel is not None:
-            return kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus))
-        return learn_stream(self.clusterer_, self.synapse_, X, dt, float(self.stimulus))
+            efficacy = kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
+                              distances=distances)
+        else:
+            efficacy = learn_stream(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
+                                    distances=distances)
+        return self._combine(efficacy, distances)
+
+    def _combine(self, efficacy: np.ndarray, distances: np.ndarray | None) -> np.ndarray:
+        if self.novelty_rule == "efficacy":
+            return efficacy
+        return mismatch_novelty(efficacy, distances, self.match_scale_)
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
+        rows = np.empty(X.shape[0], dtype=np.int64)
+        distances = np.empty(X.shape[0])
         kernel = _kernels.scorer(self.clusterer_, self.synapse_)
         if kernel is not None:
-            return kernel(self.clusterer_, self.synapse_, X)
-        rows, _ = self.clusterer_.winners(X)
-        return self.synapse_.efficacy_[rows]
+            efficacy = kernel(self.clusterer_, self.synapse_, X, rows, distances)
+        else:
+            rows[:], _ = self.clusterer_.winners(X)
+            # the winners' distances as match() computes them (winners() expands the square)
+            distances[:] = ((X - self.clusterer_.weights_[rows]) ** 2).sum(axis=1)
+            efficacy = self.synapse_.efficacy_[rows]
+        new = self.clusterer_.grows_for(rows, distances)
+        if new is not None:
+            efficacy = np.where(new, self.synapse_.fresh_efficacy, efficacy)
+        return self._combine(efficacy, distances)
 
     def _novelty_one(self, x: np.ndarray) -> float:
-        kernel = _kernels.scorer(self.clusterer_, self.synapse_)
-        if kernel is not None:
-            return float(kernel(self.clusterer_, self.synapse_, x[None, :])[0])
-        return float(self.synapse_.efficacy_[self.clusterer_.match(x).winner])
+        return float(self._novelty(x[None, :])[0])
 
     def winners(self, X) -> np.ndarray:
         """Stable ids of the winning units of ``X``, without learning."""
         self._check_fitted()
-        from ._validation import check_batch
-
         rows, _ = self.clusterer_.winners(check_batch(X, self, self.n_features_in_))
         return self.clusterer_.unit_ids_[rows]
 
@@ -222,8 +324,6 @@ class HabituatingFilter(NoveltyDetector):
         return synapse.resting_efficacy
 
     def _check_state(self) -> None:
-        from ._component import StateError
-
         super()._check_state()
         if self.synapse_.n_units_ != self.clusterer_.n_units_:
             raise StateError(
@@ -232,6 +332,12 @@ class HabituatingFilter(NoveltyDetector):
             )
         if self.clusterer_.weights_.shape[1] != self.n_features_in_:
             raise StateError("The clusterer's weights do not match n_features_in_.")
+        scale = getattr(self, "match_scale_", None)
+        if scale is not None and (isinstance(scale, bool) or not isinstance(scale, numbers.Real)
+                                  or not 0 < scale < np.inf):
+            raise StateError(f"HabituatingFilter.match_scale_ must be None or a positive number; got {scale!r}.")
+        if hasattr(self, "calibration_scans_"):
+            check_array_state(self, "calibration_scans_", 2, shape=(None, self.n_features_in_))
 
 
 def hsom(**params) -> HabituatingFilter:

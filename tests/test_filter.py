@@ -2,6 +2,7 @@
 repeated scan, learning on and off, streaming == batch, scikit-learn conventions,
 parameter routing and determinism."""
 
+import copy
 import re
 
 import numpy as np
@@ -361,3 +362,97 @@ def test_novelty_lies_in_0_1(case):
     for values in (out, out2, nov):
         assert np.all((values >= 0.0) & (values <= 1.0))
     assert out[0] == 1.0  # the first scan of a fresh filter is fully novel
+
+
+# ------------------------------------------------ habituation x mismatch (ours)
+def mismatch(**params):
+    return novelty.make("hsom", n_rows=2, n_columns=2, novelty_rule="mismatch", **params)
+
+
+def test_mismatch_rule_by_hand():
+    det = mismatch(match_scale=0.5).fit(data(10, 2))
+    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+    det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
+    X = np.array([[0.0, 0.0], [0.0, 0.25], [0.9, 1.0], [0.6, 0.0]])
+    # winners 0, 0, 3, 1; d^2 = 0, 1/16, 1/100, 4/25; sigma^2 = 1/4
+    expected = [0.25, 1 - 0.75 * np.exp(-0.125), 1 - np.exp(-0.02), 1.0]
+    np.testing.assert_allclose(det.novelty(X), expected, rtol=0, atol=1e-15)
+    np.testing.assert_allclose([det.score_one(x) for x in X], expected, rtol=0, atol=1e-15)
+
+
+def test_efficacy_rule_is_the_default_and_keeps_no_calibration():
+    det = small().fit(data())
+    assert det.novelty_rule == "efficacy" and det.match_scale_ is None
+    assert not hasattr(det, "calibration_scans_")
+
+
+def test_match_scale_is_calibrated_on_the_first_scans():
+    from novelty.match_scale import nearest_distinct
+
+    X = data(300)
+    det = mismatch(calibration_scans=50).fit(X)
+    assert det.match_scale_ == np.quantile(nearest_distinct(X[:50]), 0.9)
+    np.testing.assert_array_equal(det.calibration_scans_, X[:50])
+    det.partial_fit(data(20, seed=1))
+    assert det.match_scale_ == np.quantile(nearest_distinct(X[:50]), 0.9)  # fixed once calibrated
+    assert mismatch(match_quantile=0.5, calibration_scans=50).fit(X).match_scale_ < det.match_scale_
+
+
+def test_a_given_match_scale_is_used_as_is():
+    det = mismatch(match_scale=0.7).fit(data())
+    assert det.match_scale_ == 0.7 and not hasattr(det, "calibration_scans_")
+
+
+@pytest.mark.parametrize("name,params", [
+    ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 30}),
+    ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
+                     "firing_condition": False, "new_unit_wins": True, "calibration_scans": 30}),
+])
+def test_mismatch_streaming_scan_by_scan_equals_batches(name, params):
+    X = data(80)
+    whole = novelty.make(name, **params)
+    out_whole = whole.stream(X)
+    parts = novelty.make(name, **params)
+    out_parts = np.concatenate([parts.stream(X[:7]), parts.stream(X[7:45]), parts.stream(X[45:])])
+    one = novelty.make(name, **params)
+    out_one = np.array([one.score_learn_one(x) for x in X])
+    np.testing.assert_array_equal(out_whole, out_parts)
+    np.testing.assert_array_equal(out_whole, out_one)
+    assert whole.match_scale_ == parts.match_scale_ == one.match_scale_ is not None
+    np.testing.assert_array_equal(whole.novelty(X), one.novelty(X))
+
+
+def test_before_two_distinct_scans_the_novelty_is_the_efficacy():
+    det = mismatch()
+    x = np.full(4, 0.5)
+    out = [det.score_learn_one(x) for _ in range(3)]
+    assert det.match_scale_ is None
+    np.testing.assert_allclose(out, [1.0, euler(1), euler(2)], rtol=0, atol=1e-15)
+    assert det.score_one(np.ones(4)) == det.synapse_.efficacy_[det.clusterer_.match(np.ones(4)).winner]
+
+
+@pytest.mark.parametrize("name,params", [
+    ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 30}),
+    ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
+                     "firing_condition": False, "new_unit_wins": True}),
+    ("gng-stanley", {"novelty_rule": "mismatch", "insertion_interval": 5}),
+])
+def test_frozen_novelty_is_what_learning_the_scan_would_report(name, params):
+    X, probe = data(60), data(15, seed=2) * 1.5
+    det = novelty.make(name, **params).fit(X)
+    frozen = det.novelty(probe)
+    learned = [clone_fitted(det).score_learn_one(x) for x in probe]
+    np.testing.assert_array_equal(frozen, learned)
+
+
+def clone_fitted(det):
+    return copy.deepcopy(det)
+
+
+def test_mismatch_rule_parameters_are_checked():
+    for params, message in [({"novelty_rule": "distance"}, "novelty_rule"),
+                            ({"match_scale": 0.0}, "match_scale"),
+                            ({"match_quantile": 1.5}, "match_quantile"),
+                            ({"calibration_scans": 1}, "calibration_scans")]:
+        with pytest.raises(ValueError, match=f"The '{message}' parameter of HabituatingFilter"):
+            small(**params).fit(data())

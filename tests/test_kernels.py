@@ -25,6 +25,7 @@ from sklearn.base import clone
 
 import novelty
 from novelty import _kernels
+from novelty.clusterers.gwr import GrowWhenRequired
 from novelty.filter import HabituatingFilter, learn_stream
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
@@ -125,9 +126,19 @@ def streams(draw):
     return X, timestamps
 
 
-def build(som, stanley, stimulus=1.0, seed=0):
+#: the filter's novelty rules: the paper's, and habituation x mismatch with a
+#: calibrated scale (short calibration, so that it ends within a stream) or a given one
+rules = st.sampled_from([
+    {},
+    {"novelty_rule": "mismatch", "calibration_scans": 7},
+    {"novelty_rule": "mismatch", "match_scale": 0.3},
+])
+
+
+def build(som, stanley, stimulus=1.0, seed=0, **rule):
     return HabituatingFilter.from_params("som", "stanley", stimulus=stimulus, random_state=seed,
-                                         **som, **{f"synapse__{k}": v for k, v in stanley.items()})
+                                         **som, **{f"synapse__{k}": v for k, v in stanley.items()},
+                                         **rule)
 
 
 # ------------------------------------------------------------------ learning
@@ -156,11 +167,12 @@ def test_learning_equals_reference(som, stanley, data, stimulus):
 
 
 @settings(max_examples=40, deadline=None)
-@given(som=som_params, stanley=stanley_params(), data=streams(), split=st.integers(0, 60))
-def test_detector_api_equals_reference(som, stanley, data, split):
-    """fit / partial_fit / score_learn_one / novelty / score_one, kernel vs reference."""
+@given(som=som_params, stanley=stanley_params(), data=streams(), split=st.integers(0, 60),
+       rule=rules)
+def test_detector_api_equals_reference(som, stanley, data, split, rule):
+    """fit / partial_fit / score_learn_one / novelty / score_one, kernel vs reference, every rule."""
     X, _ = data
-    fast, slow = build(som, stanley), build(som, stanley)
+    fast, slow = build(som, stanley, **rule), build(som, stanley, **rule)
     head, tail = X[:split], X[split:]
     results = []
     for det, context in ((fast, contextlib.nullcontext()), (slow, reference_only())):
@@ -220,7 +232,9 @@ def assert_same_network(a, b):
         assert getattr(a.clusterer_, name, None) == getattr(b.clusterer_, name, None), name
     if hasattr(b.clusterer_, "firing_"):
         np.testing.assert_array_equal(a.clusterer_.firing_.efficacy_, b.clusterer_.firing_.efficacy_)
+        assert a.clusterer_.activity_threshold_ == b.clusterer_.activity_threshold_
     np.testing.assert_array_equal(a.synapse_.efficacy_, b.synapse_.efficacy_)
+    assert a.match_scale_ == b.match_scale_
 
 
 gng_params = st.fixed_dictionaries({
@@ -235,7 +249,9 @@ gng_params = st.fixed_dictionaries({
 })
 
 gwr_params = st.fixed_dictionaries({
-    "activity_threshold": st.floats(0, 1, **finite),
+    "activity_threshold": st.one_of(st.floats(0, 1, **finite), st.just("auto")),
+    "firing_condition": st.booleans(),
+    "new_unit_wins": st.booleans(),
     "habituation_threshold": st.floats(0, 1.2, **finite),
     "epsilon_b": st.floats(0, 1, **finite),
     "epsilon_n": st.floats(0, 1, **finite),
@@ -256,7 +272,7 @@ def growing_filters(draw):
     clusterer = novelty.registry.clusterers.make(kind, **params)
     return HabituatingFilter(clusterer=clusterer, synapse=synapse,
                              stimulus=draw(st.floats(0, 2, **finite)),
-                             random_state=draw(st.integers(0, 100)))
+                             random_state=draw(st.integers(0, 100)), **draw(rules))
 
 
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -273,6 +289,7 @@ def test_growing_networks_equal_reference(det, data, split):
                 t = None if timestamps is None else timestamps[split:]
                 out.append(model.stream(X[split:], timestamps=t))
             out.append(np.array([model.score_learn_one(x) for x in X[:3]]))
+            out.append(model.novelty(X))
             results.append(np.concatenate(out))
     np.testing.assert_array_equal(results[0], results[1])
     assert_same_network(fast, slow)
@@ -283,6 +300,9 @@ def test_growing_networks_equal_reference(det, data, split):
     ("gng-stanley", {"insertion_interval": 10, "max_age": 4, "synapse__others": "forget"}),
     ("gwr-novelty", {}),
     ("gwr-novelty", {"activity_threshold": 0.95, "max_age": 3, "synapse__method": "exact"}),
+    ("gwr-novelty", {"activity_threshold": "auto", "firing_condition": False, "new_unit_wins": True,
+                     "novelty_rule": "mismatch"}),
+    ("gng-stanley", {"insertion_interval": 10, "novelty_rule": "mismatch"}),
 ])
 def test_growing_corridor_equals_reference(name, params):
     X = corridor(3000)
@@ -328,10 +348,14 @@ def test_batch_scoring_equals_score_one(som, data, n_test):
         np.testing.assert_array_equal(batch, det.novelty(probe))
 
 
-@pytest.mark.parametrize("clusterer", ["gng", "gwr", "online-kmeans"])
-def test_other_networks_batch_scoring_equals_reference(clusterer):
+@pytest.mark.parametrize("rule", ["efficacy", "mismatch"])
+@pytest.mark.parametrize("clusterer", [
+    "gng", "gwr", "online-kmeans",
+    GrowWhenRequired(activity_threshold="auto", firing_condition=False, new_unit_wins=True),
+])
+def test_other_networks_batch_scoring_equals_reference(clusterer, rule):
     """The scoring kernel serves every clusterer whose winner is the nearest unit."""
-    det = HabituatingFilter(clusterer=clusterer).fit(corridor(1500))
+    det = HabituatingFilter(clusterer=clusterer, novelty_rule=rule).fit(corridor(1500))
     assert _kernels.scorer(det.clusterer_, det.synapse_) is not None
     probe = np.concatenate([corridor(300, seed=3), np.round(corridor(200, seed=4), 1)])
     got = det.novelty(probe)
@@ -389,11 +413,11 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
     module = _kernels._SOM.module
     calls = []
 
-    def reference_blocks(som, syn, X, dt, stimulus):
+    def reference_blocks(som, syn, X, dt, stimulus, distances=None):
         calls.append(len(X))
         if len(calls) == 3:
             monkeypatch.setattr(_kernels._SOM, "module", module)  # "compiled" after 3 blocks
-        return learn_stream(som, syn, X, dt, stimulus)
+        return learn_stream(som, syn, X, dt, stimulus, distances=distances)
 
     monkeypatch.setattr(_kernels._SOM, "module", None)
     monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)

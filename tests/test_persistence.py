@@ -474,3 +474,22 @@ def test_bad_feature_names_in_a_file_are_refused(tmp_path, names, message):
         write_entries(tmp_path / "m.npz", entries)
     with pytest.raises(ModelFileError, match=message):
         novelty.load(tmp_path / "m.npz")
+
+
+@pytest.mark.parametrize("n_scans", [1, 12, 40])  # no scale yet, calibrating, calibrated
+@pytest.mark.parametrize("name,params", [
+    ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 20}),
+    ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
+                     "firing_condition": False, "new_unit_wins": True, "calibration_scans": 20}),
+])
+def test_match_scale_and_calibration_round_trip(tmp_path, name, params, n_scans):
+    rng = np.random.default_rng(0)
+    det = novelty.make(name, **params).fit(rng.uniform(size=(n_scans, 5)))
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert_identical(det, loaded)
+    assert loaded.match_scale_ == det.match_scale_
+    Y = rng.uniform(size=(30, 5))
+    assert det.novelty(Y).tobytes() == loaded.novelty(Y).tobytes()
+    assert det.stream(Y).tobytes() == loaded.stream(Y).tobytes()  # calibration goes on alike
+    assert loaded.match_scale_ == det.match_scale_ is not None

@@ -254,7 +254,11 @@ _NEAREST_UNIT = (SOM, GrowingNeuralGas, GrowWhenRequired, OnlineKMeans)
 
 
 def scorer(clusterer, synapse) -> Callable | None:
-    """A function ``(clusterer, synapse, X) -> novelty`` equal to ``efficacy_[winners(X)]``, or None.
+    """A function ``(clusterer, synapse, X, winners=None, distances=None) -> novelty``, or None.
+
+    The novelty is ``efficacy_[winners(X)]``; ``winners`` (int64) and
+    ``distances``, if given, receive each row's winning row and its squared
+    distance, as ``match`` computes it.
 
     Scoring only reads the weights and the efficacies, so any synapse model
     with a plain ``efficacy_`` array will do.
@@ -318,18 +322,21 @@ def _som_stanley_params(som, syn, stimulus: float) -> np.ndarray | None:
 
 # ------------------------------------------------------------------ learning
 def _learn_som_stanley(som, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
-                       winners: np.ndarray | None = None) -> np.ndarray:
-    # ``winners`` (int64, one per row) receives the winning rows, for tests.
+                       winners: np.ndarray | None = None,
+                       distances: np.ndarray | None = None) -> np.ndarray:
+    # ``winners`` (int64, one per row) receives the winning rows, for tests;
+    # ``distances`` the squared distances to them.
     params = _som_stanley_params(som, syn, stimulus)
     if params is None or som.n_rows * som.n_columns != som.weights_.shape[0]:
         from ..filter import learn_stream
 
-        return learn_stream(som, syn, X, dt, stimulus)
+        return learn_stream(som, syn, X, dt, stimulus, distances=distances)
     n = X.shape[0]
     novelty = np.empty(n)
     radius, t = _SOM.module.som_stanley_stream(
         som.weights_, syn.efficacy_, _c(X), _c(dt),
-        np.empty(n, dtype=np.int64) if winners is None else winners, novelty, np.empty(n),
+        np.empty(n, dtype=np.int64) if winners is None else winners, novelty,
+        np.empty(n) if distances is None else distances,
         _plan(X.shape[1]), params, True, som._table_radius, som.n_updates_,
     )
     som.n_updates_ = t
@@ -350,19 +357,22 @@ def _handing_over(compiled: _Compiled, kernel: Callable) -> Callable:
     soon as it is ready.
     """
 
-    def learn(net, syn, X, dt, stimulus, winners=None):
+    def learn(net, syn, X, dt, stimulus, winners=None, distances=None):
         from ..filter import learn_stream
 
         if winners is not None:  # only tests ask for winners, and they wait for the kernel
             raise ValueError("winners are only reported by the compiled kernel")
         novelty = np.empty(X.shape[0])
+        d = np.empty(X.shape[0]) if distances is None else distances
         start = 0
         while start < X.shape[0]:
             if compiled.module is not None or compiled.get() is not None:
-                novelty[start:] = kernel(net, syn, X[start:], dt[start:], stimulus)
+                novelty[start:] = kernel(net, syn, X[start:], dt[start:], stimulus,
+                                         distances=d[start:])
                 break
             stop = start + _HANDOVER_BLOCK
-            novelty[start:stop] = learn_stream(net, syn, X[start:stop], dt[start:stop], stimulus)
+            novelty[start:stop] = learn_stream(net, syn, X[start:stop], dt[start:stop], stimulus,
+                                               distances=d[start:stop])
             start = stop
         return novelty
 
@@ -407,7 +417,8 @@ def _roomy_state(net, syn, extra: int):
     return W, u, A, y, ids
 
 
-def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> np.ndarray:
+def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
+                   distances: np.ndarray | None = None) -> np.ndarray:
     """GNG or GWR: the kernel on the network's own arrays while no unit is added, then on
     copies with room to grow, enlarged whenever the kernel stops for want of room."""
     module = _GROWING.module
@@ -416,15 +427,16 @@ def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> 
     plan = _plan(X.shape[1])
     p = _stanley_params(syn)
     if gwr:
-        g = np.array([net.activity_threshold, net.habituation_threshold, net.epsilon_b,
-                      net.epsilon_n, net.max_age, -1 if net.max_units is None else net.max_units],
-                     dtype=np.float64)
+        g = np.array([net.activity_threshold_, net.habituation_threshold, net.epsilon_b,
+                      net.epsilon_n, net.max_age, -1 if net.max_units is None else net.max_units,
+                      net.firing_condition, net.new_unit_wins], dtype=np.float64)
         ph = _stanley_params(net.firing_)
     else:
         g = np.array([net.epsilon_b, net.epsilon_n, net.insertion_interval,
                       net.insertion_error_decay, net.error_decay, net.max_age, net.max_units],
                      dtype=np.float64)
     novelty = np.empty(X.shape[0])
+    d = np.empty(X.shape[0]) if distances is None else distances
     age_dtype = net.edge_ages_.dtype
     state = _growing_state(net, syn)  # most single scans add no unit: no copies
     start = 0
@@ -437,15 +449,15 @@ def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float) -> 
             room = rest if gwr else rest // net.insertion_interval + 1
             state = _roomy_state(net, syn, max(1, min(room, max(n, 16))))
         W, u, A, y, ids = state
-        out = novelty[start:]
+        out, out_d = novelty[start:], d[start:]
         if gwr:
             done, n, next_id = module.gwr_stream(W, u, A, y, ids, X[start:], dt[start:], out,
-                                                 plan, g, p, ph, float(stimulus), n,
+                                                 out_d, plan, g, p, ph, float(stimulus), n,
                                                  int(net.next_unit_id_))
         else:
             done, n, next_id, n_inputs = module.gng_stream(
-                W, u, A, y, ids, X[start:], dt[start:], out, plan, g, p, float(stimulus), n,
-                int(net.next_unit_id_), int(net.n_inputs_))
+                W, u, A, y, ids, X[start:], dt[start:], out, out_d, plan, g, p, float(stimulus),
+                n, int(net.next_unit_id_), int(net.n_inputs_))
             net.n_inputs_ = int(n_inputs)
         if n != W.shape[0] or W is not net.weights_:  # units added or deleted: trim
             net.weights_ = W[:n].copy()
@@ -492,27 +504,29 @@ def _score_params() -> np.ndarray:
     return params
 
 
-def _score_part(W, y, X, out, plan, params) -> None:
+def _score_part(W, y, X, out, rows, dist, plan, params) -> None:
     for lo in range(0, X.shape[0], _SCORE_CHUNK):
         block = _c(X[lo : lo + _SCORE_CHUNK])  # a read-only batch is copied block by block
         m = block.shape[0]
-        _SOM.module.som_stanley_stream(W, y, block, _NO_DT, np.empty(m, dtype=np.int64),
-                                       out[lo : lo + m], np.empty(m), plan, params, False, 0, 0)
+        _SOM.module.som_stanley_stream(W, y, block, _NO_DT, rows[lo : lo + m], out[lo : lo + m],
+                                       dist[lo : lo + m], plan, params, False, 0, 0)
 
 
-def _score_nearest(net, syn, X: np.ndarray) -> np.ndarray:
+def _score_nearest(net, syn, X: np.ndarray, winners: np.ndarray | None = None,
+                   distances: np.ndarray | None = None) -> np.ndarray:
     global _pool
     n = X.shape[0]
     out = np.empty(n)
+    rows = np.empty(n, dtype=np.int64) if winners is None else winners
+    dist = np.empty(n) if distances is None else distances
     plan = _plan(X.shape[1])
     params = _score_params()
     if n == 1:  # score_one: the shortest path
-        _SOM.module.som_stanley_stream(net.weights_, syn.efficacy_, _c(X), _NO_DT,
-                                       np.empty(1, dtype=np.int64), out, np.empty(1), plan,
-                                       params, False, 0, 0)
+        _SOM.module.som_stanley_stream(net.weights_, syn.efficacy_, _c(X), _NO_DT, rows, out,
+                                       dist, plan, params, False, 0, 0)
         return out
     if n < 2 * _SCORE_CHUNK or _threads() == 1:
-        _score_part(net.weights_, syn.efficacy_, X, out, plan, params)
+        _score_part(net.weights_, syn.efficacy_, X, out, rows, dist, plan, params)
         return out
     # The kernel releases the GIL (nogil): contiguous parts score in parallel.
     threads = min(_threads(), n // _SCORE_CHUNK)
@@ -521,7 +535,8 @@ def _score_nearest(net, syn, X: np.ndarray) -> np.ndarray:
 
         _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="novelty-score")
     bounds = np.linspace(0, n, threads + 1).astype(int)
-    jobs = [_pool.submit(_score_part, net.weights_, syn.efficacy_, X[a:b], out[a:b], plan, params)
+    jobs = [_pool.submit(_score_part, net.weights_, syn.efficacy_, X[a:b], out[a:b], rows[a:b],
+                         dist[a:b], plan, params)
             for a, b in zip(bounds[:-1], bounds[1:])]
     for job in jobs:
         job.result()

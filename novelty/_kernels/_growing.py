@@ -35,8 +35,8 @@ from ._distances import block_cols, transposed, untransposed
 STANLEY = ("exact", "forget", "tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0")
 GNG = ("epsilon_b", "epsilon_n", "insertion_interval", "insertion_error_decay", "error_decay",
        "max_age", "max_units")
-GWR = ("activity_threshold", "habituation_threshold", "epsilon_b", "epsilon_n", "max_age",
-       "max_units")  # max_units < 0: no limit
+GWR = ("activity_threshold_", "habituation_threshold", "epsilon_b", "epsilon_n", "max_age",
+       "max_units", "firing_condition", "new_unit_wins")  # max_units < 0: no limit
 
 _NO_EDGE = -1
 
@@ -187,10 +187,13 @@ def _new_unit(n, A):
 
 # ------------------------------------------------------------------- the GNG
 @njit("int64[::1](float64[:, ::1], float64[::1], int32[:, ::1], float64[::1], int64[::1], "
-      "float64[:, ::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], float64[::1], "
-      "float64, int64, int64, int64)", cache=True, nogil=True, error_model="numpy")
-def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id, n_inputs):
+      "float64[:, ::1], float64[::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], "
+      "float64[::1], float64, int64, int64, int64)", cache=True, nogil=True, error_model="numpy")
+def gng_stream(W, E, A, y, ids, X, dt, novelty, distances, plan, g, p, stimulus, n, next_id,
+               n_inputs):
     """Learn the rows of ``X`` with a GNG and a Stanley bank ``y`` (parameters ``g``, ``p``).
+
+    Writes each row's novelty (the winner's efficacy) and squared distance to the winner.
 
     Returns ``[inputs learned, n units, next id, n_inputs]``; stops early
     when the arrays are full and the next input is an insertion step.
@@ -211,6 +214,7 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
         x = X[i]
         s1, d1, s2 = _two_nearest(WT, n, x, plan, acc, stack)
         novelty[i] = y[s1]
+        distances[i] = d1
         _mark_neighbours(A, n, s1, is_nb)
         _stanley_step(y, n, s1, is_nb, stimulus, dt[i], p)
         # adapt, steps 3-9
@@ -261,10 +265,15 @@ def gng_stream(W, E, A, y, ids, X, dt, novelty, plan, g, p, stimulus, n, next_id
 
 # ------------------------------------------------------------------- the GWR
 @njit("int64[::1](float64[:, ::1], float64[::1], int32[:, ::1], float64[::1], int64[::1], "
-      "float64[:, ::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], float64[::1], "
-      "float64[::1], float64, int64, int64)", cache=True, nogil=True, error_model="numpy")
-def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, next_id):
+      "float64[:, ::1], float64[::1], float64[::1], float64[::1], int64[:, ::1], float64[::1], "
+      "float64[::1], float64[::1], float64, int64, int64)", cache=True, nogil=True,
+      error_model="numpy")
+def gwr_stream(W, h, A, y, ids, X, dt, novelty, distances, plan, g, p, ph, stimulus, n, next_id):
     """Learn the rows of ``X`` with a GWR (counters ``h``, parameters ``ph``) and a Stanley bank ``y``.
+
+    Writes each row's novelty and squared distance to the winner; with
+    ``new_unit_wins``, a row that adds a unit has the new unit's fresh
+    efficacy, and the new unit's synapse and counter fire for it.
 
     Returns ``[inputs learned, n units, next id]``; stops early when the
     arrays are full and the next input would add a unit.
@@ -272,6 +281,7 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
     cap = W.shape[0]
     a_t, h_t, eps_b, eps_n = g[0], g[1], g[2], g[3]
     max_age, max_units = int(g[4]), int(g[5])
+    firing_condition, new_wins = g[6] != 0.0, g[7] != 0.0
     WT = transposed(W, n)  # (features, units): the distances vectorise; written back at the end
     acc = np.empty((8, cap))
     stack = np.empty((plan.shape[0], cap))
@@ -290,21 +300,26 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
         # function on x86-64 without AVX-512, where numpy uses its own SIMD exp
         # and the last bit may differ (it matters only at a_T exactly).
         activity = math.exp(-math.sqrt(d_s))
-        grow = activity < a_t and h[s] < h_t and (max_units < 0 or n < max_units)
+        grow = (activity < a_t and (h[s] < h_t or not firing_condition)
+                and (max_units < 0 or n < max_units))
         if grow and n == cap:
             break
         novelty[i] = y[s]
+        distances[i] = d_s
         _mark_neighbours(A, n, s, is_nb)
         is_nb[t] = True  # match(): the neighbours after step 5 include t
         _stanley_step(y, n, s, is_nb, stimulus, dt[i], p)
         # adapt, steps 5-11
         _connect(A, s, t, 0)
+        r = n  # the new unit's row, if one is added
         if grow:
-            r = n
             for k in range(WT.shape[0]):
                 WT[k, r] = 0.5 * (WT[k, s] + x[k])
             h[r] = ph[6]
             y[r] = p[6]
+            if new_wins:  # Synapse.fire after the filter's bank has grown
+                novelty[i] = y[r]
+                y[r] = _stanley_one(y[r], stimulus, p[2], dt[i], p[0] != 0.0, p[5], p[6])
             ids[r] = next_id
             next_id += 1
             _new_unit(n, A)
@@ -322,6 +337,8 @@ def gwr_stream(W, h, A, y, ids, X, dt, novelty, plan, g, p, ph, stimulus, n, nex
         _age_edges(A, n, s)
         _mark_neighbours(A, n, s, is_nb)
         _stanley_step(h, n, s, is_nb, 1.0, 1.0, ph)
+        if grow and new_wins:  # the new unit r fired too (GrowWhenRequired.adapt)
+            h[r] = _stanley_one(h[r], 1.0, ph[2], 1.0, ph[0] != 0.0, ph[5], ph[6])
         if _prune(A, n, s, max_age, gone) > 0:
             n = _delete_units(n, gone, WT, A, ids, h, y, dummy)
         done = i + 1

@@ -55,11 +55,13 @@ class Growth(NamedTuple):
     """Structural changes made by one :meth:`Clusterer.adapt`.
 
     ``removed`` rows (indices before the removal, sorted) are deleted first;
-    then ``added`` new units are appended at the end.
+    then ``added`` new units are appended at the end. ``new_winner``: the
+    (last) added unit stands for this input and fires for it, as its winner.
     """
 
     added: int = 0
     removed: np.ndarray = NO_UNITS
+    new_winner: bool = False
 
 
 NO_GROWTH = Growth()
@@ -90,6 +92,28 @@ class Clusterer(Component):
     @abstractmethod
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
         """Learn from ``x`` given its :class:`Match`; report added/removed units."""
+
+    # ------------------------------------------------------- optional hooks
+    @property
+    def uses_match_scale(self) -> bool:
+        """Whether the network takes a match scale from :meth:`calibrate`."""
+        return False
+
+    def calibrate(self, scale: float | None) -> None:
+        """Take the match scale (a distance; None: not known yet) calibrated on the inputs.
+
+        The habituating filter calls this after each change of its match
+        scale (:mod:`novelty.match_scale`) when :attr:`uses_match_scale`.
+        """
+
+    def grows_for(self, rows: np.ndarray, distances: np.ndarray) -> np.ndarray | None:
+        """Which inputs would be given a new unit of their own if they were learned now.
+
+        ``rows`` and ``distances`` are the inputs' winners and squared
+        distances. None (the default): no input is (a network that reports
+        ``Growth.new_winner`` must answer).
+        """
+        return None
 
     # --------------------------------------------------------------- provided
     def initialize(self, X: np.ndarray, random_state: int | np.random.Generator | None = None) -> "Clusterer":

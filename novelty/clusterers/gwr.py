@@ -80,6 +80,7 @@ from sklearn.base import clone
 from .._component import StateError
 from .._validation import Instance, Interval, Options
 from ..habituation.base import Synapse
+from ..match_scale import ScaleCalibration
 from . import _graph
 from .base import Clusterer, Growth, Match
 
@@ -91,14 +92,32 @@ class GrowWhenRequired(Clusterer):
 
     Parameters
     ----------
-    activity_threshold : float, default=0.85
+    activity_threshold : float or "auto", default=0.85
         a_T: a unit is added when the winner's activity exp(-||x - w_s||)
         falls below it (step 7). The paper tunes a_T to each data set; 0.85
         means an input farther than -ln(0.85) = 0.16 from every unit is new,
         about 4 % of the diameter of the unit cube of 16 sonar readings.
+        ``"auto"`` (ours) calibrates it from the data as
+        ``a_T = exp(-d_T)`` with the insertion radius ``d_T`` a match scale
+        (:mod:`novelty.match_scale`): in a habituating filter, the filter's
+        (see :meth:`calibrate`); alone, the 0.9 quantile of the
+        nearest-distinct distances within the first batch (no growth while
+        that is unknown).
     habituation_threshold : float, default=0.1
         h_T: ... and the winner's firing counter is below it, that is the
         winner has fired often (step 7). The paper: 0.1.
+    firing_condition : bool, default=True
+        Whether step 7 requires ``h_s < h_T`` (the paper). False (ours):
+        an input is given a unit whenever its activity is below a_T, even if
+        the winner has not fired often.
+    new_unit_wins : bool, default=False
+        Ours. The new unit added for an input stands for it as its winner:
+        its firing counter fires once for it (tau_b, after step 10), in a
+        habituating filter its synapse habituates once for it, and the
+        input's novelty is that of the new unit (a fresh synapse's), both
+        while learning and when scoring without learning
+        (:meth:`grows_for`). False: the paper (the new unit starts
+        unhabituated; the novelty is the old winner's).
     epsilon_b : float, default=0.1
         Learning rate of the winner (step 8), scaled by its counter h_s.
     epsilon_n : float, default=0.01
@@ -128,6 +147,9 @@ class GrowWhenRequired(Clusterer):
         Unit prototypes w.
     firing_ : Synapse
         The firing counters; ``firing_.efficacy_`` of shape (n_units,) is h.
+    activity_threshold_ : float
+        The a_T in use (``activity_threshold``, or calibrated; 0.0: no
+        growth until a scale is known).
     edge_ages_ : ndarray of shape (n_units, n_units), dtype int32
         Age of the edge between two units, -1 where there is none; symmetric.
     unit_ids_ : ndarray of shape (n_units,)
@@ -149,8 +171,10 @@ class GrowWhenRequired(Clusterer):
     """
 
     _parameter_rules = {
-        "activity_threshold": Interval(numbers.Real, 0, 1),
+        "activity_threshold": (Interval(numbers.Real, 0, 1), Options(("auto",))),
         "habituation_threshold": Interval(numbers.Real, 0, None),
+        "firing_condition": Options((True, False)),
+        "new_unit_wins": Options((True, False)),
         "epsilon_b": Interval(numbers.Real, 0, 1),
         "epsilon_n": Interval(numbers.Real, 0, 1),
         "max_age": Interval(numbers.Integral, 1, None),
@@ -170,9 +194,13 @@ class GrowWhenRequired(Clusterer):
         firing=None,
         init="sample",
         init_range=(0.0, 1.0),
+        firing_condition=True,
+        new_unit_wins=False,
     ):
         self.activity_threshold = activity_threshold
         self.habituation_threshold = habituation_threshold
+        self.firing_condition = firing_condition
+        self.new_unit_wins = new_unit_wins
         self.epsilon_b = epsilon_b
         self.epsilon_n = epsilon_n
         self.max_age = max_age
@@ -201,6 +229,30 @@ class GrowWhenRequired(Clusterer):
         self.weights_ = _graph.initial_weights(X, rng, 2, self.init, self.init_range)
         self.edge_ages_ = _graph.empty_graph(2)
         self.firing_ = self._new_firing_counters().initialize(2)
+        if self.activity_threshold == "auto":
+            self.calibrate(ScaleCalibration(X[:0], X.shape[0], 0.9).extend(X).scale)
+        else:
+            self.activity_threshold_ = float(self.activity_threshold)
+
+    @property
+    def uses_match_scale(self) -> bool:
+        return self.activity_threshold == "auto"
+
+    def calibrate(self, scale: float | None) -> None:
+        """Set a_T = exp(-scale) when ``activity_threshold="auto"`` (None: 0, no growth)."""
+        if self.activity_threshold == "auto":
+            self.activity_threshold_ = 0.0 if scale is None else float(np.exp(-scale))
+
+    def grows_for(self, rows: np.ndarray, distances: np.ndarray) -> np.ndarray | None:
+        """With ``new_unit_wins``: the inputs step 7 would give a new unit (else None)."""
+        if not self.new_unit_wins:
+            return None
+        grow = np.exp(-np.sqrt(distances)) < self.activity_threshold_
+        if self.firing_condition:
+            grow &= self.firing_.efficacy_[rows] < self.habituation_threshold
+        if self.max_units is not None and self.n_units_ >= self.max_units:
+            grow[:] = False
+        return grow
 
     # ---------------------------------------------------------------- steps 3-4
     def match(self, x: np.ndarray) -> Match:
@@ -223,7 +275,8 @@ class GrowWhenRequired(Clusterer):
         _graph.connect(self.edge_ages_, s, t)                            # step 5
         activity = np.exp(-np.sqrt(((x - self.weights_[s]) ** 2).sum()))  # step 6
         added = 0
-        if (activity < self.activity_threshold and h[s] < self.habituation_threshold
+        if (activity < self.activity_threshold_
+                and (h[s] < self.habituation_threshold or not self.firing_condition)
                 and (self.max_units is None or self.n_units_ < self.max_units)):
             r = self._append_unit(0.5 * (self.weights_[s] + x))         # step 7
             A = self.edge_ages_
@@ -238,10 +291,12 @@ class GrowWhenRequired(Clusterer):
             W[nb] += self.epsilon_n * h[nb, None] * (x - W[nb])
         _graph.age_edges(self.edge_ages_, s)                             # step 9
         self.firing_.step(s, _graph.neighbours(self.edge_ages_, s))      # step 10
+        if added and self.new_unit_wins:
+            self.firing_.fire(self.n_units_ - 1)
         removed = _graph.prune(self.edge_ages_, s, self.max_age)         # step 11
         if removed.size:
             self._delete_units(removed)
-        return Growth(added, removed)
+        return Growth(added, removed, new_winner=bool(added) and self.new_unit_wins)
 
     # -------------------------------------------------------------- structure
     def _append_unit(self, weight: np.ndarray) -> int:
@@ -277,3 +332,8 @@ class GrowWhenRequired(Clusterer):
             raise StateError("GrowWhenRequired state is missing its firing counters 'firing_'.")
         if firing.n_units_ != n:
             raise StateError(f"GrowWhenRequired.firing_ has {firing.n_units_} counters for {n} units.")
+        if not hasattr(self, "activity_threshold_") and self.activity_threshold != "auto":
+            self.activity_threshold_ = float(self.activity_threshold)  # a file from before "auto"
+        a_t = getattr(self, "activity_threshold_", None)
+        if isinstance(a_t, bool) or not isinstance(a_t, numbers.Real) or not 0 <= a_t <= 1:
+            raise StateError(f"GrowWhenRequired.activity_threshold_ must be a number in [0, 1]; got {a_t!r}.")

@@ -104,6 +104,18 @@ class Synapse(Component):
             self._advance(np.asarray(neighbours, dtype=np.intp), stimulus, self.tau_neighbour, dt)
         self._advance(np.array([winner], dtype=np.intp), stimulus, self.tau_winner, dt)
 
+    def fire(self, row: int, stimulus: float = 1.0, dt: float = 1.0) -> None:
+        """Habituate the synapse at ``row`` alone, as a winner's (``tau_winner``); the others are left as they are.
+
+        A growing network's new unit fires for the input that created it.
+        """
+        self._advance(np.array([row], dtype=np.intp), stimulus, self.tau_winner, dt)
+
+    @property
+    def fresh_efficacy(self) -> float:
+        """The efficacy of an unhabituated synapse (a new unit's)."""
+        return float(self._fresh(1)["efficacy_"][0])
+
     def grow(self, n: int) -> None:
         """Append ``n`` unhabituated synapses (new units of a growing network)."""
         if n <= 0:

@@ -174,7 +174,7 @@ def test_max_units_stops_growth():
 # ---------------------------------------------------------------- validation
 def test_parameter_messages():
     with pytest.raises(ValueError, match=r"The 'activity_threshold' parameter of GrowWhenRequired must be "
-                                         r"a float in \[0, 1\]\. Got 1.5 instead\."):
+                                         r"a float in \[0, 1\] or one of 'auto'\. Got 1.5 instead\."):
         GrowWhenRequired(activity_threshold=1.5).initialize(np.zeros((2, 2)))
     with pytest.raises(ValueError, match="'max_units'"):
         GrowWhenRequired(max_units=1).initialize(np.zeros((2, 2)))
@@ -191,3 +191,43 @@ def test_inconsistent_state_is_refused():
     bad = dict(arrays, edge_ages_=np.triu(arrays["edge_ages_"] + 1) - 1)
     with pytest.raises(StateError, match="symmetric"):
         clone(net)._import_state(bad, values, children)
+
+
+# ---------------------------------------------- options for novelty (ours)
+def test_without_the_firing_condition_a_far_input_gets_a_unit_at_once():
+    gwr = GrowWhenRequired(firing_condition=False).initialize(np.zeros((1, 2)), random_state=0)
+    match, growth = gwr.learn_one(np.array([1.0, 0.0]))
+    assert growth.added == 1 and not growth.new_winner
+    np.testing.assert_array_equal(gwr.weights_[-1], 0.5 * (gwr.weights_[match.winner] + [1.0, 0.0]))
+
+
+def test_new_unit_wins_fires_its_counter_and_synapse():
+    from novelty.filter import HabituatingFilter
+
+    gwr = GrowWhenRequired(firing_condition=False, new_unit_wins=True, firing="stanley")
+    det = HabituatingFilter(clusterer=gwr).fit(np.zeros((1, 2)))
+    far = np.array([5.0, 5.0])
+    assert det.score_one(far) == 1.0  # would get a unit of its own: a fresh synapse's novelty
+    assert det.score_learn_one(far) == 1.0
+    once = 1 + (1.0 / 3.33) * (1.05 * 0 - 1)  # one Euler step from y0 = 1 (tau 3.33, alpha 1.05)
+    # the new unit's counter: a neighbour's step (step 10), then a winner's
+    after_nb = 1 + (1.0 / 14.3) * (-1)
+    assert det.synapse_.efficacy_[-1] == pytest.approx(once, abs=1e-15)
+    assert det.clusterer_.firing_.efficacy_[-1] == pytest.approx(
+        after_nb + (1.0 / 3.33) * (1.05 * (1 - after_nb) - 1), abs=1e-15)
+    assert det.score_one(det.clusterer_.weights_[-1]) == det.synapse_.efficacy_[-1]  # matched by it
+    assert det.score_one(far) == 1.0  # still far (the new unit is halfway): would get another
+
+
+def test_auto_threshold_is_exp_of_minus_the_radius():
+    X = np.array([[0.0, 0.0], [0.3, 0.0], [0.3, 0.4], [2.0, 0.4]])
+    gwr = GrowWhenRequired(activity_threshold="auto").initialize(X, random_state=0)
+    # nearest distinct distances 0.3, 0.3, 0.4, 1.7; the 0.9 quantile
+    assert gwr.activity_threshold_ == np.exp(-np.quantile([0.3, 0.3, 0.4, 1.7], 0.9))
+    gwr.calibrate(None)
+    assert gwr.activity_threshold_ == 0.0  # no scale: no growth
+    gwr.calibrate(0.5)
+    assert gwr.activity_threshold_ == np.exp(-0.5)
+    fixed = GrowWhenRequired(activity_threshold=0.7).initialize(X, random_state=0)
+    fixed.calibrate(0.5)
+    assert fixed.activity_threshold_ == 0.7 and not fixed.uses_match_scale

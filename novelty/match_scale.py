@@ -1,0 +1,119 @@
+"""How far an input is from what a network knows: the match scale and the mismatch novelty.
+
+Our extension of Marsland, Nehmzow & Shapiro (2000), not part of the paper.
+The paper's novelty is the efficacy ``y_s`` of the winning unit's synapse: it
+says how often that unit has won, not how well it matches the input. The
+*habituation x mismatch* novelty also reads the match distance
+``d = ||x - w_s||``::
+
+    n(x) = 1 - (1 - y_s) * exp(-d^2 / (2 sigma^2))
+
+It is near its floor only when the input is both close to its winner and the
+winner is habituated; it is 1 for an input far from every unit, whatever the
+winner's efficacy; with ``sigma -> inf`` it is the paper's ``y_s``.
+
+The match scale ``sigma`` is calibrated from the inputs themselves: a quantile
+(``q``, 0.9 by default) of each calibration scan's distance to its nearest
+*distinct* other scan (leave-one-out nearest neighbours; exact repeats are
+ignored, so that a scan seen twice does not count as its own neighbour).
+:class:`ScaleCalibration` collects the scans one at a time, so the scale after
+``m`` scans is the same however they were batched.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["mismatch_novelty", "nearest_distinct", "ScaleCalibration"]
+
+
+def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | None) -> np.ndarray:
+    """``1 - (1 - y) * exp(-d2 / (2 sigma^2))`` for efficacies ``y`` and squared distances ``d2``.
+
+    ``scale`` None (no scale yet) gives the efficacies unchanged.
+
+    >>> mismatch_novelty(np.array([0.2, 0.2, 1.0]), np.array([0.0, 2.0, 0.0]), 1.0).round(4).tolist()
+    [0.2, 0.7057, 1.0]
+    """
+    if scale is None:
+        return np.array(efficacy, dtype=np.float64)
+    return 1.0 - (1.0 - efficacy) * np.exp(-distance / (2.0 * scale * scale))
+
+
+def nearest_distinct(X: np.ndarray) -> np.ndarray:
+    """Each row's Euclidean distance to its nearest distinct other row (inf if none).
+
+    >>> nearest_distinct(np.array([[0.0], [1.0], [1.0], [3.0]])).tolist()
+    [1.0, 1.0, 1.0, 2.0]
+    """
+    out = np.full(X.shape[0], np.inf)
+    for i in range(X.shape[0]):
+        d = _distances(X, X[i])
+        d = d[d > 0.0]
+        if d.size:
+            out[i] = d.min()
+    return out
+
+
+def _distances(B: np.ndarray, x: np.ndarray) -> np.ndarray:
+    # One formula for both orders of a pair: (b - x)^2 == (x - b)^2 exactly.
+    return np.sqrt(((B - x) ** 2).sum(axis=1))
+
+
+class ScaleCalibration:
+    """The match scale of the first ``capacity`` scans, collected one at a time.
+
+    Parameters
+    ----------
+    scans : ndarray of shape (m, n_features)
+        The scans collected so far (``m <= capacity``).
+    capacity : int
+        How many scans calibrate the scale; later scans are not collected.
+    quantile : float
+        The quantile of the nearest-distinct distances that is the scale.
+
+    >>> cal = ScaleCalibration(np.empty((0, 1)), capacity=3, quantile=0.5)
+    >>> cal.scale, [cal.add(np.array([v])) for v in (0.0, 0.0, 2.0, 5.0)], cal.full
+    (None, [False, False, True, False], True)
+    >>> cal.scale
+    2.0
+    """
+
+    def __init__(self, scans: np.ndarray, capacity: int, quantile: float):
+        self.scans = scans
+        self.capacity = capacity
+        self.quantile = quantile
+        self._nearest = nearest_distinct(scans)
+
+    def __eq__(self, other) -> bool:
+        return (isinstance(other, ScaleCalibration) and self.capacity == other.capacity
+                and self.quantile == other.quantile and np.array_equal(self.scans, other.scans))
+
+    @property
+    def full(self) -> bool:
+        return self.scans.shape[0] >= self.capacity
+
+    @property
+    def scale(self) -> float | None:
+        """The quantile of the nearest-distinct distances; None before two distinct scans."""
+        finite = self._nearest[np.isfinite(self._nearest)]
+        return float(np.quantile(finite, self.quantile)) if finite.size else None
+
+    def extend(self, X: np.ndarray) -> "ScaleCalibration":
+        """Collect the rows of ``X`` in order (until full)."""
+        for x in X:
+            self.add(x)
+        return self
+
+    def add(self, x: np.ndarray) -> bool:
+        """Collect ``x`` unless full; return whether the scale changed."""
+        if self.full:
+            return False
+        d = _distances(self.scans, x)
+        distinct = d > 0.0
+        before = self.scale
+        np.minimum(self._nearest, np.where(distinct, d, np.inf), out=self._nearest)
+        own = d[distinct].min() if distinct.any() else np.inf
+        self._nearest = np.append(self._nearest, own)
+        self.scans = np.vstack([self.scans, x[None, :]])
+        return self.scale != before
