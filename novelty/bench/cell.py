@@ -26,6 +26,10 @@ part:
    ``false_alarm_source`` says which.
 5. Memory. Peak memory (``tracemalloc``) is measured by a second, identical run
    of steps 1 and 3, so that the tracer's overhead does not distort the times.
+
+A suite with ``protocol = "exploration"`` runs
+:func:`novelty.bench.prequential.evaluate_exploration` instead: every scan
+scored, then learned, in order.
 """
 
 from __future__ import annotations
@@ -43,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from . import metrics
+from .prequential import evaluate_exploration
 from .suite import Cell
 
 __all__ = ["run_cell", "train_detector", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
@@ -170,6 +175,9 @@ def _n_units(det) -> float:
 
 
 def _evaluate(cell: Cell) -> tuple[dict, dict]:
+    if cell.protocol == "exploration":
+        return evaluate_exploration(cell, load_task(cell), functools.partial(make_detector, cell),
+                                    _resting, _n_units)
     data = load_task(cell)
     train, test = data.train(), data.test()
     if test.y is None:

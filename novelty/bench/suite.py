@@ -14,6 +14,8 @@ The TOML form::
                            # "first-seed": of the cells of the first seed only
     reference = "parzen"   # optional: the detector (label) of the paired comparison;
                            # default: the detector ranked first
+    protocol = "holdout"   # or "exploration": every scan scored, then learned, in order
+                           # (novelty.bench.prequential)
 
     [[detectors]]
     name = "hsom"                               # registry name
@@ -21,6 +23,8 @@ The TOML form::
     grid = { alpha = [1.05, 1.2] }              # optional: one detector per value
     label = "hsom-5x5"                          # optional: name in the tables
     optional = true                             # optional: skip if not registered
+    policy = "refit"                            # optional, protocol "exploration" only:
+                                                # online, frozen, refit, window=N
 
     [[tasks]]
     name = "inspection-easy"
@@ -59,6 +63,8 @@ __all__ = [
 
 #: bumped when a change of the harness changes what a cell computes
 HARNESS_VERSION = 1
+#: how a cell trains and scores: see :mod:`novelty.bench.cell` and :mod:`novelty.bench.prequential`
+PROTOCOLS = ("holdout", "exploration")
 
 
 class SuiteError(ValueError):
@@ -112,6 +118,9 @@ class DetectorSpec:
     name: str
     params: Mapping[str, Any] = field(default_factory=dict)
     label: str = ""
+    #: how the detector learns under the exploration protocol
+    #: (:mod:`novelty.bench.prequential`); "" for its default
+    policy: str = ""
 
     def __post_init__(self):
         object.__setattr__(self, "params", dict(self.params))
@@ -119,7 +128,10 @@ class DetectorSpec:
             object.__setattr__(self, "label", self.name)
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "params": dict(self.params), "label": self.label}
+        out = {"name": self.name, "params": dict(self.params), "label": self.label}
+        if self.policy:  # only when set, so that earlier runs keep their cell ids
+            out["policy"] = self.policy
+        return out
 
 
 @dataclass(frozen=True)
@@ -153,19 +165,24 @@ class Cell:
     seed: int
     threshold: Any = "max"
     memory: bool = True
+    #: "holdout" (train, freeze, score) or "exploration" (:mod:`novelty.bench.prequential`)
+    protocol: str = "holdout"
     #: registry objects the parent process resolved, so that worker processes
     #: know names registered at run time: ((kind, name, object), ...)
     components: tuple = ()
 
     @property
     def key(self) -> dict:
-        return {
+        key = {
             "harness": HARNESS_VERSION,
             "detector": self.detector.to_dict(),
             "task": self.task.to_dict(),
             "seed": self.seed,
             "threshold": self.threshold,
         }
+        if self.protocol != "holdout":
+            key["protocol"] = self.protocol
+        return key
 
     @property
     def id(self) -> str:
@@ -185,12 +202,14 @@ class Suite:
     memory: bool | str = True
     skipped: list[str] = field(default_factory=list)  # optional entries not registered
     reference: str | None = None  # label of the detector the others are paired with
+    protocol: str = "holdout"
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)
         return [
             Cell(d, t, s, self.threshold,
-                 self.memory is True or (self.memory == "first-seed" and s == self.seeds[0]), components)
+                 self.memory is True or (self.memory == "first-seed" and s == self.seeds[0]),
+                 self.protocol, components)
             for t in self.tasks
             for d in self.detectors
             for s in self.seeds
@@ -208,15 +227,23 @@ class Suite:
             if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
                 raise SuiteError(f"Seeds must be non-negative integers; got {seed!r}.")
         _check_threshold(self.threshold)
+        if self.protocol not in PROTOCOLS:
+            raise SuiteError(f"Unknown protocol {self.protocol!r}; expected one of {', '.join(PROTOCOLS)}.")
         labels = [d.label for d in self.detectors]
         dupes = sorted({x for x in labels if labels.count(x) > 1})
         if dupes:
             raise SuiteError(f"Two detectors are labelled {dupes[0]!r}; give them distinct 'label's.")
+        for i, spec in enumerate(self.detectors):
+            det = check_detector(spec)
+            if spec.policy and self.protocol != "exploration":
+                raise SuiteError(f"Detector {spec.label!r} has a policy; policies are for "
+                                 "protocol = \"exploration\".")
+            if self.protocol == "exploration":
+                self.detectors[i] = _with_policy(spec, det)
+        labels = [d.label for d in self.detectors]  # with their policies
         if self.reference is not None and self.reference not in labels:
             raise SuiteError(f"The reference {self.reference!r} is not a detector of suite {self.name!r}; "
                              f"expected one of {', '.join(labels)}.")
-        for spec in self.detectors:
-            check_detector(spec)
         for spec in self.tasks:
             check_task(spec)
         return self
@@ -254,6 +281,21 @@ def _validate_tree(component) -> None:
         for value in get_params(deep=False).values():
             if hasattr(value, "_validate_params"):
                 _validate_tree(value)
+
+
+def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
+    """The spec with its policy checked; a batch-only detector's default shown in its label."""
+    # imported here: the exploration harness pulls in the sonar simulator, which
+    # the hold-out protocol never needs
+    from .prequential import check_policy, default_policy
+
+    if spec.policy:
+        check_policy(spec.policy, det)
+        return spec
+    policy = default_policy(det)
+    if policy == "online":
+        return spec
+    return DetectorSpec(spec.name, spec.params, f"{spec.label} ({policy})", policy)
 
 
 def check_task(spec: TaskSpec) -> None:
@@ -344,26 +386,27 @@ def _known_keys(entry: dict, allowed: set[str], where: str) -> None:
 
 
 def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
-    _known_keys(entry, {"name", "params", "grid", "label", "optional"}, where)
+    _known_keys(entry, {"name", "params", "grid", "label", "optional", "policy"}, where)
     name = entry.get("name")
     if not isinstance(name, str) or not name:
         raise SuiteError(f"{where}: every detector needs a 'name' (a registry name).")
     params = _table(entry.get("params"), f"{where}: params")
     grid = _table(entry.get("grid"), f"{where}: grid")
-    label = entry.get("label", name)
+    policy = entry.get("policy", "")
+    label = entry.get("label", f"{name} ({policy})" if policy else name)
     for key, values in grid.items():
         if not isinstance(values, list) or not values:
             raise SuiteError(f"{where}: grid value of {key!r} must be a non-empty array.")
         if key in params:
             raise SuiteError(f"{where}: {key!r} is both in params and in grid.")
     if not grid:
-        return [DetectorSpec(name, params, label)]
+        return [DetectorSpec(name, params, label, policy)]
     keys = list(grid)
     specs = []
     for combo in itertools.product(*(grid[k] for k in keys)):
         values = dict(zip(keys, combo))
         suffix = ",".join(f"{k}={_format_value(v)}" for k, v in values.items())
-        specs.append(DetectorSpec(name, {**params, **values}, f"{label}[{suffix}]"))
+        specs.append(DetectorSpec(name, {**params, **values}, f"{label}[{suffix}]", policy))
     return specs
 
 
@@ -402,7 +445,8 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
 
     _known_keys(data, {"suite", "detectors", "tasks"}, source)
     head = _table(data.get("suite"), f"{source}: [suite]")
-    _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference"},
+    _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference",
+                       "protocol"},
                 f"{source}: [suite]")
     seeds = head.get("seeds", [0])
     if isinstance(seeds, int) and not isinstance(seeds, bool):
@@ -442,7 +486,8 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
     if reference is not None and not isinstance(reference, str):
         raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
     suite = Suite(detectors, tasks, list(seeds), str(head.get("name", source)),
-                  head.get("threshold", "max"), memory, skipped, reference)
+                  head.get("threshold", "max"), memory, skipped, reference,
+                  head.get("protocol", "holdout"))
     return suite.check()
 
 

@@ -15,6 +15,9 @@ Built in:
   ``difficulty``), ``inspection-easy``, ``inspection-medium``,
   ``inspection-hard`` (``seed=0, n_novelties=2, train_runs=3, test_runs=1,
   length=15.0``);
+- exploration tasks, runs in order with every scan's tracked feature and its
+  exposure count (:mod:`novelty.exploration`): ``exploration-tour``,
+  ``exploration-open-door``, ``exploration-patrol``;
 - real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
   ``uci-sonar-mines``;
@@ -43,6 +46,9 @@ _BUILTINS = {
     "inspection-easy": "novelty.datasets.inspection:inspection_easy",
     "inspection-medium": "novelty.datasets.inspection:inspection_medium",
     "inspection-hard": "novelty.datasets.inspection:inspection_hard",
+    "exploration-tour": "novelty.exploration.tasks:paper_tour",
+    "exploration-open-door": "novelty.exploration.tasks:open_door",
+    "exploration-patrol": "novelty.exploration.tasks:patrol",
     "uci-wall-following": "novelty.datasets.uci:uci_wall_following",
     "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
     "uci-sonar": "novelty.datasets.uci:uci_sonar",

@@ -53,3 +53,23 @@ def broken_detector(**params):
 
     det.partial_fit = fail
     return det
+
+
+EXPLORATION = "bench-toy-exploration"
+
+
+def toy_exploration(seed=0, n_runs=6, n_scans=20, n_sensors=4):
+    """Familiar scans near 0.3; a door (near 0.8) in every other run after the warm-up run."""
+    from novelty.exploration import from_runs
+
+    rng = np.random.default_rng(seed)
+    runs, seen = [], []
+    for r in range(n_runs):
+        X = 0.3 + 0.03 * rng.standard_normal((n_scans, n_sensors))
+        labels = [None] * n_scans
+        if r % 2 == 1:
+            X[5:9] += 0.5
+            labels[5:9] = ["door"] * 4
+        runs.append(X)
+        seen.append(labels)
+    return from_runs(runs, seen, warmup=1, name=EXPLORATION)

@@ -1,0 +1,91 @@
+"""Exploration tasks: runs in order, every scan's tracked feature and exposure count."""
+
+import numpy as np
+import pytest
+
+from novelty import datasets
+from novelty.exploration import exposures, from_runs, open_door, patrol
+from novelty.sonar import simulate_run
+
+
+@pytest.fixture(scope="module")
+def door():
+    return open_door(seed=2, warmup=1, cycles=2)
+
+
+def test_exposures_count_earlier_runs_not_scans():
+    labels = [["d"], ["d"], [], ["d"], ["b"], [], ["d", "b"], ["b", "d"]]
+    feature, exposure = exposures(labels, [0, 0, 0, 1, 1, 2, 3, 3])
+    assert feature.tolist() == ["d", "d", "", "d", "b", "", "b", "b"]
+    # run 3: d met in runs 0 and 1 (2), b in run 1 (1): the newer, b, is counted
+    assert exposure.tolist() == [0, 0, -1, 1, 0, -1, 1, 1]
+
+
+def test_exposures_refuse_runs_out_of_order():
+    with pytest.raises(ValueError, match="in order"):
+        exposures([[], []], [1, 0])
+    with pytest.raises(ValueError, match="one run a scan"):
+        exposures([[], []], [0])
+
+
+def test_a_door_that_stays_open(door):
+    info = door.metadata["exploration"]
+    assert [r["environment"] for r in info["runs"]] == ["a", "a-star", "a", "a-star", "a"]
+    assert info["warmup_runs"] == 1 and info["tracked"] == ["door-r1-open"]
+    feature, exposure, run = door.columns["feature"], door.columns["exposure"], door.run
+    on_door = feature == "door-r1-open"
+    assert set(run[on_door].tolist()) == {1, 3}            # only A* runs see the opened door
+    assert set(exposure[on_door & (run == 1)].tolist()) == {0}
+    assert set(exposure[on_door & (run == 3)].tolist()) == {1}
+    assert np.all(exposure[~on_door] == -1)
+    np.testing.assert_array_equal(door.y, (exposure == 0).astype(int))
+    assert door.split.tolist() == ["train"] * 100 + ["test"] * 400
+    # the simulator's scans and ground truth, unchanged: run i is traversal (seed, i)
+    third = simulate_run("a", 2, 2)
+    np.testing.assert_array_equal(door.X[run == 2], third.X)
+    assert door.feature_ids[200:300] == third.feature_ids
+
+
+def test_the_same_seed_gives_the_same_exploration(door):
+    again = open_door(seed=2, warmup=1, cycles=2)
+    np.testing.assert_array_equal(again.X, door.X)
+    assert not np.array_equal(open_door(seed=3, warmup=1, cycles=2).X, door.X)
+
+
+def test_a_new_object_each_patrol():
+    task = patrol(seed=1, warmup=1, patrols=3, change_at=2)
+    feature, exposure, run = task.columns["feature"], task.columns["exposure"], task.run
+    for p in range(3):
+        mine = feature == f"new-{p}"
+        assert mine.any() and set(run[mine].tolist()) == {p + 1} and set(exposure[mine].tolist()) == {0}
+    assert sorted(set(exposure[feature == "recurring-1"].tolist())) == [0, 1, 2]
+    assert set(run[feature == "recurring-0"].tolist()) <= {1, 2}
+    assert set(run[feature == "recurring-0-changed"].tolist()) == {3}
+    assert task.metadata["exploration"]["changes"] == {"recurring-0-changed": "recurring-0"}
+
+
+def test_registered_by_name():
+    names = datasets.available()
+    for name in ("exploration-tour", "exploration-open-door", "exploration-patrol"):
+        assert names[name]
+
+
+def test_from_runs_labels_a_users_runs():
+    rng = np.random.default_rng(0)
+    runs = [rng.random((5, 3)) for _ in range(3)]
+    seen = [[None] * 5, ["box", "box", None, ("box", "cat"), ""], ["cat"] * 5]
+    task = from_runs(runs, seen, warmup=1, environments=["lab", "lab", "lab"])
+    assert task.columns["feature"].tolist()[5:] == ["box", "box", "", "box", ""] + ["cat"] * 5
+    assert task.columns["exposure"].tolist()[5:] == [0, 0, -1, 0, -1] + [1] * 5
+    assert task.feature_ids[8] == frozenset({"box", "cat"})
+    np.testing.assert_array_equal(task.X, np.vstack(runs))
+
+
+@pytest.mark.parametrize("runs, seen, warmup, message", [
+    ([np.zeros((2, 2))] * 2, [[None] * 2], 1, "one per run"),
+    ([np.zeros((2, 2))] * 2, [[None] * 2, [None]], 1, "one feature entry a scan"),
+    ([np.zeros((2, 2))] * 2, [[None] * 2] * 2, 2, "warmup must be"),
+])
+def test_from_runs_refuses_bad_input(runs, seen, warmup, message):
+    with pytest.raises(ValueError, match=message):
+        from_runs(runs, seen, warmup=warmup)
