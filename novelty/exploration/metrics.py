@@ -179,7 +179,7 @@ def false_alarm_rate(novelty, run, feature, warmup: int, threshold: float) -> tu
     novelty, run, feature = _arrays(novelty, run, feature)
     familiar = (run >= warmup) & (feature == FAMILIAR)
     count = bench_metrics.count_alarms(novelty[familiar], threshold)
-    return (count / familiar.sum() if familiar.any() else float("nan")), count
+    return (float(count / familiar.sum()) if familiar.any() else float("nan")), count
 
 
 def redetection_auc(novelty, run, feature, exposure, changes: dict) -> float:
