@@ -46,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from . import metrics
+from . import metrics, river
 from .prequential import evaluate_exploration
 from .suite import Cell
 
@@ -108,7 +108,8 @@ def make_detector(cell: Cell):
     """The cell's detector, seeded with the cell's seed unless the suite set one."""
     from ..registry import detectors
 
-    det = detectors.make(cell.detector.name, **cell.detector.params)
+    make = river.make if river.is_river(cell.detector.name) else detectors.make
+    det = make(cell.detector.name, **cell.detector.params)
     if "random_state" not in cell.detector.params and hasattr(det, "get_params") \
             and "random_state" in det.get_params(deep=False):
         det.set_params(random_state=cell.seed)

@@ -54,8 +54,6 @@ EXPLORATION_COLUMNS = [
     "integrated_novelty", "integrated_per_run", "exposure_curve", "max_novelty",
     "resting_novelty", "n_units",
 ]
-#: first-encounter ROC AUC at or above which a detector "flags first encounters"
-FLAGS_FIRST = 0.85
 
 
 def parse_policy(text: str) -> tuple[str, int]:
@@ -187,7 +185,7 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
         "habituation_ratio": ratio,
         "exposures_to_habituate": float(np.mean(done)) if done else float("nan"),
         "habituated_fraction": len(done) / len(recurring) if recurring else float("nan"),
-        "flags_first": bool(auc >= FLAGS_FIRST),
+        "flags_first": bool(auc >= xm.FLAGS_FIRST),
         "habituates": bool(ratio <= xm.HABITUATED),
         "threshold": threshold,
         "false_alarms": count,

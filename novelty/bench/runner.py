@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
+from ..exploration.summary import exploration_markdown, exploration_text
 from .backends import execute
 from .progress import Progress
 from .results import ResultsStore, provenance
@@ -29,6 +30,7 @@ class BenchReport:
     files: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     reference: str | None = None        # the paired comparison's reference (None: the first ranked)
+    exploration: str = ""               # the exploration tables, for that protocol
 
     @property
     def table(self) -> str:
@@ -76,15 +78,20 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     if suite.threshold != "max":
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"
-    summary.write_text(summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes,
-                                        suite.reference), encoding="utf-8")
+    text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference)
+    if suite.protocol == "exploration":
+        text += "\n".join(exploration_markdown(report.rows)) + "\n"
+        report.exploration = exploration_text(report.rows)
+    summary.write_text(text, encoding="utf-8")
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
+        from ..exploration.plots import plot_exploration
         from .plots import matplotlib_missing, plot_run
 
         missing = matplotlib_missing()
         if missing:
             report.notes.append(missing)
         else:
-            report.files.extend(plot_run(report.rows, store.arrays, store.out / "plots"))
+            plotter = plot_exploration if suite.protocol == "exploration" else plot_run
+            report.files.extend(plotter(report.rows, store.arrays, store.out / "plots"))
     return report

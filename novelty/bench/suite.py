@@ -260,13 +260,15 @@ def _check_threshold(rule: Any) -> None:
 def check_detector(spec: DetectorSpec):
     """Build the detector once: the registry refuses unknown names and parameters."""
     from ..registry import RegistryError, detectors
+    from . import river
 
     try:
-        det = detectors.make(spec.name, **spec.params)
+        make = river.make if river.is_river(spec.name) else detectors.make
+        det = make(spec.name, **spec.params)
         _validate_tree(det)
     except RegistryError as exc:
         raise SuiteError(str(exc)) from None
-    except (ValueError, TypeError) as exc:
+    except (ValueError, TypeError, ImportError) as exc:
         raise SuiteError(f"Detector {spec.label!r}: {exc}") from None
     return det
 
@@ -410,6 +412,12 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     return specs
 
 
+def _available(name: str, detector_registry) -> bool:
+    from . import river
+
+    return river.installed() if river.is_river(name) else name in detector_registry
+
+
 #: the task made from the user's own files (:func:`novelty.datasets.files.files`)
 FILES_TASK = "files"
 #: its options that name files, read relative to the suite file
@@ -458,7 +466,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
     for i, entry in enumerate(_entries(data, "detectors", source)):
         where = f"{source}: detectors[{i}]"
         if entry.get("optional") and isinstance(entry.get("name"), str) \
-                and entry["name"] not in detector_registry:
+                and not _available(entry["name"], detector_registry):
             skipped.append(entry["name"])
             continue
         detectors.extend(_expand_detector(entry, where))

@@ -19,12 +19,17 @@ A suite is a TOML file (see benchmarks/suites/ in the source tree), the
 embedded --quick suite, or --detector/--task options. Your own scans are the
 task 'files' (--task 'files path=scans.csv ...' or a suite's [[tasks]] path =
 "scans.csv"; see 'novelty list datasets'). The exit code is 1 if every cell
-failed."""
+failed. With --protocol exploration (or a suite's protocol = "exploration")
+every scan is scored, then learned, in order, and the table says which
+detectors flag a feature on first sight and habituate to it as it recurs."""
 
 EXAMPLES = [
     "novelty bench --quick --out results/quick",
     "novelty bench benchmarks/suites/habituation.toml --out results/habituation --jobs 2",
     "novelty bench suite.toml --out results --backend dask --scheduler tcp://10.0.0.5:8786",
+    "novelty bench benchmarks/suites/exploration.toml --out results/exploration --jobs 2",
+    "novelty bench --protocol exploration --detector gwr-novelty --detector river-hst "
+    "--task exploration-open-door --seeds 2 --out results/explore",
     "novelty bench --detector hsom --detector 'habituating clusterer=som n_rows=5' "
     "--task inspection-easy --seeds 0,1,2 --out results/mine",
     "novelty bench --detector hsom --detector lof "
@@ -50,6 +55,9 @@ def add_parser(subparsers):
                         "cell (default: the suite's 'reference', else the detector ranked first)")
     parser.add_argument("--threshold", metavar="max|Q",
                         help="alarm threshold: 'max' of the training novelty, or a quantile Q in (0, 1]")
+    parser.add_argument("--protocol", choices=("holdout", "exploration"),
+                        help="holdout (train, freeze, score the test part) or exploration (every "
+                        "scan scored, then learned, in order); default: the suite's, else holdout")
     parser.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
                         help="cells run at once (processes or Dask workers; default 1)")
     parser.add_argument("--backend", choices=("serial", "joblib", "dask"),
@@ -94,6 +102,8 @@ def build_suite(args):
         suite.seeds = _seeds(args.seeds)
     if args.threshold:
         suite.threshold = parse_value(args.threshold)
+    if args.protocol:
+        suite.protocol = args.protocol
     if args.no_memory:
         suite.memory = False
     if args.reference:
@@ -117,7 +127,7 @@ def run(args) -> int:
               + (f" ({args.jobs} jobs)" if backend != "serial" else "") + ".", file=sys.stderr)
     report = run_bench(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
                        plots=not args.no_plots, quiet=args.quiet)
-    print(report.table)
+    print(report.exploration or report.table)
     for note in report.notes:
         print(note)
     summary = os.path.join(args.out, "summary.md")

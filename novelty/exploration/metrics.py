@@ -44,10 +44,12 @@ from .tasks import FAMILIAR
 
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
-           "integrated_per_run", "warmup_threshold", "HABITUATED", "RECURRING"]
+           "integrated_per_run", "warmup_threshold", "HABITUATED", "FLAGS_FIRST", "RECURRING"]
 
 #: An excess at most this share of the first-exposure excess counts as habituated.
 HABITUATED = 0.25
+#: A first-encounter ROC AUC at least this flags first encounters.
+FLAGS_FIRST = 0.85
 #: A feature is recurring when it is met at least this many times.
 RECURRING = 3
 

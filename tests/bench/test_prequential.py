@@ -132,3 +132,14 @@ def test_serial_joblib_and_dask_give_the_same_numbers(tmp_path, toy_exploration)
         dask = run_bench(suite, tmp_path / "dask", backend="dask", scheduler=cluster.scheduler_address,
                          quiet=True, plots=False)
     assert metric_table(parallel.rows) == metric_table(serial.rows) == metric_table(dask.rows)
+
+
+def test_an_exploration_run_writes_its_table_and_plots(tmp_path, toy_exploration):
+    suite = Suite([DetectorSpec("hsom", {"n_rows": 3, "n_columns": 3}, "hsom-3x3")],
+                  [TaskSpec(toy_exploration.EXPLORATION)], protocol="exploration").check()
+    report = run_bench(suite, tmp_path, quiet=True)
+    assert "## Exploration: first encounters and habituation" in (tmp_path / "summary.md").read_text()
+    assert "| hsom-3x3 " in report.exploration
+    pytest.importorskip("matplotlib", reason="matplotlib is not installed")
+    assert {p.name for p in (tmp_path / "plots").iterdir()} == {
+        f"exploration-{kind}-{toy_exploration.EXPLORATION}.png" for kind in ("route", "exposure", "learning")}
