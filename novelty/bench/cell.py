@@ -88,7 +88,7 @@ def _ensure_registered(components) -> None:
         registry.register(name, obj, replace=True)
 
 
-@functools.lru_cache(maxsize=4)
+@functools.lru_cache(maxsize=16)  # a suite cycles through its seeds task by task
 def _load_task_cached(name: str, options_json: str, seed: int):
     from ..datasets import load, registry
 
