@@ -1,7 +1,10 @@
-"""Plots of a run (matplotlib, optional): ROC curves, novelty along the route, ranking.
+"""Plots of a run (matplotlib, optional): ROC curves, novelty along the route, ranking,
+boxplots over seeds and the critical-difference diagram.
 
-Every function returns the paths it wrote. Without matplotlib,
-:func:`matplotlib_missing` gives the one line to print instead.
+Every function returns the paths it wrote, and every figure says which seeds
+it shows (ROC curves and routes: the lowest seed of each task) or aggregates.
+Without matplotlib, :func:`matplotlib_missing` gives the one line to print
+instead.
 """
 
 from __future__ import annotations
@@ -14,10 +17,11 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from . import metrics
-from .summary import per_task, rank_detectors
+from . import metrics, stats
+from .summary import ALPHA, per_task, rank_detectors
 
-__all__ = ["matplotlib_missing", "plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route"]
+__all__ = ["matplotlib_missing", "plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route",
+           "plot_boxplots", "plot_critical_difference", "draw_critical_difference"]
 
 
 def matplotlib_missing() -> str | None:
@@ -51,6 +55,11 @@ def _first_seed_cells(rows: Sequence[dict]) -> dict[str, dict[str, dict]]:
     return chosen
 
 
+def _seeds(rows: Sequence[dict]) -> str:
+    seeds = sorted({int(r["seed"]) for r in rows if r.get("status") == "ok"})
+    return ("seed " if len(seeds) == 1 else "seeds ") + ", ".join(map(str, seeds))
+
+
 def _grid(n: int):
     cols = min(n, 3)
     return math.ceil(n / cols), cols
@@ -65,6 +74,7 @@ def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Pa
     n_rows, n_cols = _grid(len(chosen))
     fig, axes = plt.subplots(n_rows, n_cols, figsize=(4.2 * n_cols, 4 * n_rows), squeeze=False)
     for ax, (task, cells) in zip(axes.flat, chosen.items()):
+        seed = min(row["seed"] for row in cells.values())
         for detector, row in cells.items():
             a = arrays(row["cell_id"])
             if a is None or not 0 < a["y"].sum() < a["y"].size:
@@ -72,10 +82,12 @@ def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Pa
             fpr, tpr, _ = metrics.roc_points(a["novelty"], a["y"])
             ax.plot(fpr, tpr, drawstyle="steps-post", label=f"{detector} ({row['roc_auc']:.2f})")
         ax.plot([0, 1], [0, 1], color="0.7", linewidth=0.8, linestyle=":")
-        ax.set(title=task, xlabel="false-positive rate", ylabel="true-positive rate", xlim=(0, 1), ylim=(0, 1.01))
+        ax.set(title=f"{task} (seed {seed})", xlabel="false-positive rate", ylabel="true-positive rate",
+               xlim=(0, 1), ylim=(0, 1.01))
         ax.legend(fontsize=7, loc="lower right")
     for ax in list(axes.flat)[len(chosen):]:
         ax.set_visible(False)
+    fig.suptitle("ROC curves of the lowest seed of each task (ROC AUC of that seed in brackets)", fontsize=10)
     fig.tight_layout()
     path = out / "roc.png"
     fig.savefig(path, dpi=110)
@@ -117,7 +129,9 @@ def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out:
             ax.set_ylabel("novelty", fontsize=8)
             ax.set_title(detector, fontsize=9, loc="left")
         axes[-1, 0].set_xlabel("distance along the route (m) or scan")
-        fig.suptitle(f"{task}: novelty of the test scans (shaded: novel)", fontsize=10)
+        seed = min(row["seed"] for row in cells.values())
+        fig.suptitle(f"{task}, seed {seed} (the lowest): novelty of the test scans (shaded: novel)",
+                     fontsize=10)
         fig.tight_layout()
         path = out / f"route-{_slug(task)}.png"
         fig.savefig(path, dpi=110)
@@ -143,10 +157,106 @@ def plot_ranking(rows: Sequence[dict], out: Path) -> list[Path]:
         ax.bar(xs, means, width, yerr=np.nan_to_num(sds), capsize=2, label=task)
     ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
     ax.set_xticks(np.arange(len(order)), order, rotation=30, ha="right", fontsize=8)
-    ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05), title="Detectors ranked by mean ROC AUC")
+    ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05),
+           title=f"Detectors ranked by mean ROC AUC ({_seeds(rows)})")
     ax.legend(fontsize=7, ncols=min(len(tasks), 4))
     fig.tight_layout()
     path = out / "ranking.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
+def plot_boxplots(rows: Sequence[dict], out: Path) -> list[Path]:
+    """One panel a task: the ROC AUC of each detector over the seeds, a box and the seeds' points."""
+    plt = _pyplot()
+    order = [r["detector"] for r in rank_detectors(rows)]
+    table = stats.cell_table(rows, detectors=order)
+    tasks = list(dict.fromkeys(task for task, _ in table.cells))
+    if not tasks:
+        return []
+    fig, axes = plt.subplots(len(tasks), 1, figsize=(max(6, 0.7 * len(order) + 2), 3.2 * len(tasks)),
+                             squeeze=False)
+    for ax, task in zip(axes[:, 0], tasks):
+        columns = [j for j, (name, _) in enumerate(table.cells) if name == task]
+        values = [v[columns][~np.isnan(v[columns])] for v in table.values]
+        positions = np.arange(1, len(order) + 1)
+        ax.boxplot(values, positions=positions, widths=0.6, showfliers=False)
+        for x, v in zip(positions, values):
+            ax.plot(np.full(v.size, x), v, "o", color="tab:blue", markersize=3, alpha=0.7)
+        ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+        ax.set_xticks(positions, order, rotation=30, ha="right", fontsize=8)
+        ax.set(ylabel="ROC AUC", ylim=(0, 1.02),
+               title=f"{task}: ROC AUC over {_seeds([r for r in rows if r['task'] == task])}")
+    fig.tight_layout()
+    path = out / "boxplot-roc-auc.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [path]
+
+
+def draw_critical_difference(ax, names: Sequence[str], mean_ranks: Sequence[float],
+                             groups: Sequence[Sequence[int]]) -> None:
+    """A critical-difference diagram on ``ax`` (Demsar 2006, figure 1).
+
+    The axis carries the average ranks (1 = best, on the left); each
+    detector hangs from its rank, the better half labelled on the left, the
+    rest on the right; a thick bar joins each group of ``groups`` (indices
+    into ``names``), detectors whose differences are not significant.
+    """
+    k = len(names)
+    ranks = np.asarray(mean_ranks, dtype=float)
+    order = list(np.argsort(ranks, kind="stable"))
+    bar_step, label_step = 0.12, 0.3
+    top_label = 0.25 + bar_step * len(groups)
+    ax.hlines(0, 1, k, color="k", linewidth=1)
+    for r in range(1, k + 1):
+        ax.vlines(r, 0, 0.08, color="k", linewidth=1)
+        ax.text(r, 0.12, str(r), ha="center", va="bottom", fontsize=8)
+    half = (k + 1) // 2
+    for position, i in enumerate(order):
+        left = position < half
+        line = position if left else k - 1 - position
+        y = -top_label - line * label_step
+        end = 1 - 0.4 if left else k + 0.4
+        ax.plot([ranks[i], ranks[i], end], [0, y, y], color="k", linewidth=0.8)
+        ax.text(end - 0.08 if left else end + 0.08, y, f"{names[i]} ({ranks[i]:.2f})",
+                ha="right" if left else "left", va="center", fontsize=8)
+    for g, members in enumerate(groups):
+        y = -0.15 - g * bar_step
+        ax.hlines(y, ranks[members].min() - 0.05, ranks[members].max() + 0.05, color="k", linewidth=3)
+    lowest = -top_label - (half - 1) * label_step
+    ax.set(xlim=(1 - 0.4, k + 0.4), ylim=(lowest - 0.2, 0.45))
+    ax.axis("off")
+
+
+def plot_critical_difference(rows: Sequence[dict], out: Path, alpha: float = ALPHA) -> list[Path]:
+    """``critical-difference.png``: average ranks over the complete cells, Wilcoxon-Holm groups.
+
+    Groups come from the Wilcoxon signed-rank test of each pair with Holm's
+    correction (Benavoli, Corani & Mangili 2016), not from Nemenyi's critical
+    difference, whose verdict on a pair depends on the other detectors in the
+    comparison; the caption gives Nemenyi's CD beside Friedman's p-value.
+    Nothing is written when Friedman's test cannot apply (fewer than three
+    detectors or two complete cells).
+    """
+    order = [r["detector"] for r in rank_detectors(rows)]
+    table = stats.cell_table(rows, detectors=order)
+    result = stats.friedman(table)
+    if result is None:
+        return []
+    groups = stats.cliques(result.mean_ranks, stats.pairwise_wilcoxon(table).significant(alpha))
+    plt = _pyplot()
+    k = len(order)
+    fig, ax = plt.subplots(figsize=(9, 1.2 + 0.3 * ((k + 1) // 2) + 0.12 * len(groups)))
+    fig.subplots_adjust(left=0.27, right=0.73, top=0.8, bottom=0.02)
+    draw_critical_difference(ax, order, result.mean_ranks, groups)
+    complete_rows = [r for r in rows if (r["task"], int(r["seed"])) in set(table.complete().cells)]
+    fig.suptitle(f"Average rank of ROC AUC over {result.n_cells} cells (tasks x {_seeds(complete_rows)}); "
+                 f"Friedman p = {result.pvalue:.2g}, Nemenyi CD = "
+                 f"{stats.nemenyi_cd(result.k, result.n_cells, alpha):.2f}\n"
+                 f"bars: no significant difference (Wilcoxon signed-rank, Holm, alpha = {alpha})", fontsize=9)
+    path = out / "critical-difference.png"
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return [path]
@@ -156,4 +266,5 @@ def plot_run(rows: Sequence[dict], arrays: Callable[[str], dict | None], out) ->
     """Every plot of a run into ``out``."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    return plot_roc(rows, arrays, out) + plot_routes(rows, arrays, out) + plot_ranking(rows, out)
+    return (plot_roc(rows, arrays, out) + plot_routes(rows, arrays, out) + plot_ranking(rows, out)
+            + plot_boxplots(rows, out) + plot_critical_difference(rows, out))

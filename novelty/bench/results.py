@@ -19,6 +19,7 @@ import subprocess
 import sys
 from datetime import datetime, timezone
 from importlib import metadata as importlib_metadata
+from importlib import resources
 from pathlib import Path
 from typing import Iterable
 
@@ -28,7 +29,7 @@ __all__ = ["ResultsStore", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_
 
 RESULTS_JSONL = "results.jsonl"
 RESULTS_CSV = "results.csv"
-_VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "joblib", "dask", "distributed")
+_VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "numba", "joblib", "dask", "distributed")
 
 
 def _version(dist: str) -> str | None:
@@ -42,9 +43,23 @@ def _version(dist: str) -> str | None:
         return None
 
 
-def git_revision() -> str | None:
-    """The git commit of the novelty source tree, if it is a checkout (``+dirty`` if modified)."""
-    root = Path(__file__).resolve().parents[2]
+#: the source tree of a checkout (a non-editable install has no .git there)
+_SOURCE_ROOT = Path(__file__).resolve().parents[2]
+#: written into the installed package by the build (setup.py), beside ``novelty/__init__.py``
+BUILD_REVISION_FILE = "_revision.txt"
+
+
+def git_revision() -> str:
+    """The git commit of the novelty code that runs (``+dirty`` if modified), or ``"unknown"``.
+
+    From a checkout (an editable install, or ``PYTHONPATH``), git is asked;
+    an installed package carries the revision its build recorded; a package
+    built from a source archive without git history says ``"unknown"``.
+    """
+    return _checkout_revision(_SOURCE_ROOT) or _built_revision() or "unknown"
+
+
+def _checkout_revision(root: Path) -> str | None:
     if not (root / ".git").exists():
         return None
     try:
@@ -54,7 +69,15 @@ def git_revision() -> str | None:
                                capture_output=True, text=True, timeout=10).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return None
-    return rev + ("+dirty" if dirty else "")
+    return rev + ("+dirty" if dirty else "") if rev else None
+
+
+def _built_revision() -> str | None:
+    try:
+        text = resources.files("novelty").joinpath(BUILD_REVISION_FILE).read_text(encoding="utf-8")
+    except (OSError, ModuleNotFoundError):
+        return None
+    return text.strip() or None
 
 
 def provenance() -> dict:
@@ -63,7 +86,7 @@ def provenance() -> dict:
     versions["python"] = platform.python_version()
     return {
         "versions": json.dumps(versions, sort_keys=True),
-        "git_revision": git_revision() or "",
+        "git_revision": git_revision(),
         "host": platform.node(),
         "platform": f"{sys.platform}-{platform.machine()}",
         "finished_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),

@@ -41,13 +41,14 @@ class BenchReport:
 
 def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, scheduler: str | None = None,
               plots: bool = True, progress: TextIO | None = None, quiet: bool = False,
-              client=None) -> BenchReport:
+              client=None, command: str | None = None) -> BenchReport:
     """Run ``suite`` into the folder ``out`` and return a :class:`BenchReport`.
 
     Cells already finished in ``out/results.jsonl`` are skipped (resume).
     ``backend`` is ``"serial"``, ``"joblib"`` (``jobs`` processes) or
     ``"dask"`` (the scheduler at ``scheduler``, or a local cluster of ``jobs``
-    workers; or an existing ``client``).
+    workers; or an existing ``client``). ``command``, the command line that
+    started the run, is recorded in ``summary.md`` with the versions and revision.
     """
     store = ResultsStore(out)
     store.prepare()
@@ -78,7 +79,8 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     if suite.threshold != "max":
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"
-    text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference)
+    text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference,
+                            {**stamp, "command": command})
     if suite.protocol == "exploration":
         text += "\n".join(exploration_markdown(report.rows)) + "\n"
         report.exploration = exploration_text(report.rows)

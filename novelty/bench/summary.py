@@ -15,6 +15,7 @@ is the suite's ``reference``, or else the detector ranked first.
 
 from __future__ import annotations
 
+import json
 import math
 from collections import defaultdict
 from typing import Iterable, Sequence
@@ -23,8 +24,11 @@ import numpy as np
 
 from . import stats
 
+#: the family-wise significance level of the tests in the summary
+ALPHA = 0.05
+
 __all__ = ["rank_detectors", "per_task", "format_table", "summary_markdown", "ranking_text",
-           "paired_text", "reference_of"]
+           "paired_text", "reference_of", "task_ranks_text", "statistics_markdown", "ALPHA"]
 
 
 def _num(value) -> float:
@@ -156,14 +160,85 @@ def paired_text(rows: Sequence[dict], reference: str | None = None) -> str:
     if reference is None:
         return ""
     order = [r["detector"] for r in rank_detectors(rows)]
-    records = stats.paired_comparison(stats.cell_table(rows, detectors=order), reference)
-    header = ["detector", "cells", f"ΔROC AUC vs {reference} (mean ± se)", "wins", "ties", "losses"]
-    body = [[
-        r["detector"], str(r["n"]),
-        "(reference)" if r["detector"] == reference else _signed(r["mean_diff"], r["se"]),
-        *(("-", "-", "-") if r["detector"] == reference else (str(r["wins"]), str(r["ties"]), str(r["losses"]))),
-    ] for r in records]
+    table = stats.cell_table(rows, detectors=order)
+    records = stats.paired_comparison(table, reference)
+    adjusted = stats.pairwise_wilcoxon(table).adjusted[order.index(reference)]
+    header = ["detector", "cells", f"ΔROC AUC vs {reference} (mean ± se)", "wins", "ties", "losses",
+              "p (Wilcoxon, Holm)"]
+    body = []
+    for r, p in zip(records, adjusted):
+        if r["detector"] == reference:
+            body.append([r["detector"], str(r["n"]), "(reference)", "-", "-", "-", "-"])
+        else:
+            body.append([r["detector"], str(r["n"]), _signed(r["mean_diff"], r["se"]), str(r["wins"]),
+                         str(r["ties"]), str(r["losses"]), _p(p)])
     return format_table(header, body)
+
+
+def _p(value: float) -> str:
+    if math.isnan(value):
+        return "-"
+    return "< 0.001" if value < 0.001 else f"{value:.3f}"
+
+
+def _p_is(value: float) -> str:
+    text = _p(value)
+    return f"p {text}" if text.startswith("<") else f"p = {text}"
+
+
+def task_ranks_text(rows: Sequence[dict]) -> str:
+    """The rank of each detector on each task (1 = best, by mean ROC AUC over seeds; ties averaged)."""
+    order = [r["detector"] for r in rank_detectors(rows)]
+    tasks, ranks = stats.task_ranks(stats.cell_table(rows, detectors=order))
+    with np.errstate(invalid="ignore"):
+        average = [np.nanmean(r) if np.any(~np.isnan(r)) else np.nan for r in ranks]
+    body = [[d, *(_fmt(float(x), 1) for x in r), _fmt(float(a), 2)] for d, r, a in zip(order, ranks, average)]
+    body.sort(key=lambda b: (b[-1] == "-", float(b[-1]) if b[-1] != "-" else 0.0))
+    return format_table(["detector", *tasks, "average rank"], body)
+
+
+def statistics_markdown(rows: Sequence[dict], alpha: float = ALPHA) -> list[str]:
+    """The tests of a run: Friedman, average ranks, Nemenyi's CD, the Wilcoxon-Holm groups and pairs."""
+    order = [r["detector"] for r in rank_detectors(rows)]
+    table = stats.cell_table(rows, detectors=order)
+    result = stats.friedman(table)
+    if result is None:
+        return ["The tests need at least three detectors that completed at least two common cells."]
+    complete = table.complete()
+    pairs = stats.pairwise_wilcoxon(table)
+    groups = stats.cliques(result.mean_ranks, pairs.significant(alpha))
+    lines = [
+        f"Over the {result.n_cells} cells (task, seed) that all {result.k} detectors completed: "
+        f"Friedman chi2 = {result.statistic:.2f}, {_p_is(result.pvalue)} "
+        f"(Iman-Davenport F = {result.f:.2f}, {_p_is(result.f_pvalue)}); "
+        f"Nemenyi's critical difference of average ranks at alpha = {alpha}: "
+        f"{stats.nemenyi_cd(result.k, result.n_cells, alpha):.2f}.",
+        "",
+        "Average rank over these cells (1 = best) and the groups of detectors adjacent in rank among which "
+        f"no pair differs (Wilcoxon signed-rank, Holm-corrected over all pairs, alpha = {alpha}); the "
+        "critical-difference diagram (plots/critical-difference.png) draws them as bars.",
+        "",
+    ]
+    by_rank = np.argsort(result.mean_ranks, kind="stable")
+    lines.append(format_table(["detector", "average rank", "groups"], [
+        [complete.detectors[i], f"{result.mean_ranks[i]:.2f}",
+         " ".join(chr(ord("A") + g) for g, members in enumerate(groups) if i in members) or "-"]
+        for i in by_rank]))
+    n_pairs = result.k * (result.k - 1) // 2
+    smallest = 2.0 ** (1 - result.n_cells)
+    if smallest * n_pairs > alpha:
+        lines += ["", f"With {result.n_cells} cells the smallest two-sided p-value of the exact Wilcoxon "
+                  f"test is 2 / 2^{result.n_cells} = {smallest:.3g}; after Holm's correction over "
+                  f"{n_pairs} pairs no pair can reach alpha = {alpha}. More seeds or tasks are needed "
+                  "to separate detectors pair by pair."]
+    lines += ["", "Pairwise Wilcoxon signed-rank tests over the cells both detectors completed, "
+              "Holm-adjusted p-values (row vs column; * at or below alpha):", ""]
+    short = [str(i + 1) for i in range(len(order))]
+    body = [[f"{short[i]} {order[i]}", *(
+        "" if j >= i else _p(pairs.adjusted[i, j]) + ("*" if pairs.significant(alpha)[i, j] else "")
+        for j in range(len(order) - 1))] for i in range(len(order))]
+    lines.append(format_table(["detector", *short[:-1]], body))
+    return lines
 
 
 def per_task_text(rows: Sequence[dict]) -> str:
@@ -179,10 +254,14 @@ def per_task_text(rows: Sequence[dict]) -> str:
 
 
 def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequence[str] = (),
-                     reference: str | None = None) -> str:
-    """The ``summary.md`` of a run (``reference``: the detector of the paired comparison)."""
+                     reference: str | None = None, run: dict | None = None) -> str:
+    """The ``summary.md`` of a run.
+
+    ``reference``: the detector of the paired comparison (default: the one
+    ranked first); ``run``: how the run was made (``command``, ``versions``
+    as JSON, ``git_revision``), recorded at the end.
+    """
     rows = list(rows)
-    chosen = reference_of(rows, reference)
     seeds = sorted({r["seed"] for r in rows})
     failed = [r for r in rows if r.get("status") != "ok"]
     parts = [
@@ -203,29 +282,64 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "training time, peak memory (MiB, traced), model size in units.",
         "",
         ranking_text(rows),
-    ]
-    if chosen is not None:
-        parts += [
-            "",
-            f"## Paired comparison with {chosen}",
-            "",
-            f"Each detector's ROC AUC minus {chosen}'s on the same cell (same task, same seed), over "
-            f"the cells both completed: mean ± standard error of the differences (positive: better "
-            f"than {chosen}), and the cells won, tied and lost. The reference is "
-            + ("the suite's `reference`." if reference is not None else
-               "the detector ranked first (set `reference` in the suite or `--reference` to choose)."),
-            "",
-            paired_text(rows, chosen),
-        ]
-    parts += [
+        *_paired_section(rows, reference),
         "",
         "## ROC AUC per task",
         "",
+        "Mean ± standard deviation over seeds.",
+        "",
         per_task_text(rows),
+        "",
+        "## Ranks per task",
+        "",
+        "Rank of each detector on each task by its mean ROC AUC over seeds (1 = best, ties share the "
+        "average rank), and the average over tasks.",
+        "",
+        task_ranks_text(rows),
+        "",
+        "## Statistics",
+        "",
+        *statistics_markdown(rows),
     ]
     if failed:
         parts += ["", "## Failed cells", ""]
         parts += [f"- {r['detector']} / {r['task']} / seed {r['seed']}: {r.get('error', '')}" for r in failed]
     if notes:
         parts += ["", "## Notes", "", *(f"- {n}" for n in notes)]
+    parts += ["", "## How this run was made", "", *_provenance_lines(rows, run or {})]
     return "\n".join(parts) + "\n"
+
+
+def _paired_section(rows: Sequence[dict], reference: str | None) -> list[str]:
+    chosen = reference_of(rows, reference)
+    if chosen is None:
+        return []
+    how = ("the suite's `reference`." if reference is not None else
+           "the detector ranked first (set `reference` in the suite or `--reference` to choose).")
+    return [
+        "",
+        f"## Paired comparison with {chosen}",
+        "",
+        f"Each detector's ROC AUC minus {chosen}'s on the same cell (same task, same seed), over "
+        f"the cells both completed: mean ± standard error of the differences (positive: better "
+        f"than {chosen}), the cells won, tied and lost, and the Holm-adjusted p-value of the "
+        f"Wilcoxon signed-rank test of the pair (see Statistics). The reference is {how}",
+        "",
+        paired_text(rows, chosen),
+    ]
+
+
+def _provenance_lines(rows: Sequence[dict], run: dict) -> list[str]:
+    lines = []
+    if run.get("command"):
+        lines.append(f"- command: `{run['command']}`")
+    if run.get("versions"):
+        versions = json.loads(run["versions"])
+        lines.append("- versions: " + ", ".join(f"{k} {v}" for k, v in sorted(versions.items())))
+    if run.get("git_revision"):
+        lines.append(f"- revision: {run['git_revision']}")
+    older = sorted({str(r.get("git_revision") or "unknown") for r in rows if "versions" in r}
+                   - {run.get("git_revision")})
+    if older:
+        lines.append(f"- cells from earlier runs were computed at revision {', '.join(older)}")
+    return lines or ["- not recorded"]

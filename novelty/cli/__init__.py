@@ -83,6 +83,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, --version, or a usage error already printed
         return exc.code if isinstance(exc.code, int) else 0
+    args._argv = list(sys.argv[1:] if argv is None else argv)  # recorded by commands that keep provenance
     if getattr(args, "_run", None) is None:
         parser.print_help(sys.stderr)
         return 2

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shlex
 import sys
 
 from ._common import UserError, add_command
@@ -126,7 +127,8 @@ def run(args) -> int:
               f"{len(suite.seeds)} seeds = {n_cells} cells, backend {backend}"
               + (f" ({args.jobs} jobs)" if backend != "serial" else "") + ".", file=sys.stderr)
     report = run_bench(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
-                       plots=not args.no_plots, quiet=args.quiet)
+                       plots=not args.no_plots, quiet=args.quiet,
+                       command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
     print(report.exploration or report.table)
     for note in report.notes:
         print(note)

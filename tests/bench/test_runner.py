@@ -39,7 +39,7 @@ def test_a_run_writes_every_output(tmp_path, suite):
         assert report.notes == ["Plots skipped: matplotlib is not installed (pip install 'novelty[plot]')."]
     else:
         assert {p.name for p in (tmp_path / "plots").iterdir()} == {
-            "roc.png", "ranking.png", f"route-{suite.tasks[0].name}.png"}
+            "roc.png", "ranking.png", "boxplot-roc-auc.png", f"route-{suite.tasks[0].name}.png"}
     rows = [json.loads(line) for line in (tmp_path / "results.jsonl").read_text().splitlines()]
     assert len(rows) == 4
     header = (tmp_path / "results.csv").read_text().splitlines()[0].split(",")

@@ -78,10 +78,12 @@ def test_the_paired_table_in_rank_order(rows):
     lines = paired_text(rows, "ref").splitlines()
     assert "ΔROC AUC vs ref (mean ± se)" in lines[0]
     cells = [[c.strip() for c in line.strip("|").split("|")] for line in lines[2:]]
+    # b - ref: 4 of 4 positive, exact p = 2 / 2^4, times 3 pairs (Holm, the smallest p);
+    # a - ref: +0.1, 0, -0.1, the zero's rank split, R+ = R- = 3: p = 1
     assert cells == [
-        ["b", "4", "+0.062 ± 0.013", "4", "0", "0"],
-        ["ref", "4", "(reference)", "-", "-", "-"],
-        ["a", "3", "+0.000 ± 0.058", "1", "1", "1"],
+        ["b", "4", "+0.062 ± 0.013", "4", "0", "0", "0.375"],
+        ["ref", "4", "(reference)", "-", "-", "-", "-"],
+        ["a", "3", "+0.000 ± 0.058", "1", "1", "1", "1.000"],
     ]
 
 
@@ -92,3 +94,33 @@ def test_the_summary_puts_the_ranking_first_then_the_paired_comparison(rows):
     assert "The reference is the suite's `reference`." in text
     assert "12 cells: 3 detectors x 2 tasks x 2 seeds (0, 1); 1 failed." in text
     assert "## Paired comparison with b" in summary_markdown(rows)
+
+
+def test_the_statistics_section_by_hand(rows):
+    # complete cells t1/0, t1/1, t2/0; ranks (ref, a, b): (3, 1, 2), (2.5, 2.5, 1), (2, 3, 1)
+    text = summary_markdown(rows, reference="ref")
+    assert text.index("## Paired comparison") < text.index("## Ranks per task") < text.index("## Statistics")
+    assert "Over the 3 cells (task, seed) that all 3 detectors completed: Friedman chi2 = " in text
+    assert "| b        | 1.33         | A      |" in text
+    assert "| a        | 2.17         | A      |" in text
+    assert "| ref      | 2.50         | A      |" in text
+    assert "2 / 2^3 = 0.25; after Holm's correction over 3 pairs no pair can reach alpha = 0.05" in text
+
+
+def test_ranks_per_task_average_over_tasks(rows):
+    # t1 means: ref 0.75, a 0.80, b 0.80 -> 3, 1.5, 1.5; t2: ref 0.75, a 0.50, b 0.825 -> 2, 3, 1
+    text = summary_markdown(rows)
+    section = text[text.index("## Ranks per task"):text.index("## Statistics")]
+    assert "| b        | 1.5 | 1.0 | 1.25         |" in section
+    assert "| ref      | 3.0 | 2.0 | 2.50         |" in section
+
+
+def test_the_summary_records_how_the_run_was_made(rows):
+    for r in rows:
+        r.update(versions="{}", git_revision="abc123")
+    run = {"command": "novelty bench --quick", "versions": '{"numpy": "2.0", "python": "3.11.7"}',
+           "git_revision": "def456+dirty"}
+    text = summary_markdown(rows, run=run)
+    assert text.endswith("## How this run was made\n\n- command: `novelty bench --quick`\n"
+                         "- versions: numpy 2.0, python 3.11.7\n- revision: def456+dirty\n"
+                         "- cells from earlier runs were computed at revision abc123\n")

@@ -35,7 +35,9 @@ def test_the_paired_comparison_is_printed_against_the_reference(toy_task, tmp_pa
     assert bench(tmp_path, "hsom n_rows=3 n_columns=3", "parzen", extra=["--reference", "parzen"]) == 0
     out = capsys.readouterr().out
     assert out.index("| # | detector") < out.index("ΔROC AUC vs parzen (mean ± se)")
-    assert "## Paired comparison with parzen" in (tmp_path / "b" / "summary.md").read_text()
+    summary = (tmp_path / "b" / "summary.md").read_text()
+    assert "## Paired comparison with parzen" in summary
+    assert f"- command: `novelty bench --task '{toy.TASK} n_test=24' --seeds 1" in summary
 
 
 def test_an_unknown_reference_is_a_user_error(toy_task, tmp_path, capsys):
