@@ -28,7 +28,7 @@ from . import stats
 ALPHA = 0.05
 
 __all__ = ["rank_detectors", "per_task", "format_table", "summary_markdown", "ranking_text",
-           "paired_text", "reference_of", "task_ranks_text", "statistics_markdown", "ALPHA"]
+           "paired_text", "reference_of", "task_ranks_text", "statistics_markdown", "statistics_line", "ALPHA"]
 
 
 def _num(value) -> float:
@@ -195,6 +195,16 @@ def task_ranks_text(rows: Sequence[dict]) -> str:
     body = [[d, *(_fmt(float(x), 1) for x in r), _fmt(float(a), 2)] for d, r, a in zip(order, ranks, average)]
     body.sort(key=lambda b: (b[-1] == "-", float(b[-1]) if b[-1] != "-" else 0.0))
     return format_table(["detector", *tasks, "average rank"], body)
+
+
+def statistics_line(rows: Sequence[dict]) -> str:
+    """One line for the terminal: Friedman's test over the complete cells, or why there is none."""
+    result = stats.friedman(stats.cell_table(rows))
+    if result is None:
+        return "No Friedman test: it needs three detectors and two cells they all completed."
+    return (f"Friedman's test over {result.n_cells} cells that all {result.k} detectors completed: "
+            f"{_p_is(result.pvalue)}; ranks, pairwise tests and the critical-difference diagram are in "
+            "summary.md and plots/.")
 
 
 def statistics_markdown(rows: Sequence[dict], alpha: float = ALPHA) -> list[str]:

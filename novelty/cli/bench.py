@@ -14,15 +14,17 @@ Each cell streams the task's training scans through the detector (as many
 passes as the task says), sets an alarm threshold from the training novelty,
 then scores the test scans without learning. Results go to --out:
 results.csv and results.jsonl (one row a cell, with provenance), summary.md
-(the ranking, each detector paired with a reference detector cell by cell)
-and plots/. Rerunning the same command resumes: finished cells are skipped.
-A suite is a TOML file (see benchmarks/suites/ in the source tree), the
-embedded --quick suite, or --detector/--task options. Your own scans are the
-task 'files' (--task 'files path=scans.csv ...' or a suite's [[tasks]] path =
-"scans.csv"; see 'novelty list datasets'). The exit code is 1 if every cell
-failed. With --protocol exploration (or a suite's protocol = "exploration")
-every scan is scored, then learned, in order, and the table says which
-detectors flag a feature on first sight and habituate to it as it recurs."""
+(the ranking, each detector paired with a reference detector cell by cell,
+ranks per task, Friedman and Wilcoxon-Holm tests, the command and versions)
+and plots/ (with a critical-difference diagram). Rerunning the same command
+resumes: finished cells are skipped. A suite is a TOML file (see
+benchmarks/suites/ in the source tree), the embedded --quick suite, or
+--detector/--task options. Your own scans are the task 'files' (--task 'files
+path=scans.csv ...' or a suite's [[tasks]] path = "scans.csv"; see 'novelty
+list datasets'). The exit code is 1 if every cell failed. With --protocol
+exploration (or a suite's protocol = "exploration") every scan is scored, then
+learned, in order, and the table says which detectors flag a feature on first
+sight and habituate to it as it recurs."""
 
 EXAMPLES = [
     "novelty bench --quick --out results/quick",
@@ -114,6 +116,7 @@ def build_suite(args):
 
 def run(args) -> int:
     from ..bench.runner import run_bench
+    from ..bench.summary import statistics_line
 
     if args.jobs < 1:
         raise UserError(f"--jobs must be at least 1; got {args.jobs}.")
@@ -130,6 +133,8 @@ def run(args) -> int:
                        plots=not args.no_plots, quiet=args.quiet,
                        command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
     print(report.exploration or report.table)
+    if report.rows and not report.exploration:
+        print(statistics_line(report.rows))
     for note in report.notes:
         print(note)
     summary = os.path.join(args.out, "summary.md")

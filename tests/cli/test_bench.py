@@ -35,6 +35,7 @@ def test_the_paired_comparison_is_printed_against_the_reference(toy_task, tmp_pa
     assert bench(tmp_path, "hsom n_rows=3 n_columns=3", "parzen", extra=["--reference", "parzen"]) == 0
     out = capsys.readouterr().out
     assert out.index("| # | detector") < out.index("ΔROC AUC vs parzen (mean ± se)")
+    assert "No Friedman test: it needs three detectors" in out
     summary = (tmp_path / "b" / "summary.md").read_text()
     assert "## Paired comparison with parzen" in summary
     assert f"- command: `novelty bench --task '{toy.TASK} n_test=24' --seeds 1" in summary
