@@ -98,13 +98,14 @@ class Instance:
         return self.description
 
 
-def validate_parameters(owner: Any) -> None:
-    """Check every parameter of ``owner`` against ``owner._parameter_rules``.
+def validate_parameters(owner: Any, rules: dict | None = None) -> None:
+    """Check every parameter of ``owner`` against ``rules`` (default: ``owner._parameter_rules``).
 
     Each rule is an :class:`Interval`, :class:`Options`, :class:`Instance` or a
     tuple of them (any may accept).
     """
-    rules = getattr(owner, "_parameter_rules", {})
+    if rules is None:
+        rules = getattr(owner, "_parameter_rules", {})
     for name, rule in rules.items():
         value = getattr(owner, name)
         alternatives = rule if isinstance(rule, tuple) else (rule,)

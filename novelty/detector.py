@@ -5,9 +5,12 @@ scikit-learn's outlier conventions are translated here, at the edge:
 
 - ``score_samples(X) = -novelty(X)`` (higher = more normal);
 - ``decision_function(X) = score_samples(X) - offset_`` with
-  ``offset_ = -threshold``, so it is negative exactly where
-  ``novelty(X) > threshold``;
-- ``predict(X)`` is -1 (novel) where ``novelty(X) > threshold``, else +1.
+  ``offset_ = -threshold_``, so it is negative exactly where
+  ``novelty(X) > threshold_``;
+- ``predict(X)`` is -1 (novel) where ``novelty(X) > threshold_``, else +1.
+
+PyOD's conventions hold as they are: ``decision_scores_`` (higher = more
+abnormal, as our novelty), ``threshold_`` and ``labels_`` (1 outlier, 0 normal).
 
 A subclass implements four hooks on validated float64 arrays:
 :meth:`~NoveltyDetector._start` (fresh state shaped by the first batch),
@@ -28,18 +31,35 @@ from sklearn.base import OutlierMixin
 from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
-from ._component import Component, StateError, check_int_state
-from ._validation import (check_batch, check_feature_names, check_one, check_timestamps, frame_names,
-                          scan_names)
+from ._component import Component, StateError, check_array_state, check_int_state
+from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
+                          frame_names, scan_names, validate_parameters)
 
-__all__ = ["NoveltyDetector"]
+__all__ = ["NoveltyDetector", "CONTAMINATION"]
+
+#: The rule for every detector's ``contamination`` parameter (as scikit-learn's and PyOD's).
+CONTAMINATION = (Options(("auto",)), Interval(numbers.Real, 0, 0.5, closed="right"))
 
 
 class NoveltyDetector(OutlierMixin, Component):
     """Base class of novelty detectors (abstract).
 
-    Subclasses have a ``threshold`` parameter (on the novelty scale) and may
-    have ``n_epochs`` (passes over the data in :meth:`fit`).
+    Subclasses have a ``threshold`` parameter (on the novelty scale), a
+    ``contamination`` parameter, and may have ``n_epochs`` (passes over the
+    data in :meth:`fit`).
+
+    The threshold in force, ``threshold_``, is ``threshold`` while
+    ``contamination="auto"`` (the default). A float ``contamination`` (the
+    expected fraction of outliers in the training data, in (0, 0.5], as in
+    scikit-learn and PyOD) wins over ``threshold``: ``threshold_`` is then the
+    (1 - contamination) quantile (numpy's linear interpolation) of
+    ``decision_scores_``, the novelty of the training scans under the fitted
+    model, so :meth:`predict` calls about that fraction of them novel (fewer
+    where scores tie at the quantile: a scan is novel only strictly above
+    it). Only :meth:`fit` records training scans; a detector that learned
+    online only has no ``decision_scores_`` and needs ``contamination="auto"``.
+    ``threshold_`` and ``labels_`` follow the parameters in force: changing
+    ``threshold`` or ``contamination`` with ``set_params`` takes effect at once.
 
     Scans are arrays, or, one at a time, dicts as in River: a dict scan is
     read by key. The first scan learned fixes the features, in the sorted
@@ -66,6 +86,14 @@ class NoveltyDetector(OutlierMixin, Component):
         array, integer keys as an int64 array). Saved with the model.
     last_time_ : float or None
         Timestamp of the last scan learned, when timestamps were given.
+    decision_scores_ : ndarray of shape (n_samples,)
+        Novelty of each training scan of the last :meth:`fit`, under the
+        fitted model (PyOD's name; higher = more abnormal). Saved with the model.
+    threshold_ : float
+        The threshold in force (see above).
+    labels_ : ndarray of int of shape (n_samples,)
+        1 where ``decision_scores_ > threshold_`` (outlier), else 0 (PyOD's
+        convention; :meth:`predict` says -1 and +1).
     """
 
     #: whether ``partial_fit`` / ``learn_one`` keep learning after ``fit``
@@ -86,6 +114,9 @@ class NoveltyDetector(OutlierMixin, Component):
 
     def _novelty_one(self, x: np.ndarray) -> float:
         return float(self._novelty(x[None, :])[0])
+
+    def _finish_fit(self, X: np.ndarray) -> None:
+        """Called by :meth:`fit` after the last pass, before ``decision_scores_`` are taken."""
 
     def _first_novelty(self) -> float:
         """Novelty of a first perception, before anything is learned (parameters are valid)."""
@@ -137,9 +168,16 @@ class NoveltyDetector(OutlierMixin, Component):
                 f"{type(self).__name__}.feature_names_in_ must hold {n} distinct names, all strings "
                 f"or all integers; got {names!r}."
             )
+        if hasattr(self, "decision_scores_"):
+            check_array_state(self, "decision_scores_", 1)
         t = getattr(self, "last_time_", None)
         if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t)):
             raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number; got {t!r}.")
+
+    def _validate_params(self) -> None:
+        super()._validate_params()
+        if hasattr(self, "contamination"):
+            validate_parameters(self, {"contamination": CONTAMINATION})
 
     def _check_online(self) -> None:
         if not self.supports_online:
@@ -173,7 +211,9 @@ class NoveltyDetector(OutlierMixin, Component):
         self._begin(X, names)
         for _ in range(getattr(self, "n_epochs", 1)):
             self._learn(X, dt)
+        self._finish_fit(X)
         self._advance_clock(X.shape[0], timestamps)
+        self.decision_scores_ = self._novelty(X)
         return self
 
     # Batch-only detectors do not offer partial_fit at all, so that scikit-learn
@@ -221,17 +261,44 @@ class NoveltyDetector(OutlierMixin, Component):
         return -self.novelty(X)
 
     @property
+    def threshold_(self) -> float:
+        """The threshold in force: ``threshold``, or the contamination quantile of ``decision_scores_``."""
+        self._check_fitted()
+        contamination = getattr(self, "contamination", "auto")
+        if isinstance(contamination, str):  # "auto"
+            return float(self.threshold)
+        if not hasattr(self, "decision_scores_"):
+            raise ValueError(
+                f"contamination={contamination!r} sets the threshold from the novelty of the training "
+                f"scans, which only 'fit' records; this {type(self).__name__} learned online only "
+                f"(stream, partial_fit or learn_one). Fit it, or set contamination='auto' to use "
+                f"threshold={self.threshold!r}."
+            )
+        return float(np.quantile(self.decision_scores_, 1.0 - contamination))
+
+    @property
+    def labels_(self) -> np.ndarray:
+        """PyOD's labels of the training scans: 1 outlier (above ``threshold_``), 0 normal."""
+        self._check_fitted()
+        if not hasattr(self, "decision_scores_"):
+            raise AttributeError(
+                f"This {type(self).__name__} learned online only; 'labels_' describe the training "
+                "scans of 'fit'."
+            )
+        return (self.decision_scores_ > self.threshold_).astype(np.int64)
+
+    @property
     def offset_(self) -> float:
         """scikit-learn's offset: ``decision_function = score_samples - offset_``."""
-        return -float(self.threshold)
+        return -self.threshold_
 
     def decision_function(self, X) -> np.ndarray:
-        """``threshold - novelty(X)``: negative for novel scans, positive for normal."""
+        """``threshold_ - novelty(X)``: negative for novel scans, positive for normal."""
         return self.score_samples(X) - self.offset_
 
     def predict(self, X) -> np.ndarray:
-        """+1 for normal scans, -1 for novel ones (novelty above ``threshold``)."""
-        return np.where(self.novelty(X) > self.threshold, -1, 1)
+        """+1 for normal scans, -1 for novel ones (novelty above ``threshold_``)."""
+        return np.where(self.novelty(X) > self.threshold_, -1, 1)
 
     # ----------------------------------------------------------- streaming (robot)
     def score_one(self, x) -> float:

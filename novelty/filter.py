@@ -81,6 +81,9 @@ class HabituatingFilter(NoveltyDetector):
         The synapse model, by name or instance.
     threshold : float, default=0.5
         Novelty above which :meth:`predict` calls a scan novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
     stimulus : float, default=1.0
         Stimulus S presented to the winning neighbourhood's synapses.
     n_epochs : int, default=1
@@ -157,10 +160,11 @@ class HabituatingFilter(NoveltyDetector):
 
     def __init__(self, clusterer="som", synapse="stanley", threshold=0.5, stimulus=1.0,
                  n_epochs=1, random_state=0, novelty_rule="efficacy", match_scale=None,
-                 match_quantile=0.9, calibration_scans=200):
+                 match_quantile=0.9, calibration_scans=200, contamination="auto"):
         self.clusterer = clusterer
         self.synapse = synapse
         self.threshold = threshold
+        self.contamination = contamination
         self.stimulus = stimulus
         self.n_epochs = n_epochs
         self.random_state = random_state

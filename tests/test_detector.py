@@ -226,3 +226,79 @@ def test_pandas_dataframes_when_pandas_is_installed():
     np.testing.assert_array_equal(det.novelty(pd.DataFrame(X, columns=NAMES)), small_hsom().fit(X).novelty(X))
     with pytest.raises(ValueError, match="same order"):
         det.novelty(pd.DataFrame(X[:, ::-1], columns=NAMES[::-1]))
+
+
+# ------------------------------------------------- thresholds: PyOD's attributes
+def test_decision_scores_are_the_fitted_models_novelty_of_the_training_scans():
+    X = scans(60)
+    det = small_hsom().fit(X)
+    np.testing.assert_array_equal(det.decision_scores_, det.novelty(X))
+    assert det.threshold_ == 0.5  # contamination="auto": the fixed threshold
+    np.testing.assert_array_equal(det.labels_, (det.predict(X) == -1).astype(int))
+    assert det.labels_.dtype.kind == "i"
+
+
+def test_contamination_threshold_is_the_quantile_of_the_training_scores():
+    det = small_hsom(contamination=0.2).fit(scans(10))
+    det.decision_scores_ = np.arange(1, 11) / 10  # 0.1 ... 1.0, by hand
+    # (1 - 0.2) quantile, linear: position 0.8 * 9 = 7.2, so 0.8 + 0.2 * 0.1
+    assert det.threshold_ == pytest.approx(0.82, abs=1e-15)
+    np.testing.assert_array_equal(det.labels_, [0] * 8 + [1, 1])
+    assert det.offset_ == -det.threshold_
+    det.set_params(contamination=0.5)  # takes effect at once
+    assert det.threshold_ == pytest.approx(0.55, abs=1e-15)
+    np.testing.assert_array_equal(det.labels_, [0] * 5 + [1] * 5)
+
+
+def test_contamination_wins_over_threshold_and_predict_uses_it():
+    X = scans(200)
+    det = novelty.make("hsom", threshold=0.99, contamination=0.1).fit(X)
+    assert det.threshold_ == np.quantile(det.decision_scores_, 0.9)
+    nov = det.novelty(X)
+    np.testing.assert_array_equal(det.predict(X), np.where(nov > det.threshold_, -1, 1))
+    np.testing.assert_allclose(det.decision_function(X), det.threshold_ - nov)
+    assert 0 < det.labels_.sum() <= 20
+
+
+def test_hsom_default_threshold_and_predictions_are_unchanged():
+    X = scans(200)
+    det = novelty.make("hsom").fit(X)
+    assert det.contamination == "auto" and det.threshold_ == 0.5
+    np.testing.assert_array_equal(det.predict(X), np.where(det.novelty(X) > 0.5, -1, 1))
+
+
+@pytest.mark.parametrize("value", [0, 0.0, 0.5000001, -0.1, 1.0, "high", True, np.nan, None])
+def test_a_bad_contamination_is_refused_before_fitting(value):
+    det = small_hsom(contamination=value)
+    with pytest.raises(ValueError, match=r"The 'contamination' parameter of HabituatingFilter must be "
+                                         r"one of 'auto' or a float in \(0, 0.5\]"):
+        det.fit(scans())
+    assert not hasattr(det, "n_features_in_")
+
+
+def test_contamination_needs_the_training_scans_of_fit():
+    det = small_hsom(contamination=0.1)
+    det.stream(scans())
+    with pytest.raises(ValueError, match=r"contamination=0.1 sets the threshold from .*only 'fit' records"):
+        det.predict(scans(3))
+    with pytest.raises(AttributeError, match="learned online only"):
+        det.labels_
+    det.set_params(contamination="auto")
+    assert det.threshold_ == 0.5 and det.predict(scans(3)).shape == (3,)
+
+
+def test_unfitted_threshold_attributes_raise_not_fitted():
+    det = small_hsom()
+    for name in ("threshold_", "labels_", "offset_"):
+        with pytest.raises(NotFittedError):
+            getattr(det, name)
+        assert not hasattr(det, name)
+
+
+@pytest.mark.parametrize("name", ["kohonen-filter", "autoencoder-filter", "gmm", "lof", "parzen"])
+def test_baselines_fitted_with_contamination_flag_that_fraction(name):
+    X = np.random.default_rng(3).normal(size=(100, 3))
+    det = novelty.make(name, contamination=0.1).fit(X)
+    np.testing.assert_array_equal(det.decision_scores_, det.novelty(X))
+    assert det.labels_.sum() == 10  # continuous scores: no ties at the quantile
+    np.testing.assert_array_equal(det.predict(X) == -1, det.labels_ == 1)

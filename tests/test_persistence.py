@@ -493,3 +493,12 @@ def test_match_scale_and_calibration_round_trip(tmp_path, name, params, n_scans)
     assert det.novelty(Y).tobytes() == loaded.novelty(Y).tobytes()
     assert det.stream(Y).tobytes() == loaded.stream(Y).tobytes()  # calibration goes on alike
     assert loaded.match_scale_ == det.match_scale_ is not None
+
+
+def test_contamination_threshold_and_labels_round_trip(tmp_path):
+    det = fitted(contamination=0.2)
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert loaded.decision_scores_.tobytes() == det.decision_scores_.tobytes()
+    assert loaded.threshold_ == det.threshold_ != det.threshold
+    np.testing.assert_array_equal(loaded.labels_, det.labels_)

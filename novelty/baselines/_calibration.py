@@ -203,22 +203,11 @@ class CalibratedDetector(NoveltyDetector):
             self._push_reference(raw)
         return out
 
-    def fit(self, X, y=None, timestamps=None):
-        """Learn ``X`` from scratch, then calibrate on the training data.
-
-        Parameters
-        ----------
-        X : array-like of shape (n_samples, n_features)
-            Familiar inputs.
-        y : ignored
-        timestamps : array-like of shape (n_samples,), optional
-            Accepted for the common API; baselines have no time dynamics.
-        """
-        super().fit(X, y=y, timestamps=timestamps)
-        if self.supports_online:  # batch learners calibrated in _learn already
-            X = check_batch(X, self, self.n_features_in_)
+    def _finish_fit(self, X: np.ndarray) -> None:
+        # A fit calibrates on the whole training data, also for online learners
+        # (whose stream built a reference while learning); batch learners did in _learn.
+        if self.supports_online:
             self._set_reference(self._reference_raw(X))
-        return self
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         return self._scale(self._raw(X))

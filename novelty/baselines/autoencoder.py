@@ -72,6 +72,9 @@ class AutoencoderFilter(CalibratedDetector):
         Seed of the weight initialisation.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -112,7 +115,7 @@ class AutoencoderFilter(CalibratedDetector):
     }
 
     def __init__(self, hidden_layer_sizes=None, activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=500,
-                 random_state=0, threshold=0.95):
+                 random_state=0, threshold=0.95, contamination="auto"):
         self.hidden_layer_sizes = hidden_layer_sizes
         self.activation = activation
         self.solver = solver
@@ -120,6 +123,7 @@ class AutoencoderFilter(CalibratedDetector):
         self.max_iter = max_iter
         self.random_state = random_state
         self.threshold = threshold
+        self.contamination = contamination
 
     def _validate_params(self) -> None:
         super()._validate_params()

@@ -72,6 +72,9 @@ class GaussianMixtureDetector(CalibratedDetector):
         Seed of the EM initialisation.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -116,7 +119,7 @@ class GaussianMixtureDetector(CalibratedDetector):
     }
 
     def __init__(self, n_components=None, max_components=10, covariance_type="full", reg_covar=1e-6,
-                 max_iter=100, n_init=1, random_state=0, threshold=0.95):
+                 max_iter=100, n_init=1, random_state=0, threshold=0.95, contamination="auto"):
         self.n_components = n_components
         self.max_components = max_components
         self.covariance_type = covariance_type
@@ -125,6 +128,7 @@ class GaussianMixtureDetector(CalibratedDetector):
         self.n_init = n_init
         self.random_state = random_state
         self.threshold = threshold
+        self.contamination = contamination
 
     def _mixture(self, k: int):
         from sklearn.mixture import GaussianMixture

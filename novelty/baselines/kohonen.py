@@ -87,6 +87,9 @@ class KohonenNoveltyFilter(CalibratedDetector):
         ``online`` only: passes over the data in :meth:`fit`.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -128,12 +131,14 @@ class KohonenNoveltyFilter(CalibratedDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, method="online", n_components=0.95, learning_rate=0.5, n_epochs=1, threshold=0.95):
+    def __init__(self, method="online", n_components=0.95, learning_rate=0.5, n_epochs=1, threshold=0.95,
+                 contamination="auto"):
         self.method = method
         self.n_components = n_components
         self.learning_rate = learning_rate
         self.n_epochs = n_epochs
         self.threshold = threshold
+        self.contamination = contamination
 
     @property
     def supports_online(self) -> bool:

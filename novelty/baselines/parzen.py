@@ -68,6 +68,9 @@ class ParzenDetector(CalibratedDetector):
         The kernel width h: a rule (equations 2-3) or a positive number.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -98,9 +101,10 @@ class ParzenDetector(CalibratedDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, bandwidth="scott", threshold=0.95):
+    def __init__(self, bandwidth="scott", threshold=0.95, contamination="auto"):
         self.bandwidth = bandwidth
         self.threshold = threshold
+        self.contamination = contamination
 
     def _fit_model(self, X: np.ndarray) -> None:
         self.samples_ = X.copy()

@@ -84,6 +84,9 @@ class SklearnOutlierDetector(CalibratedDetector):
         ``estimator__<name>``.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -107,9 +110,10 @@ class SklearnOutlierDetector(CalibratedDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, estimator=None, threshold=0.95):
+    def __init__(self, estimator=None, threshold=0.95, contamination="auto"):
         self.estimator = estimator
         self.threshold = threshold
+        self.contamination = contamination
 
     def _validate_params(self) -> None:
         super()._validate_params()
@@ -175,6 +179,9 @@ class IsolationForestDetector(SklearnOutlierDetector):
         Must be an int for the model to be saved.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     The parameters are those of ``sklearn.ensemble.IsolationForest``.
     """
@@ -190,13 +197,14 @@ class IsolationForestDetector(SklearnOutlierDetector):
     }
 
     def __init__(self, n_estimators=100, max_samples="auto", max_features=1.0, bootstrap=False,
-                 random_state=0, threshold=0.95):
+                 random_state=0, threshold=0.95, contamination="auto"):
         self.n_estimators = n_estimators
         self.max_samples = max_samples
         self.max_features = max_features
         self.bootstrap = bootstrap
         self.random_state = random_state
         self.threshold = threshold
+        self.contamination = contamination
 
     def _build_estimator(self):
         from sklearn.ensemble import IsolationForest
@@ -219,6 +227,9 @@ class OneClassSVMDetector(SklearnOutlierDetector):
     tol : float, default=1e-3
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     The parameters are those of ``sklearn.svm.OneClassSVM``.
     """
@@ -233,7 +244,8 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, kernel="rbf", gamma="scale", nu=0.5, degree=3, coef0=0.0, tol=1e-3, threshold=0.95):
+    def __init__(self, kernel="rbf", gamma="scale", nu=0.5, degree=3, coef0=0.0, tol=1e-3, threshold=0.95,
+                 contamination="auto"):
         self.kernel = kernel
         self.gamma = gamma
         self.nu = nu
@@ -241,6 +253,7 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         self.coef0 = coef0
         self.tol = tol
         self.threshold = threshold
+        self.contamination = contamination
 
     def _build_estimator(self):
         from sklearn.svm import OneClassSVM
@@ -264,6 +277,9 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
     leaf_size : int, default=30
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
     """
 
     _parameter_rules = {
@@ -274,12 +290,14 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, n_neighbors=20, metric="minkowski", p=2, leaf_size=30, threshold=0.95):
+    def __init__(self, n_neighbors=20, metric="minkowski", p=2, leaf_size=30, threshold=0.95,
+                 contamination="auto"):
         self.n_neighbors = n_neighbors
         self.metric = metric
         self.p = p
         self.leaf_size = leaf_size
         self.threshold = threshold
+        self.contamination = contamination
 
     def _build_estimator(self):
         from sklearn.neighbors import LocalOutlierFactor
@@ -303,6 +321,9 @@ class EllipticEnvelopeDetector(SklearnOutlierDetector):
         Must be an int for the model to be saved.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     The parameters are those of ``sklearn.covariance.EllipticEnvelope``.
     """
@@ -314,11 +335,13 @@ class EllipticEnvelopeDetector(SklearnOutlierDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, support_fraction=None, assume_centered=False, random_state=0, threshold=0.95):
+    def __init__(self, support_fraction=None, assume_centered=False, random_state=0, threshold=0.95,
+                 contamination="auto"):
         self.support_fraction = support_fraction
         self.assume_centered = assume_centered
         self.random_state = random_state
         self.threshold = threshold
+        self.contamination = contamination
 
     def _build_estimator(self):
         from sklearn.covariance import EllipticEnvelope

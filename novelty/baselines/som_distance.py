@@ -64,6 +64,9 @@ class SOMDistance(CalibratedDetector):
         Seed of the map's initialisation.
     threshold : float, default=0.95
         Novelty (comparable scale) above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+        Expected fraction of outliers in the training data; a float sets
+        ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
     Attributes
     ----------
@@ -96,11 +99,12 @@ class SOMDistance(CalibratedDetector):
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, clusterer=None, n_epochs=1, random_state=0, threshold=0.95):
+    def __init__(self, clusterer=None, n_epochs=1, random_state=0, threshold=0.95, contamination="auto"):
         self.clusterer = clusterer
         self.n_epochs = n_epochs
         self.random_state = random_state
         self.threshold = threshold
+        self.contamination = contamination
 
     def _new_clusterer(self) -> Clusterer:
         if self.clusterer is None or isinstance(self.clusterer, str):

@@ -48,7 +48,7 @@ def test_batch_only(curve):
 def test_saved_model_holds_only_arrays_and_scores_identically(curve, tmp_path):
     det = AutoencoderFilter(hidden_layer_sizes=(2,)).fit(curve)
     arrays, values, children = det._export_state()
-    assert set(arrays) == {"parameters_", "reference_"} and not children
+    assert set(arrays) == {"parameters_", "reference_", "decision_scores_"} and not children
     det.save(tmp_path / "ae.npz")
     back = novelty.load(tmp_path / "ae.npz")
     assert np.array_equal(back.novelty(curve), det.novelty(curve))

@@ -48,7 +48,7 @@ def test_saved_model_is_refitted_identically(name, data, tmp_path):
     X, Z = data
     det = novelty.make(name).fit(X)
     arrays, _, children = det._export_state()
-    assert set(arrays) == {"samples_", "reference_"} and not children, "no estimator object is saved"
+    assert set(arrays) == {"samples_", "reference_", "decision_scores_"} and not children, "no estimator object is saved"
     det.save(tmp_path / "m.npz")
     back = novelty.load(tmp_path / "m.npz")
     assert type(back) is type(det)
