@@ -98,6 +98,8 @@ class NoveltyDetector(OutlierMixin, Component):
 
     #: whether ``partial_fit`` / ``learn_one`` keep learning after ``fit``
     supports_online = True
+    #: modules of optional dependencies the detector needs to fit (e.g. ``("pyod",)``)
+    requires: tuple[str, ...] = ()
 
     # ------------------------------------------------------------- to implement
     @abstractmethod

@@ -78,6 +78,8 @@ def _encode_value(value: Any) -> Any:
                                   "params": _encode_params(value.get_params(deep=False))}}
     if isinstance(value, tuple):
         return {"__tuple__": [_encode_value(v) for v in value]}
+    if isinstance(value, dict) and all(isinstance(k, str) for k in value):
+        return {"__dict__": {k: _encode_value(v) for k, v in value.items()}}
     if isinstance(value, list):
         return [_encode_value(v) for v in value]
     if isinstance(value, np.generic):
@@ -86,7 +88,8 @@ def _encode_value(value: Any) -> Any:
         return value
     raise StateError(
         f"A parameter of type {type(value).__name__} cannot be written to a model file "
-        "(use numbers, strings, tuples, or registered components; an int seed for random_state)."
+        "(use numbers, strings, tuples, dicts with string keys, or registered components; "
+        "an int seed for random_state)."
     )
 
 
@@ -140,6 +143,8 @@ def _decode_value(value: Any) -> Any:
             return _construct(cls, spec.get("params", {}))
         if set(value) == {"__tuple__"}:
             return tuple(_decode_value(v) for v in value["__tuple__"])
+        if set(value) == {"__dict__"} and isinstance(value["__dict__"], dict):
+            return {k: _decode_value(v) for k, v in value["__dict__"].items()}
         if set(value) == {"__strings__"}:
             return value
         raise ModelFileError(f"Unexpected object in model metadata: keys {sorted(value)}.")

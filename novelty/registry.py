@@ -305,5 +305,6 @@ detectors = Registry(
         "one-class-svm": "novelty.baselines.sklearn_outlier:OneClassSVMDetector",
         "lof": "novelty.baselines.sklearn_outlier:LocalOutlierFactorDetector",
         "elliptic-envelope": "novelty.baselines.sklearn_outlier:EllipticEnvelopeDetector",
+        "pyod": "novelty.baselines.pyod_outlier:PyODDetector",
     },
 )

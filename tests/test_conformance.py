@@ -7,8 +7,8 @@ is checked here without new test code.
 import pytest
 
 import novelty
-from novelty.registry import clusterers, detectors, synapses
-from novelty.testing import conformance_checks
+from novelty.registry import clusterers, synapses
+from novelty.testing import conformance_checks, installed_detectors
 
 
 def _cases():
@@ -18,7 +18,7 @@ def _cases():
             component = registry.make(name)
             cases += [pytest.param(check, id=f"{registry.kind}:{name}:{check.__name__}")
                       for check in conformance_checks(component)]
-    for name in detectors.names():
+    for name in installed_detectors():
         det = novelty.make(name)
         cases += [pytest.param(check, id=f"detector:{name}:{check.__name__}")
                   for check in conformance_checks(det)]

@@ -24,6 +24,7 @@ __all__ = [
     "OneClassSVMDetector",
     "LocalOutlierFactorDetector",
     "EllipticEnvelopeDetector",
+    "PyODDetector",
 ]
 
 _MODULES = {
@@ -39,6 +40,7 @@ _MODULES = {
     "OneClassSVMDetector": "sklearn_outlier",
     "LocalOutlierFactorDetector": "sklearn_outlier",
     "EllipticEnvelopeDetector": "sklearn_outlier",
+    "PyODDetector": "pyod_outlier",
 }
 
 

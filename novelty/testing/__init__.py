@@ -5,6 +5,6 @@
 >>> check_conformance(SOM(n_rows=3, n_columns=3))
 """
 
-from .conformance import check_conformance, conformance_checks
+from .conformance import check_conformance, conformance_checks, installed_detectors
 
-__all__ = ["check_conformance", "conformance_checks"]
+__all__ = ["check_conformance", "conformance_checks", "installed_detectors"]

@@ -20,6 +20,7 @@ the instance), so the instance given is never modified.
 from __future__ import annotations
 
 import functools
+import importlib.util
 import tempfile
 from pathlib import Path
 from typing import Callable, Iterator
@@ -30,8 +31,9 @@ from sklearn.base import clone
 from ..clusterers.base import Clusterer, Growth, Match
 from ..detector import NoveltyDetector
 from ..habituation.base import Synapse
+from ..registry import detectors
 
-__all__ = ["conformance_checks", "check_conformance"]
+__all__ = ["conformance_checks", "check_conformance", "installed_detectors"]
 
 N_FEATURES = 5
 
@@ -287,6 +289,12 @@ def check_synapse_dt(s: Synapse) -> None:
 
 
 # ------------------------------------------------------------------ detectors
+def installed_detectors() -> list[str]:
+    """Registered detector names whose optional dependencies (``requires``) are installed."""
+    return [name for name in detectors.names()
+            if all(importlib.util.find_spec(m) is not None for m in getattr(detectors.make(name), "requires", ()))]
+
+
 @_check
 def check_detector_fit_and_novelty(d: NoveltyDetector) -> None:
     X = _data()

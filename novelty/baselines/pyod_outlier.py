@@ -1,0 +1,190 @@
+"""Any PyOD outlier detector, by name, as a novelty detector of this project.
+
+PyOD (Zhao, Nasrullah & Li 2019) scores outliers with ``decision_function``,
+higher = more abnormal, this project's sign already; :class:`PyODDetector`
+builds the model named by ``model`` (``"ECOD"``, ``"IForest"``, ``"KNN"``,
+``"COPOD"``, ... as PyOD spells its classes), takes its raw novelty as
+
+    r(x) = model.decision_function(x)                                     (1)
+
+and puts it on the comparable [0, 1] scale of
+:mod:`novelty.baselines._calibration`, calibrated on ``model.decision_scores_``
+(PyOD's scores of the training inputs, which for neighbour methods such as
+KNN leave each input out of its own neighbours). PyOD's own
+``contamination``, ``threshold_`` and ``labels_`` play no part; this
+detector's ``contamination`` and ``threshold`` work as for every detector.
+
+PyOD is an optional dependency (``pip install "novelty[pyod]"``), imported
+when a model is first built. Model files keep the training inputs and refit
+the model on loading, as for the scikit-learn adapter
+(:mod:`novelty.baselines.sklearn_outlier`): exact for deterministic models
+(ECOD, COPOD, KNN) and for seeded ones given an integer ``random_state``.
+
+References
+----------
+Zhao, Y., Nasrullah, Z. & Li, Z. (2019). PyOD: a Python toolbox for scalable
+outlier detection. Journal of Machine Learning Research, 20(96), 1-7.
+
+Li, Z., Zhao, Y., Hu, X., Botta, N., Ionescu, C. & Chen, G. H. (2022). ECOD:
+unsupervised outlier detection using empirical cumulative distribution
+functions. IEEE Transactions on Knowledge and Data Engineering.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import numbers
+import re
+
+import numpy as np
+
+from .._validation import Instance, Interval
+from ..registry import check_parameters
+from ._calibration import CalibratedDetector
+from .sklearn_outlier import SklearnOutlierDetector
+
+__all__ = ["PyODDetector"]
+
+# Parameters this adapter sets itself, never through model_params.
+_OWN = {"contamination": "contamination", "random_state": "random_state"}
+
+
+def _pyod_class(name: str) -> type:
+    """The PyOD detector class called ``name`` (any letter case), imported on demand."""
+    try:
+        # optional dependency, imported only when a PyOD model is built
+        from pyod.models.base import BaseDetector
+    except ImportError:
+        raise ImportError(
+            "The 'pyod' detector needs PyOD, an optional dependency: pip install \"novelty[pyod]\" "
+            "(or pip install pyod)."
+        ) from None
+    modules = {name.lower(), re.sub(r"(?<=[a-z])(?=[A-Z])", "_", name).lower()}
+    for module_name in sorted(modules):
+        try:
+            module = importlib.import_module(f"pyod.models.{module_name}")
+        except ImportError:
+            continue
+        for attr, value in vars(module).items():
+            if (attr.lower() == name.lower() and inspect.isclass(value)
+                    and issubclass(value, BaseDetector) and value is not BaseDetector):
+                return value
+    raise ValueError(
+        f"The 'model' parameter of PyODDetector must name a PyOD detector class as PyOD spells it "
+        f"(e.g. 'ECOD', 'IForest', 'KNN', 'COPOD', 'LOF', 'HBOS'). Got {name!r} instead."
+    )
+
+
+class PyODDetector(SklearnOutlierDetector):
+    """A PyOD outlier detector, by name, as a novelty detector (novelty = decision_function).
+
+    Parameters
+    ----------
+    model : str, default="ECOD"
+        The PyOD class, as PyOD spells it (``"ECOD"``, ``"IForest"``,
+        ``"KNN"``, ``"COPOD"``, ...; letter case is ignored).
+    model_params : dict or None, default=None
+        Parameters of the PyOD model (e.g. ``{"n_neighbors": 10}``);
+        ``novelty.make("pyod", model="KNN", n_neighbors=10)`` routes them here.
+    random_state : int or None, default=0
+        Seed, passed to models that take one (an int, to save the model).
+    threshold, contamination
+        As for :class:`~novelty.baselines.SklearnOutlierDetector`, whose
+        attributes (``samples_``, ``reference_``) this detector has too.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import novelty
+    >>> X = np.random.default_rng(0).normal(size=(200, 3))
+    >>> det = novelty.make("pyod", model="ECOD").fit(X)  # doctest: +SKIP
+    >>> det.predict([[0.0, 0.0, 0.0], [6.0, 6.0, 6.0]]).tolist()  # doctest: +SKIP
+    [1, -1]
+    """
+
+    requires = ("pyod",)
+
+    _parameter_rules = {
+        "model": Instance((str,), "the name of a PyOD detector class"),
+        "model_params": Instance((dict, type(None)), "a dict of the PyOD model's parameters or None"),
+        "random_state": Interval(numbers.Integral, 0, None, allow_none=True),
+        "threshold": Interval(numbers.Real, None, None),
+    }
+
+    def __init__(self, model="ECOD", model_params=None, random_state=0, threshold=0.95, contamination="auto"):
+        self.model = model
+        self.model_params = model_params
+        self.random_state = random_state
+        self.threshold = threshold
+        self.contamination = contamination
+
+    @classmethod
+    def from_params(cls, model="ECOD", **params):
+        """Build from a flat parameter set: the adapter's own, the rest to the PyOD model.
+
+        >>> det = PyODDetector.from_params("KNN", n_neighbors=10, threshold=0.9)
+        >>> det.model_params, det.threshold
+        ({'n_neighbors': 10}, 0.9)
+        """
+        own = {k: params.pop(k) for k in list(params) if k in cls._get_param_names()}
+        if params:
+            own["model_params"] = {**(own.get("model_params") or {}), **params}
+        return cls(model=model, **own)
+
+    def _validate_params(self) -> None:
+        CalibratedDetector._validate_params(self)  # the scikit-learn adapter's own check does not apply
+        self._build_estimator()
+
+    def _build_estimator(self):
+        cls = _pyod_class(self.model)
+        given = dict(self.model_params or {})
+        accepted = [p for p in inspect.signature(cls.__init__).parameters if p != "self"]
+        for name, own in _OWN.items():
+            if name in given:
+                raise ValueError(
+                    f"PyODDetector sets the model's {name!r} itself; use the detector's '{own}' parameter."
+                )
+        check_parameters(f"the PyOD model {cls.__name__}", given, [p for p in accepted if p not in _OWN])
+        if "random_state" in accepted:
+            given["random_state"] = self.random_state
+        return cls(**given)
+
+    # ------------------------------------------------------------- scoring
+    def _fit_model(self, X: np.ndarray) -> None:
+        super()._fit_model(X)
+        self._row_by_row = self._batch_dependent(X)
+
+    def _rebuild_scratch(self) -> None:
+        super()._rebuild_scratch()
+        if hasattr(self, "samples_"):
+            self._row_by_row = self._batch_dependent(self.samples_)
+
+    def _batch_dependent(self, X: np.ndarray) -> bool:
+        """Whether the model scores a row differently in another batch.
+
+        Some PyOD models are transductive: ECOD and COPOD re-estimate their
+        distributions on the training data *and the batch scored*; COF, SOD,
+        ROD, LMDD and CD also depend on the batch (measured with PyOD 3.6).
+        Such a model scores each scan alone, against the training data, so
+        that a scan's novelty does not depend on the others scored with it.
+        """
+        probe = X[:2] if X.shape[0] >= 2 else np.vstack([X, X])
+        try:
+            together = self._estimator.decision_function(probe)[0]
+            alone = self._estimator.decision_function(probe[:1])[0]
+        except ValueError as exc:
+            raise ValueError(
+                f"PyOD's {type(self._estimator).__name__} cannot score one scan at a time ({exc}); "
+                "it scores a batch against itself, which a novelty detector cannot use."
+            ) from None
+        return not np.isclose(together, alone, rtol=1e-12, atol=0.0)
+
+    def _raw(self, X: np.ndarray) -> np.ndarray:
+        score = self._estimator.decision_function
+        if self._row_by_row:
+            return np.array([score(X[i:i + 1])[0] for i in range(X.shape[0])], dtype=np.float64)
+        return np.asarray(score(X), dtype=np.float64)
+
+    def _reference_raw(self, X: np.ndarray) -> np.ndarray:
+        return np.asarray(self._estimator.decision_scores_, dtype=np.float64)
