@@ -80,7 +80,7 @@ class NoveltyDetector(OutlierMixin, Component):
     ----------
     n_features_in_ : int
         Number of features seen in the first batch.
-    feature_names_in_ : ndarray of shape (n_features_in_,)
+    feature_names_in_ : ndarray of shape (n_features,)
         Names of the features, when the first batch was a DataFrame with
         string column names or the first scan a dict (strings as an object
         array, integer keys as an int64 array). Saved with the model.
