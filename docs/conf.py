@@ -33,7 +33,8 @@ extensions = [
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store"]
+# docs/reproduction/ holds the tables that docs/reproduction.md includes; not pages of their own
+exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "reproduction/*.md"]
 templates_path = ["_templates"]
 
 # API reference: one page per public module, generated at build time.

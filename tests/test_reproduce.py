@@ -290,10 +290,25 @@ def test_reproduce_command_writes_table_and_figures(tmp_path, capsys):
     assert not plt.get_fignums()  # every figure closed
 
 
+def test_reproduce_experiment_writes_its_table_figure_and_report_block(tmp_path, capsys):
+    pytest.importorskip("matplotlib")
+    report = tmp_path / "report.md"
+    report.write_text("Intro\n<!-- BEGIN generated: maxima -->\nstale\n<!-- END generated: maxima -->\nEnd\n")
+    argv = ["reproduce", "--experiment", "maxima", "--out", str(tmp_path / "out"), "--report", str(report)]
+    assert main(argv) == 0
+    assert "| 0.42 | A 4, A 5, B 2, B 3, C 4 |" in capsys.readouterr().out
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["maxima.csv", "maxima.md", "maxima.png"]
+    text = report.read_text()
+    assert text.startswith("Intro\n") and text.endswith("End\n") and "stale" not in text
+    assert "| 0.42 | A 4, A 5, B 2, B 3, C 4 | none | none | 3 winner (0.4174) |" in text
+
+
 @pytest.mark.parametrize("argv, message", [
     (["--detector", "no-such-detector"], "Unknown detector"),
     (["--param", "bogus=1"], "bogus"),
     (["--a-pairs", "0"], "--a-pairs"),
+    (["--experiment", "no-such"], "known: table1, synthetic"),
+    (["--report", "r.md"], "--experiment"),
 ])
 def test_reproduce_command_user_errors_are_one_line(argv, message, tmp_path, capsys):
     assert main(["reproduce", "--no-figures", "--out", str(tmp_path), *argv]) == 2

@@ -2,9 +2,15 @@
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from pathlib import Path
+
+try:
+    import resource  # the CPU time of the experiments' worker processes (not on Windows)
+except ImportError:  # pragma: no cover - depends on the platform
+    resource = None
 
 from ._common import UserError, add_command, parse_params
 
@@ -25,7 +31,14 @@ as PNG (novelty along the route for every trial, the map's features marked).
 
 A has 3 pairs of runs as in Table 1; --settle continues in A until a
 non-learning run shows only the resting activity (the paper's rule), and
---a-pairs sets the count. Any registered detector runs the same protocol."""
+--a-pairs sets the count. Any registered detector runs the same protocol.
+
+--experiment NAME runs one of the experiments that explain why Table 1 does
+not reproduce (table1, synthetic, ablations, sensitivity, maxima; "all"
+runs them all), on --n-seeds seeds from --seed, writing NAME.csv, NAME.md
+and NAME.png to --out; --report fills the generated blocks of a report
+(docs/reproduction.md) with their tables. Options they vary that are not
+the paper's are labelled so."""
 
 EXAMPLES = [
     "novelty reproduce",
@@ -33,6 +46,8 @@ EXAMPLES = [
     "novelty reproduce --detector gwr-novelty --out results/gwr",
     "novelty reproduce --param n_rows=20 --param n_columns=20 --out results/hsom-20x20",
     "novelty reproduce --settle --out results/settled",
+    "novelty reproduce --experiment synthetic --out results/experiments",
+    "novelty reproduce --experiment all --jobs 2 --out docs/reproduction --report docs/reproduction.md",
 ]
 
 
@@ -59,17 +74,30 @@ def add_parser(subparsers):
     parser.add_argument("--control-runs", type=int, metavar="N",
                         help="learning runs of the control filter (default: as many as A had)")
     parser.add_argument("--no-figures", action="store_true", help="write the tables only")
+    parser.add_argument("--experiment", metavar="NAME",
+                        help="run an explaining experiment instead of the protocol: "
+                             "table1, synthetic, ablations, sensitivity, maxima, or all")
+    parser.add_argument("--n-seeds", type=int, default=10, metavar="N",
+                        help="with --experiment: seeds --seed ... --seed + N - 1 (default 10)")
+    parser.add_argument("--jobs", type=int, default=1, metavar="N",
+                        help="with --experiment: processes (default 1; results do not depend on it)")
+    parser.add_argument("--report", metavar="FILE",
+                        help="with --experiment: fill FILE's generated blocks with the tables")
     return parser
 
 
 def run(args) -> int:
     from .. import reproduce
 
-    for name in ("seed", "a_pairs", "max_a_pairs", "control_runs"):
+    for name in ("seed", "a_pairs", "max_a_pairs", "control_runs", "n_seeds", "jobs"):
         value = getattr(args, name)
         minimum = 0 if name == "seed" else 1
         if value is not None and value < minimum:
             raise UserError(f"--{name.replace('_', '-')} must be at least {minimum}; got {value}.")
+    if args.experiment is not None:
+        return _experiments(args)
+    if args.report is not None:
+        raise UserError("--report fills a report with the experiments' tables: give --experiment too.")
     params = parse_params(args.param)
     if not args.no_figures:
         _check_matplotlib()
@@ -111,3 +139,47 @@ def _check_matplotlib() -> None:
     except ImportError:
         raise UserError("The figures need matplotlib (pip install matplotlib), "
                         "or pass --no-figures.") from None
+
+
+def _experiments(args) -> int:
+    from .. import experiments
+    from ..experiments import report
+
+    known = experiments.names()
+    if args.experiment != "all" and args.experiment not in known:
+        raise UserError(f"Unknown experiment {args.experiment!r}; known: {', '.join(known)}, all.")
+    if args.report is not None and not Path(args.report).is_file():
+        raise UserError(f"--report {args.report}: no such file.")
+    _check_matplotlib()
+    names = known if args.experiment == "all" else [args.experiment]
+    seeds = range(args.seed, args.seed + args.n_seeds)
+    blocks: dict[str, str] = {}
+    results = {}
+    started = time.perf_counter()
+    for name in names:
+        began = time.perf_counter()
+        result = results[name] = experiments.run_experiment(name, args.out, seeds=seeds, jobs=args.jobs)
+        blocks.update(result.blocks())
+        print(f"## {result.title}\n\n" + "\n".join(result.blocks().values()))
+        print(f"({name}: {time.perf_counter() - began:.1f} s)\n", file=sys.stderr)
+    if args.experiment == "all":
+        blocks["summary"] = experiments.write_summary(results, args.out)
+        print(f"## Summary\n\n{blocks['summary']}")
+    elapsed = time.perf_counter() - started
+    if args.report is not None:
+        blocks["command"] = (f"`novelty reproduce --experiment {args.experiment} --seed {args.seed} "
+                             f"--n-seeds {args.n_seeds} --jobs {args.jobs} --out {args.out} "
+                             f"--report {args.report}` ran in {elapsed:.0f} s{_load()}.\n")
+        report.fill_file(args.report, blocks, partial=args.experiment != "all")
+    print(f"Wrote {args.out} ({elapsed:.1f} s).", file=sys.stderr)
+    return 0
+
+
+def _load() -> str:
+    """CPU time of this process and its workers, and the machine's load, for the report."""
+    if resource is None or not hasattr(os, "getloadavg"):
+        return ""
+    cpu = sum(getattr(resource.getrusage(who), field) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)
+              for field in ("ru_utime", "ru_stime"))
+    return (f" of wall-clock time and {cpu:.0f} s of CPU time (this process and its workers) on "
+            f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")

@@ -15,15 +15,22 @@ paper's alpha = 1.05) and never below; at S = 0 it recovers towards ``y0``.
 
 Two discretisations:
 
-- ``method="euler"`` (default, as the paper's values imply): the explicit
-  Euler step with unit time step,
+- ``method="euler"`` (default): the explicit Euler step with unit time step,
 
       y <- y + (dt / tau) * (alpha * (y0 - y) - S)                      (3)
 
-  which from y = 1 with tau = 3.33 gives 0.6997, 0.4941, 0.3533, ... (the
-  maxima of the paper's Table 1). An elapsed time dt > 1 is integrated as
-  ceil(dt) equal sub-steps, so dt = 2 is exactly two scans' worth of steps.
-- ``method="exact"``: equation (2), exact for any dt (irregular timestamps).
+  which from y = 1 with tau = 3.33 gives 0.6997, 0.4941, 0.3533, ... An
+  elapsed time dt > 1 is integrated as ceil(dt) equal sub-steps, so dt = 2
+  is exactly two scans' worth of steps.
+- ``method="exact"``: equation (2), exact for any dt (irregular timestamps);
+  from y = 1 with tau = 3.33 it gives 0.7424, 0.5545, 0.4174, ...
+
+The paper does not say how it integrated. Its Table 1 fits neither scheme
+alone: 0.35 is the third Euler winner step (exact needs two winner and
+seven neighbour steps), but 0.42, its most frequent maximum, is the third
+exact winner step and no count of Euler winner and neighbour steps
+(``novelty reproduce --experiment maxima``; docs/reproduction.md). The
+default stays Euler.
 
 References
 ----------
