@@ -157,11 +157,12 @@ def _experiments(args) -> int:
     results = {}
     started = time.perf_counter()
     for name in names:
-        began = time.perf_counter()
+        began, cpu = time.perf_counter(), _cpu_seconds()
         result = results[name] = experiments.run_experiment(name, args.out, seeds=seeds, jobs=args.jobs)
         blocks.update(result.blocks())
         print(f"## {result.title}\n\n" + "\n".join(result.blocks().values()))
-        print(f"({name}: {time.perf_counter() - began:.1f} s)\n", file=sys.stderr)
+        print(f"({name}: {time.perf_counter() - began:.1f} s, CPU {_cpu_seconds() - cpu:.1f} s)\n",
+              file=sys.stderr)
     if args.experiment == "all":
         blocks["summary"] = experiments.write_summary(results, args.out)
         print(f"## Summary\n\n{blocks['summary']}")
@@ -175,11 +176,17 @@ def _experiments(args) -> int:
     return 0
 
 
+def _cpu_seconds() -> float:
+    """CPU time (s) of this process and of its finished workers; NaN where unknown."""
+    if resource is None:
+        return float("nan")
+    return sum(getattr(resource.getrusage(who), field) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)
+               for field in ("ru_utime", "ru_stime"))
+
+
 def _load() -> str:
     """CPU time of this process and its workers, and the machine's load, for the report."""
     if resource is None or not hasattr(os, "getloadavg"):
         return ""
-    cpu = sum(getattr(resource.getrusage(who), field) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)
-              for field in ("ru_utime", "ru_stime"))
-    return (f" of wall-clock time and {cpu:.0f} s of CPU time (this process and its workers) on "
+    return (f" of wall-clock time and {_cpu_seconds():.0f} s of CPU time (this process and its workers) on "
             f"{os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f}")
