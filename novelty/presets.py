@@ -10,6 +10,15 @@ same novelty. Any parameter goes to the part that takes it, as
 ``novelty.make("gwr-wang-hsu", activity_threshold=0.9, beta=1.5)``.
 ``hsom`` (the paper's detector) lives in :mod:`novelty.filter`.
 
+Every preset but ``hsom`` is scored by habituation x mismatch
+(``novelty_rule="mismatch"``, our extension, see :mod:`novelty.match_scale`),
+with each network set up to match a stream of scans closely (ours too); the
+synapses keep the property this family exists for, that a feature's novelty
+falls with each exposure. The published variants are reachable by
+parameters: ``novelty_rule="efficacy"`` (the paper's novelty) and, for the
+networks, the values each docstring gives. ``hsom-mismatch`` is the paper's
+HSOM with the mismatch novelty.
+
 A name whose clusterer is not registered (a plugin not installed) still
 builds: the clusterer is then kept by name and looked up in ``fit``, which
 says which name is missing.
@@ -19,13 +28,25 @@ from __future__ import annotations
 
 from .filter import HabituatingFilter
 
-__all__ = ["gwr_novelty", "gng_stanley", "som_wang_hsu", "gwr_wang_hsu", "gng_wang_hsu"]
+__all__ = ["gwr_novelty", "gng_stanley", "som_wang_hsu", "gwr_wang_hsu", "gng_wang_hsu",
+           "hsom_mismatch"]
 
 
 #: Growing networks start from units drawn uniformly in [0, 1]^d (the range of
 #: scaled sonar readings) rather than from rows of the first batch, so that a
 #: detector streamed scan by scan and one fed whole batches start alike.
 _GROWING = {"clusterer__init": "uniform"}
+
+_MISMATCH = {"novelty_rule": "mismatch"}
+
+#: GWR as a novelty detector (ours): a unit for every input farther than the
+#: calibrated radius, which then stands for that input as its winner
+_GWR_NOVELTY = {**_GROWING, **_MISMATCH, "activity_threshold": "auto", "firing_condition": False,
+                "new_unit_wins": True}
+
+#: GNG that grows at the pace of a robot's stream: a unit every 10 inputs
+#: (Fritzke's lambda = 100 leaves 6 units after 300 scans)
+_GNG_NOVELTY = {**_GROWING, **_MISMATCH, "insertion_interval": 10}
 
 
 def _compose(clusterer: str, synapse: str, params: dict, defaults: dict | None = None) -> HabituatingFilter:
@@ -37,43 +58,65 @@ def _compose(clusterer: str, synapse: str, params: dict, defaults: dict | None =
 
 
 def gwr_novelty(**params) -> HabituatingFilter:
-    """Grow-When-Required network with Stanley synapses (Marsland, Shapiro & Nehmzow 2002).
+    """Grow-When-Required network with Stanley synapses, a unit for each scan beyond a calibrated radius.
 
-    The authors' growing novelty filter: the GWR network (``gwr``, with the
-    defaults its module documents) in place of the SOM, each unit feeding
-    the output through a Stanley synapse with the 2000 paper's values
-    (tau = 3.33 winner, 14.3 neighbours, alpha = 1.05, no forgetting). The
-    GWR's own firing counters, which decide its growth, are separate
-    synapses inside the network.
+    The growing novelty filter of Marsland, Shapiro & Nehmzow (2002): the
+    GWR network (``gwr``) in place of the SOM, each unit feeding the output
+    through a Stanley synapse with the 2000 paper's values (tau = 3.33
+    winner, 14.3 neighbours, alpha = 1.05, no forgetting); the GWR's own
+    firing counters, which decide its growth, are separate synapses inside
+    the network. Set up for novelty (ours): ``activity_threshold="auto"``
+    (a_T = exp(-sigma), sigma the filter's calibrated match scale),
+    ``firing_condition=False`` (a unit for any scan beyond that radius,
+    without waiting for the winner to fire often), ``new_unit_wins=True``
+    (the new unit habituates for the scan that made it; a scan that would
+    make one scores as new) and ``novelty_rule="mismatch"``. The published
+    network: ``activity_threshold=0.85, firing_condition=True,
+    new_unit_wins=False, novelty_rule="efficacy"``.
     """
-    return _compose("gwr", "stanley", params, _GROWING)
+    return _compose("gwr", "stanley", params, _GWR_NOVELTY)
 
 
 def gng_stanley(**params) -> HabituatingFilter:
-    """Growing Neural Gas (Fritzke 1995) with Stanley synapses.
+    """Growing Neural Gas (Fritzke 1995) with Stanley synapses, growing a unit every 10 scans.
 
     The paper's proposed cure for the SOM's fixed size (Marsland et al.
-    2000, section 5): ``gng`` with its usual defaults, Stanley synapses with
-    the paper's values.
+    2000, section 5): ``gng`` with Stanley synapses with the paper's
+    values. Set up for streams of hundreds to thousands of scans (ours):
+    ``insertion_interval=10`` (Fritzke's lambda = 100 leaves 6 units after
+    300 scans; 10 reaches the 100 units after 1,000) and
+    ``novelty_rule="mismatch"``. Fritzke's network:
+    ``insertion_interval=100, novelty_rule="efficacy"``.
     """
-    return _compose("gng", "stanley", params, _GROWING)
+    return _compose("gng", "stanley", params, _GNG_NOVELTY)
 
 
 def som_wang_hsu(**params) -> HabituatingFilter:
-    """The paper's 10 x 10 SOM with Wang-Hsu long-term-memory synapses.
+    """The paper's 10 x 10 SOM with Wang-Hsu long-term-memory synapses, habituation x mismatch.
 
     The HSOM of Marsland et al. (2000) with the synapse swapped for Wang &
     Hsu's (1990) model (``wang-hsu``), which re-habituates faster to what it
-    has habituated to before.
+    has habituated to before; scored by habituation x mismatch (ours;
+    ``novelty_rule="efficacy"``: the efficacy alone).
     """
-    return _compose("som", "wang-hsu", params)
+    return _compose("som", "wang-hsu", params, _MISMATCH)
 
 
 def gwr_wang_hsu(**params) -> HabituatingFilter:
-    """Grow-When-Required network with Wang-Hsu long-term-memory synapses."""
-    return _compose("gwr", "wang-hsu", params, _GROWING)
+    """Grow-When-Required network with Wang-Hsu long-term-memory synapses (set up as ``gwr-novelty``)."""
+    return _compose("gwr", "wang-hsu", params, _GWR_NOVELTY)
 
 
 def gng_wang_hsu(**params) -> HabituatingFilter:
-    """Growing Neural Gas with Wang-Hsu long-term-memory synapses."""
-    return _compose("gng", "wang-hsu", params, _GROWING)
+    """Growing Neural Gas with Wang-Hsu long-term-memory synapses (set up as ``gng-stanley``)."""
+    return _compose("gng", "wang-hsu", params, _GNG_NOVELTY)
+
+
+def hsom_mismatch(**params) -> HabituatingFilter:
+    """The paper's HSOM scored by habituation x mismatch: low only near a habituated unit (ours).
+
+    ``hsom`` with ``novelty_rule="mismatch"``: the same 10 x 10 map and
+    Stanley synapses, the novelty ``1 - (1 - y_s) exp(-d^2 / (2 sigma^2))``
+    with sigma calibrated on the first 200 scans learned.
+    """
+    return _compose("som", "stanley", params, _MISMATCH)

@@ -296,6 +296,7 @@ detectors = Registry(
         "som-wang-hsu": "novelty.presets:som_wang_hsu",
         "gwr-wang-hsu": "novelty.presets:gwr_wang_hsu",
         "gng-wang-hsu": "novelty.presets:gng_wang_hsu",
+        "hsom-mismatch": "novelty.presets:hsom_mismatch",
         "kohonen-filter": "novelty.baselines.kohonen:KohonenNoveltyFilter",
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",

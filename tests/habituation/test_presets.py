@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import novelty
+from novelty.datasets import load
 from novelty.filter import HabituatingFilter
 from novelty.habituation import StanleySynapse, WangHsuSynapse
 from novelty.registry import clusterers, detectors
@@ -14,6 +15,7 @@ PRESETS = {
     "som-wang-hsu": ("som", WangHsuSynapse),
     "gwr-wang-hsu": ("gwr", WangHsuSynapse),
     "gng-wang-hsu": ("gng", WangHsuSynapse),
+    "hsom-mismatch": ("som", StanleySynapse),
 }
 
 
@@ -86,3 +88,34 @@ def test_preset_with_an_unregistered_clusterer_fails_at_fit_with_the_name():
     det = _compose("no-such-net", "stanley", {})
     with pytest.raises(novelty.UnknownNameError, match="no-such-net"):
         det.fit(np.zeros((3, 2)))
+
+
+# ------------------------------------------------------------ the online property
+#: every habituating preset: the paper's detector and the registered combinations
+HABITUATING = ["hsom", *PRESETS]
+
+
+@pytest.fixture(scope="module")
+def opened_door():
+    """Corridor A learned (3 runs), then 3 runs of A* (a door opened): each run passes the door once."""
+    task = load("paper-a-to-a-star", seed=0, train_runs=3, test_runs=3)
+    test = task.split == "test"
+    runs = [(task.X[test & (task.run == r)], task.y[test & (task.run == r)] == 1)
+            for r in np.unique(task.run[test])]
+    return task.X[task.split == "train"], runs
+
+
+@pytest.mark.parametrize("name", HABITUATING)
+def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, opened_door):
+    """Learning as it goes, the opened door's novelty falls at each pass; the rest of A* stays below it."""
+    train, runs = opened_door
+    det = novelty.make(name)
+    det.stream(train)
+    door, rest = [], []
+    for X, at_door in runs:
+        out = det.stream(X)
+        door.append(out[at_door].mean())
+        rest.append(out[~at_door].mean())
+    assert door[0] > door[1] > door[2], door
+    assert all(r < d for r, d in zip(rest, door)), (rest, door)
+    assert rest[2] <= rest[0], rest
