@@ -17,6 +17,8 @@ ROOT = Path(__file__).resolve().parent
 
 
 def _git(*args: str) -> str:
+    if not (ROOT / ".git").exists():  # an unpacked source archive, maybe inside someone else's repository
+        return ""
     try:
         return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True,
                               timeout=10, check=True).stdout.strip()
