@@ -9,6 +9,8 @@ published; this subpackage rebuilds the setting:
 - :mod:`~novelty.sonar.robot` the robot; :mod:`~novelty.sonar.ranger` the sonar;
 - :mod:`~novelty.sonar.controller` wall following with run-to-run variation;
 - :mod:`~novelty.sonar.preprocessing` the paper's threshold/normalise/invert/average;
+  :class:`~novelty.sonar.preprocessor.SonarPreprocessor` the same as a
+  scikit-learn transformer (imported on first use: it needs scikit-learn);
 - :mod:`~novelty.sonar.environments` the paper's maps A, A*, B, C and control;
 - :mod:`~novelty.sonar.inspection` seeded corridors with inserted novelties;
 - :mod:`~novelty.sonar.plotting` figures (needs matplotlib).
@@ -36,8 +38,16 @@ __all__ = [
     "PolaroidRanger", "Robot", "NOMAD_200", "Material", "MATERIALS",
     "RunVariation", "WallFollower", "WaypointFollower",
     "preprocess", "bin_by_distance", "Feature", "MapBuilder", "WorldMap", "corridor_a",
-    "plot_map", "plot_scans",
+    "plot_map", "plot_scans", "SonarPreprocessor",
 ]
+
+
+def __getattr__(name: str):
+    if name == "SonarPreprocessor":  # imported on first use: scikit-learn is slow to import
+        from .preprocessor import SonarPreprocessor
+
+        return SonarPreprocessor
+    raise AttributeError(f"module 'novelty.sonar' has no attribute {name!r}")
 
 
 def feature_table(environment) -> list[dict]:
