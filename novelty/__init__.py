@@ -9,12 +9,15 @@ Nehmzow & Shapiro (2000), with interchangeable clusterers and synapse models.
 (10, 3.33)
 
 Everything heavy (scikit-learn, the components) is imported on first use, so
-``import novelty`` stays cheap. The registries themselves are
-``novelty.registry.detectors``, ``.clusterers`` and ``.synapses``.
+``import novelty`` stays cheap; so are the subpackages (``novelty.datasets``,
+``novelty.sonar``, ...), each reachable after ``import novelty`` alone. The
+registries themselves are ``novelty.registry.detectors``, ``.clusterers`` and
+``.synapses``.
 """
 
 from __future__ import annotations
 
+import importlib
 from typing import Any
 
 from . import registry as _registries
@@ -56,13 +59,17 @@ _LAZY = {
 }
 
 
+#: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
+_SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation")
+
+
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        import importlib
-
         value = getattr(importlib.import_module(_LAZY[name]), name)
         globals()[name] = value
         return value
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"novelty.{name}")  # which also sets the attribute
     raise AttributeError(f"module 'novelty' has no attribute {name!r}")
 
 

@@ -95,12 +95,13 @@ def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Pa
     return [path]
 
 
-def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, resting=None) -> None:
-    """Novelty along the route on ``ax``, novel scans shaded, threshold dashed."""
+def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, resting=None) -> str:
+    """Novelty along the route on ``ax``, novel scans shaded, threshold dashed; returns the x axis' name."""
     novelty = np.asarray(novelty, dtype=float)
     x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
+    along = "scan" if distance is None else "distance (m)"
     if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
-        x = np.arange(novelty.size)
+        x, along = np.arange(novelty.size), "scan (several runs)"
     if y is not None and np.any(y):
         ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
         ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
@@ -110,6 +111,7 @@ def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, r
         ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8, label="threshold")
     if resting:
         ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting")
+    return along
 
 
 def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:

@@ -458,6 +458,9 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
                 f"{source}: [suite]")
     seeds = head.get("seeds", [0])
     if isinstance(seeds, int) and not isinstance(seeds, bool):
+        if seeds < 1:
+            raise SuiteError(f"{source}: seeds = {seeds} is a count of seeds and must be at least 1 "
+                             "(for seed 0 alone, write seeds = [0]).")
         seeds = list(range(seeds))
     if not isinstance(seeds, list):
         raise SuiteError(f"{source}: seeds must be an array of integers or a count.")

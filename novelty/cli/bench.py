@@ -52,7 +52,9 @@ def add_parser(subparsers):
                         help="a detector with its parameters (repeatable; replaces the suite's)")
     parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",
                         help="a task with its options (repeatable; replaces the suite's)")
-    parser.add_argument("--seeds", metavar="S,S,..|N", help="seeds, as a list '0,1,2' or a count '3'")
+    parser.add_argument("--seeds", metavar="N|S,S,..",
+                        help="a count N >= 1 (seeds 0 to N-1) or a list with commas: '0,1,2', "
+                        "or '5,' for seed 5 alone")
     parser.add_argument("--reference", metavar="NAME",
                         help="the detector (its label in the table) each other is paired with, cell by "
                         "cell (default: the suite's 'reference', else the detector ranked first)")
@@ -76,12 +78,17 @@ def add_parser(subparsers):
 
 
 def _seeds(text: str) -> list[int]:
-    try:
-        if "," not in text and text.strip().isdigit():
-            return list(range(int(text)))
-        return [int(s) for s in text.split(",") if s.strip()]
-    except ValueError:
-        raise UserError(f"--seeds must be a list like 0,1,2 or a count like 3; got {text!r}.") from None
+    """``3`` is a count (seeds 0, 1, 2); ``0,1,2`` or ``5,`` (a comma) name the seeds."""
+    words = [w.strip() for w in text.split(",")]
+    if not all(w.isdigit() for w in words if w) or not any(words):
+        raise UserError(f"--seeds must be a count like 3 (seeds 0, 1, 2) or a list like 0,1,2 "
+                        f"(one seed: '5,'); got {text!r}.")
+    if len(words) > 1:
+        return [int(w) for w in words if w]
+    if int(words[0]) < 1:
+        raise UserError(f"--seeds {text} is a count of seeds and must be at least 1 "
+                        "(for seed 0 alone, write '0,').")
+    return list(range(int(words[0])))
 
 
 def build_suite(args):

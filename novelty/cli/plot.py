@@ -125,8 +125,8 @@ def run(args) -> int:
 
         data = _read_run_output(path)
         fig, ax = plt.subplots(figsize=(9, 3))
-        plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
-        ax.set(xlabel="distance (m)" if "distance" in data else "scan", ylabel="novelty", title=path.name)
+        along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
+        ax.set(xlabel=along, ylabel="novelty", title=path.name)
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)
     plt.close(fig)

@@ -1,0 +1,24 @@
+"""``import novelty``: cheap, with the subpackages reachable on first use."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import novelty
+
+ROOT = str(Path(novelty.__file__).parents[1])
+
+
+def test_subpackages_are_reachable_after_import_novelty_alone_and_not_imported_before():
+    code = ("import sys, novelty; before = 'novelty.datasets' in sys.modules; "
+            "print(before, novelty.datasets.load.__module__, 'novelty.datasets' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         env={"PYTHONPATH": ROOT, "PATH": ""}, check=True).stdout.split()
+    assert out == ["False", "novelty.datasets", "True"]
+
+
+def test_an_unknown_attribute_is_an_attribute_error():
+    with pytest.raises(AttributeError, match="module 'novelty' has no attribute 'dataset'"):
+        novelty.dataset
