@@ -110,7 +110,7 @@ def test_bench_from_the_command_line(toy_task, tmp_path, capsys):
 
 
 def test_bench_from_a_suite_file_and_plot(toy_task, tmp_path, capsys):
-    pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty[plot])")
+    pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty-habituation[plot])")
     suite = tmp_path / "suite.toml"
     suite.write_text(f'[suite]\nname = "t"\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "{toy_task}"\n')
     out = tmp_path / "bench"
@@ -121,7 +121,7 @@ def test_bench_from_a_suite_file_and_plot(toy_task, tmp_path, capsys):
 
 
 def test_plot_a_run_output(scans, tmp_path):
-    pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty[plot])")
+    pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty-habituation[plot])")
     path, _ = scans
     assert main(["run", "hsom", "--data", str(path), "--out", str(tmp_path / "n.csv")]) == 0
     assert main(["plot", str(tmp_path / "n.csv"), "--out", str(tmp_path / "n.png")]) == 0

@@ -37,3 +37,25 @@ def test_readme_custom_clusterer_passes_conformance():
         assert out[0] == 1.0 and np.all(np.diff(out) < 0), "a repeated scan habituates"
     finally:
         novelty.registry.clusterers.unregister("tiny-kmeans")
+
+
+def test_readme_own_data_commands_run_as_written(tmp_path, monkeypatch):
+    import shlex
+    import shutil
+
+    from novelty.bench.suite import load_suite
+    from novelty.cli import main
+
+    section = README.read_text(encoding="utf-8").split("## Your own data")[1].split("\n## ")[0]
+    bash = re.findall(r"```bash\n(.*?)```", section, flags=re.S)
+    toml = re.findall(r"```toml\n(.*?)```", section, flags=re.S)
+    example = README.parent / "examples" / "own-data" / "corridor.csv"
+    shutil.copy(example, tmp_path / "corridor.csv")
+    monkeypatch.chdir(tmp_path)
+    commands = [line for line in bash[0].replace("\\\n", " ").splitlines() if line.startswith("novelty ")]
+    assert len(commands) == 2
+    for command in commands:
+        assert main(shlex.split(command)[1:] + ["--quiet"] * command.startswith("novelty bench")) == 0
+    assert (tmp_path / "novelty.csv").read_text().startswith("scan,novelty,alarm,y,distance,time\n")
+    (tmp_path / "suite.toml").write_text('[[detectors]]\nname = "hsom"\n' + toml[0])
+    assert load_suite(tmp_path / "suite.toml").tasks[0].options["path"] == str(tmp_path / "corridor.csv")

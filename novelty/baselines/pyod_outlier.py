@@ -14,7 +14,7 @@ KNN leave each input out of its own neighbours). PyOD's own
 ``contamination``, ``threshold_`` and ``labels_`` play no part; this
 detector's ``contamination`` and ``threshold`` work as for every detector.
 
-PyOD is an optional dependency (``pip install "novelty[pyod]"``), imported
+PyOD is an optional dependency (``pip install "novelty-habituation[pyod]"``), imported
 when a model is first built. Model files keep the training inputs and refit
 the model on loading, as for the scikit-learn adapter
 (:mod:`novelty.baselines.sklearn_outlier`): exact for deterministic models
@@ -57,7 +57,7 @@ def _pyod_class(name: str) -> type:
         from pyod.models.base import BaseDetector
     except ImportError:
         raise ImportError(
-            "The 'pyod' detector needs PyOD, an optional dependency: pip install \"novelty[pyod]\" "
+            "The 'pyod' detector needs PyOD, an optional dependency: pip install \"novelty-habituation[pyod]\" "
             "(or pip install pyod)."
         ) from None
     modules = {name.lower(), re.sub(r"(?<=[a-z])(?=[A-Z])", "_", name).lower()}

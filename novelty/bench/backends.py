@@ -47,7 +47,7 @@ def dask_client(scheduler: str | None, jobs: int):
         from distributed import Client, LocalCluster
     except ImportError:
         raise BackendError(
-            "The dask backend needs dask.distributed: pip install 'novelty[dask]'."
+            "The dask backend needs dask.distributed: pip install 'novelty-habituation[dask]'."
         ) from None
     if scheduler:
         try:

@@ -29,7 +29,7 @@ def matplotlib_missing() -> str | None:
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        return "Plots skipped: matplotlib is not installed (pip install 'novelty[plot]')."
+        return "Plots skipped: matplotlib is not installed (pip install 'novelty-habituation[plot]')."
     return None
 
 

@@ -33,13 +33,13 @@ _VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "numba", "joblib", "d
 
 
 def _version(dist: str) -> str | None:
+    if dist == "novelty":  # this package, whatever its distribution is named (the index's "novelty" is not it)
+        from .. import __version__
+
+        return __version__
     try:
         return importlib_metadata.version(dist)
     except importlib_metadata.PackageNotFoundError:
-        if dist == "novelty":
-            from .. import __version__
-
-            return __version__
         return None
 
 

@@ -40,7 +40,7 @@ def _pyplot():
 
     missing = matplotlib_missing()
     if missing:
-        raise UserError("novelty plot needs matplotlib: pip install 'novelty[plot]'.")
+        raise UserError("novelty plot needs matplotlib: pip install 'novelty-habituation[plot]'.")
     return _pyplot()
 
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty[plot])")
+pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty-habituation[plot])")
 
 import matplotlib  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402

@@ -6,7 +6,7 @@ import pytest
 from novelty.bench import river
 from novelty.bench.suite import SuiteError, suite_from_dict
 
-anomaly = pytest.importorskip("river.anomaly", reason="river is not installed (pip install 'novelty[river]')")
+anomaly = pytest.importorskip("river.anomaly", reason="river is not installed (pip install 'novelty-habituation[river]')")
 
 X = np.random.default_rng(0).random((60, 4))
 

@@ -36,7 +36,7 @@ def test_a_run_writes_every_output(tmp_path, suite):
     try:
         import matplotlib  # noqa: F401
     except ImportError:
-        assert report.notes == ["Plots skipped: matplotlib is not installed (pip install 'novelty[plot]')."]
+        assert report.notes == ["Plots skipped: matplotlib is not installed (pip install 'novelty-habituation[plot]')."]
     else:
         assert {p.name for p in (tmp_path / "plots").iterdir()} == {
             "roc.png", "ranking.png", "boxplot-roc-auc.png", f"route-{suite.tasks[0].name}.png"}

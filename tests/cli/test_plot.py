@@ -12,7 +12,7 @@ from novelty.cli import main
     (None, "scan"),
 ])
 def test_the_x_axis_says_scan_when_the_distance_is_not_the_axis(distance, label, tmp_path, monkeypatch):
-    figure = pytest.importorskip("matplotlib.figure", reason="plots need matplotlib (novelty[plot])")
+    figure = pytest.importorskip("matplotlib.figure", reason="plots need matplotlib (novelty-habituation[plot])")
     columns = {"scan": np.arange(8), "novelty": np.linspace(1, 0.1, 8)}
     if distance is not None:
         columns["distance"] = distance
