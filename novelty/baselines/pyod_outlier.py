@@ -57,8 +57,8 @@ def _pyod_class(name: str) -> type:
         from pyod.models.base import BaseDetector
     except ImportError:
         raise ImportError(
-            "The 'pyod' detector needs PyOD, an optional dependency: pip install \"novelty-habituation[pyod]\" "
-            "(or pip install pyod)."
+            "The 'pyod' detector needs PyOD, an optional dependency: "
+            "pip install \"novelty-habituation[pyod]\" (or pip install pyod)."
         ) from None
     modules = {name.lower(), re.sub(r"(?<=[a-z])(?=[A-Z])", "_", name).lower()}
     for module_name in sorted(modules):

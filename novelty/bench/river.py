@@ -1,4 +1,4 @@
-"""River's streaming anomaly detectors in the benchmark, by name (optional: ``pip install 'novelty-habituation[river]'``).
+"""River's streaming anomaly detectors in the benchmark, by name (optional extra ``river``).
 
 So that users see the streaming detectors they know in the same table, a
 suite may name:
@@ -65,7 +65,8 @@ def _river_class(model: str):
     try:
         from river import anomaly  # optional dependency: imported only when a River detector runs
     except ImportError:
-        raise ImportError("River detectors need the 'river' package: pip install 'novelty-habituation[river]'.") from None
+        raise ImportError("River detectors need the 'river' package: "
+                          "pip install 'novelty-habituation[river]'.") from None
     cls = getattr(anomaly, model, None)
     if cls is None:
         raise ValueError(f"river.anomaly has no {model!r}.")
