@@ -16,7 +16,8 @@ try:
 except ImportError:
     HAVE_PYOD = False
 
-needs_pyod = pytest.mark.skipif(not HAVE_PYOD, reason="PyOD is not installed (optional extra: novelty-habituation[pyod])")
+needs_pyod = pytest.mark.skipif(not HAVE_PYOD,
+                                reason="PyOD is not installed (optional extra: novelty-habituation[pyod])")
 
 MODELS = ["ECOD", "IForest", "KNN"]
 
@@ -95,7 +96,8 @@ def test_model_parameters_are_routed_and_checked():
     det = novelty.make("pyod", model="KNN", n_neighbors=10, threshold=0.9)
     assert det.model_params == {"n_neighbors": 10} and det.threshold == 0.9
     if not HAVE_PYOD:
-        pytest.skip("PyOD is not installed (optional extra: novelty-habituation[pyod]); the rest checks PyOD's signatures")
+        pytest.skip("PyOD is not installed (optional extra: novelty-habituation[pyod]); "
+                    "the rest checks PyOD's signatures")
     X = np.random.default_rng(0).normal(size=(30, 2))
     with pytest.raises(InvalidParameterError, match=r"'n_neighbour' \(did you mean 'n_neighbors'\?\) for the PyOD "
                                                     r"model KNN"):
@@ -112,6 +114,6 @@ def test_without_pyod_fit_says_how_to_install_it(monkeypatch):
     monkeypatch.setitem(sys.modules, "pyod.models", None)
     monkeypatch.setitem(sys.modules, "pyod.models.base", None)
     det = novelty.make("pyod")
-    with pytest.raises(ImportError, match=r'pip install "novelty\[pyod\]"'):
+    with pytest.raises(ImportError, match=r'pip install "novelty-habituation\[pyod\]"'):
         det.fit(np.zeros((5, 2)))
     assert not hasattr(det, "n_features_in_")
