@@ -142,7 +142,7 @@ def run(args) -> int:
                        command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
     print(report.exploration or report.table)
     if report.rows and not report.exploration:
-        print(statistics_line(report.rows))
+        print("\n" + statistics_line(report.rows))
     for note in report.notes:
         print(note)
     summary = os.path.join(args.out, "summary.md")
