@@ -228,7 +228,7 @@ def draw_critical_difference(ax, names: Sequence[str], mean_ranks: Sequence[floa
         y = -0.15 - g * bar_step
         ax.hlines(y, ranks[members].min() - 0.05, ranks[members].max() + 0.05, color="k", linewidth=3)
     lowest = -top_label - (half - 1) * label_step
-    ax.set(xlim=(1 - 0.4, k + 0.4), ylim=(lowest - 0.2, 0.45))
+    ax.set(xlim=(1 - 0.4, k + 0.4), ylim=(lowest - 0.3, 0.45))
     ax.axis("off")
 
 
