@@ -49,7 +49,7 @@ class Result:
         return out
 
     def write(self, folder: Path) -> list[Path]:
-        """``NAME.csv`` and ``NAME.md`` in ``folder``, one more CSV per further table (the figure is there)."""
+        """``NAME.csv``, ``NAME.md`` and a CSV per further table in ``folder`` (the figure is there)."""
         folder.mkdir(parents=True, exist_ok=True)
         written = [write_csv(self.rows, folder / f"{self.name}.csv")]
         written += [write_csv(rows, folder / f"{self.name}-{key}.csv") for key, rows in self.tables.items()]

@@ -33,6 +33,7 @@ CORRIDORS = (("K=1, exact", 1, 0.0), ("K=2, exact", 2, 0.0), ("K=5, exact", 5, 0
 SCANS, FEATURES = 100, 16
 #: Integrated novelty of the paper's settled run (A, trial 6).
 SETTLED = 0.3
+SETTLED_COLUMN = f"settled (<{SETTLED}) seeds"
 
 
 def corridor_runs(k: int, level: float, seed: int, n_runs: int = 6) -> list[np.ndarray]:
@@ -65,10 +66,11 @@ def run(out: Path, seeds=range(10), jobs: int = 1) -> Result:
         integrated = np.array([f["integrated"] for f in found])
         row = {"corridor": label, **trial_columns(mean_trials(found))}
         row["trial 6 max"] = float(integrated[:, 5].max())
-        row[f"settled (<{SETTLED}) seeds"] = f"{int(np.sum(integrated[:, 5] < SETTLED))}/{len(found)}"
+        row[SETTLED_COLUMN] = f"{int(np.sum(integrated[:, 5] < SETTLED))}/{len(found)}"
         row["winning units (L runs)"] = float(np.mean([f["learning_winners"] for f in found]))
         rows.append(row)
-    figure = plot_trials(rows, "corridor", out / f"{NAME}.png", "HSOM on synthetic corridors (mean over seeds)")
+    figure = plot_trials(rows, "corridor", out / f"{NAME}.png",
+                         "HSOM on synthetic corridors (mean over seeds)")
     nseeds = len(list(seeds))
     exact2, noisy = rows[1], rows[4]
     findings = [
