@@ -8,20 +8,21 @@ import sys
 import numpy as np
 
 from ..sonar.preprocessing import PAPER_THRESHOLD
-from ._common import (UserError, add_command, add_data_options, alarms, format_cell, parse_params,
-                      read_scans, write_novelty)
+from ..alarms import ALARM_FORMS, Alarm, parse_alarm
+from ._common import UserError, add_command, add_data_options, format_cell, parse_params, read_scans, write_novelty
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 
 The novelty of each scan is computed before the scan is learned; the alarm
 is 1 where the novelty is above the detector's threshold (--param
-threshold=...), as predict() says -1. Scans are rows of a CSV (optional
-header) or the array X of an .npz file; --columns chooses the sensors, and
-columns named y/label, distance, run, time are carried to the output, not
-used as sensors (a time column gives the synapses real elapsed time). Writes
-one row a scan (scan, novelty, alarm, ...) to --out (CSV, or .npz by
-extension; default: standard output). A batch-only detector is fitted on all
-the scans, then scores them.
+threshold=...), as predict() says -1, or where the --alarm policy is
+raised (k of the last n scans, hysteresis). Scans are rows of a CSV
+(optional header) or the array X of an .npz file; --columns chooses the
+sensors, and columns named y/label, distance, run, time are carried to the
+output, not used as sensors (a time column gives the synapses real elapsed
+time). Writes one row a scan (scan, novelty, alarm, ...) to --out (CSV, or
+.npz by extension; default: standard output). A batch-only detector is
+fitted on all the scans, then scores them.
 
 With --data - the scans are read from standard input, a CSV line at a time
 (a header line first, or none), and each scan's row is written and flushed
@@ -33,6 +34,7 @@ EXAMPLES = [
     "novelty run habituating --data corridor-a.npz --param clusterer=som --passes 5 --save a.npz",
     "novelty run hsom --data ranges.csv --columns 'sonar*' --preprocess paper --time stamp",
     "rostopic echo -p /sonar | novelty run hsom --data - --columns 'field.ranges*' --preprocess paper",
+    "novelty run hsom --data scans.csv --alarm k-of-n:3,5",
 ]
 
 
@@ -47,6 +49,10 @@ def add_parser(subparsers):
                         help="stream the scans N times; the output is the last pass (default 1)")
     parser.add_argument("--out", metavar="FILE", help="novelty per scan: .csv or .npz (default: stdout)")
     parser.add_argument("--save", metavar="MODEL", help="save the trained detector here (.npz model file)")
+    parser.add_argument("--alarm", metavar="POLICY",
+                        help="when the alarm column is 1: " + ", ".join(ALARM_FORMS) + " (T defaults to the "
+                        "detector's threshold; k-of-n: K of the last N scans above T; hysteresis: raised "
+                        "above HIGH until below LOW). Default: threshold")
     return parser
 
 
@@ -56,10 +62,11 @@ def run(args) -> int:
     if args.passes < 1:
         raise UserError(f"--passes must be at least 1; got {args.passes}.")
     det = check_detector(DetectorSpec(args.detector, parse_params(args.param)))
+    alarm = _alarm_policy(det, args.alarm)
     if args.data == "-":
-        n = _run_stream(det, args)
+        n = _run_stream(det, args, alarm)
     else:
-        n = _run_file(det, args)
+        n = _run_file(det, args, alarm)
     if args.save:
         det.save(args.save)
     if args.out not in (None, "-"):
@@ -68,7 +75,20 @@ def run(args) -> int:
     return 0
 
 
-def _run_file(det, args) -> int:
+def _alarm_policy(det, spec: str | None) -> Alarm | None:
+    """The --alarm policy, its threshold the detector's; None for a detector without a threshold."""
+    threshold = getattr(det, "threshold", None)
+    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
+        threshold = None
+    if spec is None and threshold is None:
+        return None
+    try:
+        return parse_alarm(spec or "threshold", threshold)
+    except ValueError as exc:
+        raise UserError(f"--alarm: {exc}") from None
+
+
+def _run_file(det, args, alarm: Alarm | None) -> int:
     data = read_scans(args)
     timestamps = data.columns.get("time")
     if getattr(det, "supports_online", True):
@@ -78,11 +98,11 @@ def _run_file(det, args) -> int:
         print(f"novelty run: {args.detector} learns in batch only: fitted on all the scans, then scored.",
               file=sys.stderr)
         novelty = det.fit(data.X).novelty(data.X)
-    write_novelty(args.out, novelty, data, alarms(det, novelty))
+    write_novelty(args.out, novelty, data, None if alarm is None else alarm.run(novelty).astype(np.int8))
     return len(data)
 
 
-def _run_stream(det, args) -> int:
+def _run_stream(det, args, alarm: Alarm | None) -> int:
     """Score and learn standard input a line at a time, writing each scan's row at once."""
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot score a stream (--data -).")
@@ -97,9 +117,8 @@ def _run_stream(det, args) -> int:
     for x, extras in scans:
         novelty = det.score_learn_one(x, extras.get("time"))
         row = {"scan": n, "novelty": novelty}
-        alarm = alarms(det, np.array([novelty]))
         if alarm is not None:
-            row["alarm"] = int(alarm[0])
+            row["alarm"] = int(alarm.update(novelty))
         row.update(extras)
         if writer is None:
             writer = csv.DictWriter(sys.stdout, fieldnames=list(row), lineterminator="\n")

@@ -111,3 +111,39 @@ def test_a_bad_line_on_stdin_names_its_line(monkeypatch, capsys):
     captured = capsys.readouterr()
     assert len(rows(captured.out)) == 2  # the first scan was written before the bad line was read
     assert "standard input, line 3: Column 'b' holds text ('oops')" in captured.err
+
+
+def test_alarm_policy_k_of_n_on_a_file(tmp_path, capsys):
+    X = np.random.default_rng(0).random((40, 3))
+    path = tmp_path / "scans.csv"
+    np.savetxt(path, X, delimiter=",")
+    assert main(["run", "hsom", "--data", str(path), "--param", "n_rows=3", "--alarm", "k-of-n:2,3,0.6"]) == 0
+    table = rows(capsys.readouterr().out)
+    nov = novelty.make("hsom", n_rows=3).stream(X)
+    above = nov > 0.6
+    expected = [int(above[max(0, i - 2):i + 1].sum() >= 2) for i in range(len(X))]
+    assert [int(r[2]) for r in table[1:]] == expected and 0 < sum(expected) < len(X)
+
+
+def test_alarm_policy_hysteresis_on_stdin(monkeypatch, capsys):
+    import io
+
+    from novelty.alarms import Hysteresis
+
+    X = np.random.default_rng(1).random((30, 2))
+    monkeypatch.setattr(sys, "stdin", io.StringIO("a,b\n" + "".join(f"{x[0]},{x[1]}\n" for x in X.tolist())))
+    assert main(["run", "hsom", "--data", "-", "--param", "n_rows=2", "--alarm", "hysteresis:0.8,0.3"]) == 0
+    table = rows(capsys.readouterr().out)
+    nov = novelty.make("hsom", n_rows=2).stream(X)
+    assert [int(r[2]) for r in table[1:]] == Hysteresis(0.8, 0.3).run(nov).astype(int).tolist()
+
+
+@pytest.mark.parametrize("spec, message", [
+    ("k-of-n:3", r"--alarm: Alarm 'k-of-n:3' takes k-of-n:K,N[,T]; got 1 value(s)."),
+    ("sometimes", r"--alarm: Unknown alarm 'sometimes'; expected one of threshold[:T], k-of-n:K,N[,T]"),
+])
+def test_a_bad_alarm_policy_is_a_user_error(spec, message, tmp_path, capsys):
+    path = tmp_path / "scans.csv"
+    np.savetxt(path, np.random.default_rng(0).random((5, 2)), delimiter=",")
+    assert main(["run", "hsom", "--data", str(path), "--alarm", spec]) == 2
+    assert message in capsys.readouterr().err
