@@ -7,6 +7,15 @@ Parameter messages follow scikit-learn's form::
 Input checks translate to ``ValueError`` (or ``TypeError`` for sparse input,
 as scikit-learn does) *before* any state changes, so a rejected call leaves a
 model exactly as it was.
+
+Scans are finite real numbers whose Euclidean norm is at most
+:data:`MAX_SCAN_NORM` (1e100). The detectors' distances are squared: two
+scans of norm up to 1e154 already give a squared distance that overflows to
+infinity and turns the learned state into NaN. With the bound, a squared
+distance between scans or prototypes (convex combinations of scans) is at
+most 4e200, which leaves room for sums of many of them (a network's
+accumulated errors, a mixture's covariances) below the float64 limit of
+1.8e308. Complex numbers and dates are refused rather than converted.
 """
 
 from __future__ import annotations
@@ -30,7 +39,16 @@ __all__ = [
     "scan_names",
     "frame_names",
     "check_feature_names",
+    "MAX_SCAN_NORM",
 ]
+
+#: the largest Euclidean norm of a scan any detector accepts (see the module docstring)
+MAX_SCAN_NORM = 1e100
+_MAX_SQUARED_NORM = MAX_SCAN_NORM**2
+
+# dtype kinds that numpy would convert to float64 by dropping information:
+# complex (the imaginary part) and datetime / timedelta (the unit)
+_NOT_REAL = {"c": "complex numbers", "M": "dates (datetime64)", "m": "time spans (timedelta64)"}
 
 
 def _type_name(value: Any) -> str:
@@ -126,6 +144,7 @@ def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray
     """
     from sklearn.utils import check_array  # deferred: keeps ``import novelty`` light
 
+    _refuse_not_real(_dtype_kinds(X), f"{type(owner).__name__} expects X as real numbers")
     try:
         X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
                         ensure_all_finite=False)
@@ -137,12 +156,18 @@ def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray
             f"{type(owner).__name__} expects X as a 2-D array of numbers of shape "
             f"(n_samples, n_features); got values that are not numeric ({exc})."
         ) from None
-    if not np.isfinite(X.sum()) and not np.all(np.isfinite(X)):
-        bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
-        raise ValueError(
-            f"Input X contains NaN or infinity (first in row {bad}); "
-            f"{type(owner).__name__} expects finite numbers."
-        )
+    # One pass gives every row's squared norm; NaN, infinity and too large
+    # values all fail the comparison.
+    squared = np.einsum("ij,ij->i", X, X)
+    if X.shape[0] and not squared.max() <= _MAX_SQUARED_NORM:
+        if not np.all(np.isfinite(X)):
+            bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
+            raise ValueError(
+                f"Input X contains NaN or infinity (first in row {bad}); "
+                f"{type(owner).__name__} expects finite numbers."
+            )
+        bad = int(np.flatnonzero(~(squared <= _MAX_SQUARED_NORM))[0])
+        raise ValueError(_too_large("X", owner, f" (first in row {bad})"))
     if n_features is not None and X.shape[1] != n_features:
         raise ValueError(
             f"X has {X.shape[1]} features, but {type(owner).__name__} is expecting "
@@ -163,8 +188,13 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
         if isinstance(x, dict):
             x = _dict_values(x, owner, n_features, names)
         try:
-            arr = np.asarray(x, dtype=np.float64)
+            arr = np.asarray(x)
+            _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
+            arr = arr.astype(np.float64, copy=False)
         except (TypeError, ValueError) as exc:
+            if isinstance(exc, _NotReal):
+                raise
+
             raise ValueError(
                 f"{type(owner).__name__} expects one scan as a 1-D sequence of numbers; "
                 f"got values that are not numeric ({exc})."
@@ -182,11 +212,12 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
             f"x has {arr.shape[0]} features, but {type(owner).__name__} is expecting "
             f"{n_features} features as input."
         )
-    # One reduction instead of an elementwise mask (np.add.reduce: half the cost of
-    # arr.sum()); the mask only when the sum is not finite, which a finite scan
-    # can also give by overflowing (as in check_batch).
-    if not math.isfinite(np.add.reduce(arr)) and not np.isfinite(arr).all():
-        raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
+    # One reduction (the squared norm: NaN, infinity and too large values all fail
+    # the comparison); the elementwise mask only to say which.
+    if not np.dot(arr, arr) <= _MAX_SQUARED_NORM:
+        if not np.isfinite(arr).all():
+            raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
+        raise ValueError(_too_large("x", owner, ""))
     return arr
 
 
@@ -279,13 +310,54 @@ def check_feature_names(owner: Any, names: np.ndarray | None, learned: np.ndarra
         )
 
 
+class _NotReal(ValueError):
+    """Input of a kind that converting to float64 would silently damage."""
+
+
+def _dtype_kinds(X: Any) -> str:
+    """The numpy dtype kinds of ``X`` (its columns' for a data frame) without converting it."""
+    dtypes = getattr(X, "dtypes", None)
+    if dtypes is not None and not isinstance(X, np.ndarray):
+        return "".join(getattr(d, "kind", "O") for d in np.atleast_1d(dtypes))
+    dtype = getattr(X, "dtype", None)
+    if dtype is None and isinstance(X, (list, tuple)):
+        try:
+            dtype = np.asarray(X).dtype
+        except (TypeError, ValueError):  # ragged: check_array says so
+            return ""
+    return getattr(dtype, "kind", "")
+
+
+def _refuse_not_real(kinds: str, expected: str) -> None:
+    for kind, what in _NOT_REAL.items():
+        if kind in kinds:
+            # scikit-learn's wording for complex input, which its estimator checks look for
+            prefix = "Complex data not supported: " if kind == "c" else ""
+            raise _NotReal(f"{prefix}{expected}; got {what}. Convert them to real numbers first.")
+
+
+def _too_large(name: str, owner: Any, where: str) -> str:
+    return (
+        f"Input {name} for {type(owner).__name__} has a scan of Euclidean norm above "
+        f"{MAX_SCAN_NORM:g}{where}, the largest the detectors accept (their squared "
+        "distances would overflow); rescale the data."
+    )
+
+
 def check_timestamps(timestamps: Any, n_samples: int, last_time: float | None) -> np.ndarray:
     """Validate timestamps and return the elapsed time before each scan.
 
     The first scan of a model's life has dt = 1 (one step), as without
     timestamps; afterwards dt is the time since the previous scan.
     """
-    t = np.asarray(timestamps, dtype=np.float64)
+    try:
+        t = np.asarray(timestamps)
+        _refuse_not_real(t.dtype.kind, "timestamps must be real numbers")
+        t = t.astype(np.float64, copy=False)
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, _NotReal):
+            raise
+        raise ValueError(f"timestamps must be numbers; got values that are not numeric ({exc}).") from None
     if t.ndim != 1 or t.shape[0] != n_samples:
         raise ValueError(
             f"timestamps must be a 1-D array with one value per scan ({n_samples}); "
@@ -297,4 +369,6 @@ def check_timestamps(timestamps: Any, n_samples: int, last_time: float | None) -
     dt = np.diff(t, prepend=previous)
     if np.any(dt < 0):
         raise ValueError("timestamps must not decrease (each scan is at or after the previous one).")
+    if not np.all(np.isfinite(dt)):  # two finite times more than 1.8e308 apart
+        raise ValueError("the time between two scans must be finite (below 1.8e308).")
     return dt

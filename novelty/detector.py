@@ -17,12 +17,26 @@ A subclass implements four hooks on validated float64 arrays:
 :meth:`~NoveltyDetector._learn` (learn a batch in order, returning the novelty
 each scan had before it was learned), :meth:`~NoveltyDetector._novelty` (pure
 scoring) and optionally :meth:`~NoveltyDetector._novelty_one`.
+
+Guarantees the base class gives every detector:
+
+- ``fit`` (and the first call that learns) builds the new model aside and
+  replaces the old one only when it succeeds: a fit that fails leaves the
+  previous model intact;
+- no method returns a novelty that is not finite (a damaged state raises
+  :class:`~novelty._component.StateError` instead), so ``predict`` never
+  calls a NaN normal;
+- calls on one detector from several threads run one at a time (a lock per
+  detector), so threads never see or leave half-updated state.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
+import threading
+import weakref
 from abc import abstractmethod
 from typing import Any
 
@@ -31,7 +45,7 @@ from sklearn.base import OutlierMixin
 from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
-from ._component import Component, StateError, check_array_state, check_int_state
+from ._component import Component, StateError, _is_state_name, check_array_state, check_int_state
 from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
                           frame_names, scan_names, validate_parameters)
 
@@ -39,6 +53,30 @@ __all__ = ["NoveltyDetector", "CONTAMINATION"]
 
 #: The rule for every detector's ``contamination`` parameter (as scikit-learn's and PyOD's).
 CONTAMINATION = (Options(("auto",)), Interval(numbers.Real, 0, 0.5, closed="right"))
+
+# One re-entrant lock per detector, kept outside the instance so that copying,
+# pickling and cloning a detector never meet a lock.
+_locks: "weakref.WeakKeyDictionary[Any, threading.RLock]" = weakref.WeakKeyDictionary()
+_locks_guard = threading.Lock()
+
+
+def _lock_of(detector) -> threading.RLock:
+    lock = _locks.get(detector)
+    if lock is None:
+        with _locks_guard:
+            lock = _locks.setdefault(detector, threading.RLock())
+    return lock
+
+
+def _one_at_a_time(method):
+    """Run ``method`` holding the detector's lock (calls from other threads wait)."""
+
+    @functools.wraps(method)
+    def locked(self, *args, **kwargs):
+        with _lock_of(self):
+            return method(self, *args, **kwargs)
+
+    return locked
 
 
 class NoveltyDetector(OutlierMixin, Component):
@@ -158,6 +196,31 @@ class NoveltyDetector(OutlierMixin, Component):
     def _names(self) -> np.ndarray | None:
         return getattr(self, "feature_names_in_", None)
 
+    def _unfitted_copy(self) -> "NoveltyDetector":
+        """A detector with this one's parameters and no learned state (where a new model is built)."""
+        new = object.__new__(type(self))
+        vars(new).update({k: v for k, v in vars(self).items()
+                          if not (k.startswith("_") or k.endswith("_"))})
+        return new
+
+    def _adopt(self, new: "NoveltyDetector") -> None:
+        """Take the state of ``new``, dropping this detector's own learned state.
+
+        Other private attributes stay (scikit-learn's meta-estimators set some
+        around a ``fit``); every fit rebuilds its own scratch.
+        """
+        for name in [n for n in vars(self) if _is_state_name(n) and n not in vars(new)]:
+            delattr(self, name)
+        vars(self).update(vars(new))
+
+    def _finite(self, novelty: np.ndarray) -> np.ndarray:
+        if not np.isfinite(novelty).all():
+            raise StateError(
+                f"{type(self).__name__} computed a novelty that is not finite: its learned "
+                "state is damaged. Refit it."
+            )
+        return novelty
+
     def _check_state(self) -> None:
         # A model file could hold anything here; refuse it now rather than fail later.
         n = check_int_state(self, "n_features_in_", low=1)
@@ -188,6 +251,7 @@ class NoveltyDetector(OutlierMixin, Component):
             )
 
     # -------------------------------------------------------------- batch (sklearn)
+    @_one_at_a_time
     def fit(self, X, y=None, timestamps=None):
         """Learn ``X`` from scratch (``n_epochs`` passes, in order).
 
@@ -210,12 +274,14 @@ class NoveltyDetector(OutlierMixin, Component):
         self._validate_params()
         # a refit starts a new life: no previous timestamp
         dt = np.ones(X.shape[0]) if timestamps is None else check_timestamps(timestamps, X.shape[0], None)
-        self._begin(X, names)
+        new = self._unfitted_copy()
+        new._begin(X, names)
         for _ in range(getattr(self, "n_epochs", 1)):
-            self._learn(X, dt)
-        self._finish_fit(X)
-        self._advance_clock(X.shape[0], timestamps)
-        self.decision_scores_ = self._novelty(X)
+            new._finite(new._learn(X, dt))
+        new._finish_fit(X)
+        new._advance_clock(X.shape[0], timestamps)
+        new.decision_scores_ = new._finite(new._novelty(X))
+        self._adopt(new)
         return self
 
     # Batch-only detectors do not offer partial_fit at all, so that scikit-learn
@@ -226,6 +292,7 @@ class NoveltyDetector(OutlierMixin, Component):
         self.stream(X, timestamps=timestamps, learn=True)
         return self
 
+    @_one_at_a_time
     def stream(self, X, timestamps=None, learn=True) -> np.ndarray:
         """Novelty of each scan of ``X`` as the robot sees it, learning as it goes.
 
@@ -245,18 +312,23 @@ class NoveltyDetector(OutlierMixin, Component):
         # Parameters may have changed through set_params since the last call; the
         # single-scan path skips this check to stay cheap.
         self._validate_params()
+        # the first batch builds the model aside, as fit does
+        target = self if fitted else self._unfitted_copy()
         if not fitted:
-            self._begin(X, names)
-        out = self._learn(X, dt)
-        self._advance_clock(X.shape[0], timestamps)
+            target._begin(X, names)
+        out = target._finite(target._learn(X, dt))
+        target._advance_clock(X.shape[0], timestamps)
+        if not fitted:
+            self._adopt(target)
         return out
 
+    @_one_at_a_time
     def novelty(self, X) -> np.ndarray:
         """Novelty of each scan (higher = more novel), without learning."""
         self._check_fitted()
         check_feature_names(self, frame_names(X), self._names())
         X = check_batch(X, self, self.n_features_in_)
-        return self._novelty(X)
+        return self._finite(self._novelty(X))
 
     def score_samples(self, X) -> np.ndarray:
         """scikit-learn convention: ``-novelty(X)`` (higher = more normal)."""
@@ -303,6 +375,7 @@ class NoveltyDetector(OutlierMixin, Component):
         return np.where(self.novelty(X) > self.threshold_, -1, 1)
 
     # ----------------------------------------------------------- streaming (robot)
+    @_one_at_a_time
     def score_one(self, x) -> float:
         """Novelty of one scan, without learning.
 
@@ -313,13 +386,17 @@ class NoveltyDetector(OutlierMixin, Component):
             check_one(x, self, None)
             self._validate_params()
             return self._first_novelty()
-        return self._novelty_one(check_one(x, self, self.n_features_in_, self._names()))
+        out = self._novelty_one(check_one(x, self, self.n_features_in_, self._names()))
+        if not math.isfinite(out):
+            self._finite(np.array([out]))
+        return out
 
     def learn_one(self, x, t=None):
         """Learn one scan (``t``: its timestamp, optional)."""
         self.score_learn_one(x, t)
         return self
 
+    @_one_at_a_time
     def score_learn_one(self, x, t=None) -> float:
         """Novelty of one scan before learning it, then learn it (the robot's loop)."""
         fitted = self._is_fitted()
@@ -331,11 +408,16 @@ class NoveltyDetector(OutlierMixin, Component):
             x = check_one(x, self, None, names)
         timestamps = None if t is None else (t,)
         dt = self._elapsed(1, timestamps)
+        target = self if fitted else self._unfitted_copy()
         if not fitted:
             self._validate_params()
-            self._begin(x[None, :], names)
-        out = float(self._learn(x[None, :], dt)[0])
-        self._advance_clock(1, timestamps)
+            target._begin(x[None, :], names)
+        out = float(target._learn(x[None, :], dt)[0])
+        if not math.isfinite(out):
+            target._finite(np.array([out]))
+        target._advance_clock(1, timestamps)
+        if not fitted:
+            self._adopt(target)
         return out
 
     # ------------------------------------------------------------------ files
@@ -343,5 +425,6 @@ class NoveltyDetector(OutlierMixin, Component):
         """Write the detector to ``path`` (npz arrays + JSON metadata; no pickle)."""
         from .persistence import save
 
-        save(self, path)
+        with _lock_of(self):
+            save(self, path)
 

@@ -1,5 +1,10 @@
 """The detector API's conventions: dict scans read by key, DataFrame column
-names, the first perception before any learning."""
+names, the first perception before any learning; and what the base class
+guarantees every detector (bounded scans, transactional fits, finite novelty,
+thread safety)."""
+
+import threading
+import warnings
 
 import numpy as np
 import pytest
@@ -7,7 +12,10 @@ from sklearn.base import clone
 from sklearn.exceptions import NotFittedError
 
 import novelty
+from novelty._component import StateError
+from novelty._validation import MAX_SCAN_NORM
 from novelty.registry import detectors
+from novelty.testing.conformance import _assert_same_state, _state_arrays
 
 NAMES = ["front", "left", "right", "rear"]  # sorted: front, left, rear, right
 SORTED = sorted(NAMES)
@@ -302,3 +310,187 @@ def test_baselines_fitted_with_contamination_flag_that_fraction(name):
     np.testing.assert_array_equal(det.decision_scores_, det.novelty(X))
     assert det.labels_.sum() == 10  # continuous scores: no ties at the quantile
     np.testing.assert_array_equal(det.predict(X) == -1, det.labels_ == 1)
+
+
+# ------------------------------------------------------------------------------
+# What the base class guarantees every registered detector: scans beyond the
+# norm bound refused with the state unchanged and scans within it keeping the
+# state finite; a failed fit keeping the previous model; no non-finite novelty
+# returned; learning from several threads leaving a consistent model.
+
+N_FEATURES = 4
+DETECTORS = detectors.names()
+QUICK = {"autoencoder-filter": {"max_iter": 20}, "isolation-forest": {"n_estimators": 10}}
+
+
+def make_quick(name: str):
+    return novelty.make(name, **QUICK.get(name, {}))
+
+
+def data(n: int = 40, seed: int = 0) -> np.ndarray:
+    return np.random.default_rng(seed).uniform(size=(n, N_FEATURES))
+
+
+def fitted_quick(name: str):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return make_quick(name).fit(data())
+
+
+def learn(det, X):
+    """Learn ``X`` the way the detector can: online, or a batch refit."""
+    if det.supports_online:
+        return det.partial_fit(X)
+    return det.fit(X)
+
+
+def finite_state(det) -> list[str]:
+    return [k for k, v in _state_arrays(det).items() if v.dtype.kind == "f" and not np.all(np.isfinite(v))]
+
+
+# ------------------------------------------------------------- input bound
+@pytest.mark.parametrize("name", DETECTORS)
+def test_a_scan_beyond_the_norm_bound_is_refused_and_changes_nothing(name):
+    det = fitted_quick(name)
+    before = _state_arrays(det)
+    X = data(3, seed=1)
+    X[1, 2] = 1e155  # its squared distances overflow
+    with pytest.raises(ValueError, match=r"norm above 1e\+100"):
+        learn(det, X)
+    if det.supports_online:
+        with pytest.raises(ValueError, match=r"norm above 1e\+100"):
+            det.learn_one(X[1])
+    _assert_same_state(before, _state_arrays(det), name)
+
+
+@pytest.mark.parametrize("name", DETECTORS)
+def test_scans_at_the_bound_keep_the_state_finite_and_saveable(name, tmp_path):
+    det = fitted_quick(name)
+    big = data(3, seed=2)
+    big *= 0.999 * MAX_SCAN_NORM / np.linalg.norm(big, axis=1, keepdims=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            learn(det, np.vstack([big, data(3, seed=3)]))
+        except ValueError as exc:  # a batch model may refuse such data, by name
+            assert "fail" in str(exc) or "component" in str(exc), exc
+    assert finite_state(det) == []
+    assert np.all(np.isfinite(det.novelty(np.vstack([big, data(2)]))))
+    if name == "habituating" or getattr(det, "random_state", 0) is None:
+        return
+    det.save(tmp_path / "model.npz")
+    novelty.load(tmp_path / "model.npz")
+
+
+# -------------------------------------------------------- transactional fit
+@pytest.mark.parametrize("name", DETECTORS)
+def test_a_fit_that_fails_keeps_the_previous_model(name, monkeypatch):
+    det = fitted_quick(name)
+    before, scores = _state_arrays(det), det.novelty(data(5, seed=4))
+
+    def broken(self, X, dt):
+        raise RuntimeError("learning failed")
+
+    monkeypatch.setattr(type(det), "_learn", broken)
+    with pytest.raises(RuntimeError, match="learning failed"):
+        det.fit(data(30, seed=5))
+    monkeypatch.undo()
+    _assert_same_state(before, _state_arrays(det), name)
+    np.testing.assert_array_equal(det.novelty(data(5, seed=4)), scores)
+
+
+@pytest.mark.parametrize(
+    "name, message",
+    [
+        ("gmm", r"minimum of 2 is required"),
+        ("elliptic-envelope", r"minimum of 2 is required"),
+        ("lof", r"needs at least 2 samples .*n_samples = 1"),
+    ],
+)
+def test_a_refit_on_too_few_samples_names_the_need_and_keeps_the_model(name, message):
+    det = fitted_quick(name)
+    before, scores = _state_arrays(det), det.novelty(data(5, seed=4))
+    with pytest.raises(ValueError, match=message):
+        det.fit(data(1, seed=6))
+    _assert_same_state(before, _state_arrays(det), name)
+    np.testing.assert_array_equal(det.novelty(data(5, seed=4)), scores)
+    assert not np.all(scores == 1.0)
+
+
+def test_a_failed_first_stream_leaves_the_detector_unfitted(monkeypatch):
+    det = novelty.make("hsom")
+    monkeypatch.setattr(type(det), "_learn", lambda self, X, dt: 1 / 0)
+    with pytest.raises(ZeroDivisionError):
+        det.partial_fit(data(3))
+    with pytest.raises(ZeroDivisionError):
+        det.learn_one(data(1)[0])
+    assert not hasattr(det, "n_features_in_") and not hasattr(det, "clusterer_")
+
+
+# ------------------------------------------------------- no NaN novelty out
+def damaged(name: str):
+    """A fitted detector whose every learned float array holds NaN."""
+    det = fitted_quick(name)
+
+    def poison(obj):
+        arrays, _, children = obj._export_state()
+        for key, value in arrays.items():
+            if value.dtype.kind == "f" and value.size:
+                getattr(obj, key)[...] = np.nan
+        for child in children.values():
+            poison(child)
+
+    poison(det)
+    det._rebuild_scratch() if hasattr(det, "reference_") else None
+    return det
+
+
+@pytest.mark.parametrize("name", ["hsom", "gwr-novelty", "kohonen-filter", "som-distance", "parzen"])
+def test_a_damaged_state_raises_instead_of_returning_nan(name):
+    det = damaged(name)
+    X = data(3)
+    for method in ("novelty", "score_samples", "decision_function", "predict"):
+        with pytest.raises(StateError, match="not finite"):
+            getattr(det, method)(X)
+    with pytest.raises(StateError, match="not finite"):
+        det.score_one(X[0])
+
+
+# ------------------------------------------------------------------ threads
+@pytest.mark.parametrize("name", ["gng-stanley", "gwr-novelty", "hsom", "gng-wang-hsu"])
+def test_learning_from_several_threads_leaves_a_consistent_model(name, tmp_path):
+    det = make_quick(name)
+    det.fit(data(5))
+    streams = [np.random.default_rng(s).uniform(size=(150, N_FEATURES)) for s in range(4)]
+    errors: list[BaseException] = []
+    learned = [5]  # the fit's scans; list.append is atomic
+    start = threading.Barrier(len(streams) + 1)
+
+    def worker(X):
+        start.wait()
+        try:
+            for i, x in enumerate(X):
+                if i % 3:
+                    det.learn_one(x)
+                else:
+                    det.partial_fit(X[i:i + 2])
+                learned.append(1 if i % 3 else len(X[i:i + 2]))
+                det.score_one(x)
+        except BaseException as exc:  # reported below, in the main thread
+            errors.append(exc)
+
+    threads = [threading.Thread(target=worker, args=(X,)) for X in streams]
+    for t in threads:
+        t.start()
+    start.wait()
+    scores = [det.novelty(data(20)) for _ in range(20)]  # scoring while the others learn
+    for t in threads:
+        t.join()
+    assert errors == []
+    assert all(np.all(np.isfinite(s)) for s in scores)
+    counter = "n_inputs_" if hasattr(det.clusterer_, "n_inputs_") else "n_updates_"
+    if hasattr(det.clusterer_, counter):  # every scan was learned exactly once
+        assert getattr(det.clusterer_, counter) == sum(learned)
+    det.save(tmp_path / "model.npz")
+    loaded = novelty.load(tmp_path / "model.npz")
+    np.testing.assert_array_equal(loaded.novelty(data(5)), det.novelty(data(5)))

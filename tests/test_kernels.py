@@ -162,8 +162,6 @@ def test_learning_equals_reference(som, stanley, data, stimulus):
     np.testing.assert_array_equal(det.synapse_.efficacy_, ref_s.efficacy_)
     assert det.clusterer_.n_updates_ == ref_c.n_updates_
     assert det.clusterer_._table_radius == ref_c._table_radius
-    for a, b in zip(det.clusterer_._neighbour_table, ref_c._neighbour_table):
-        np.testing.assert_array_equal(a, b)
 
 
 @settings(max_examples=40, deadline=None)
@@ -476,10 +474,12 @@ def test_import_novelty_does_not_import_numba():
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
-def test_hot_path_accepts_huge_finite_scans_and_rejects_nan():
+def test_hot_path_bounds_scans_and_rejects_nan():
     det = novelty.make("hsom").fit(np.zeros((2, 4)))
-    huge = np.full(4, 1e308)  # finite, though its sum overflows
-    assert det.score_one(huge) == det.novelty(huge[None, :])[0]
+    large = np.full(4, 4.9e99)  # norm 9.8e99, just within the bound
+    assert det.score_one(large) == det.novelty(large[None, :])[0]
+    with pytest.raises(ValueError, match=r"norm above 1e\+100"):
+        det.score_one(np.full(4, 1e308))  # finite, but squared distances overflow
     with pytest.raises(ValueError, match="NaN or infinity"):
         det.score_one(np.array([0.0, np.nan, 0.0, 0.0]))
     with pytest.raises(ValueError, match="NaN or infinity"):

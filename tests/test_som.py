@@ -84,7 +84,7 @@ def test_corner_step_on_a_3x3_map_moves_only_its_neighbourhood():
 
 def test_neighbourhood_on_the_papers_10x10_map():
     som = SOM().initialize(np.zeros((1, 2)), random_state=0)
-    table = som._neighbours_within(1)
+    table = [som.neighbours_of(unit, 1) for unit in range(100)]
     assert sorted(table[45].tolist()) == [34, 35, 36, 44, 46, 54, 55, 56]  # (4, 5)
     assert sorted(table[0].tolist()) == [1, 10, 11]
     assert sorted(table[5].tolist()) == [4, 6, 14, 15, 16]
@@ -95,7 +95,7 @@ def test_neighbourhood_on_the_papers_10x10_map():
 def test_rectangular_grid_is_row_major():
     som = SOM(n_rows=2, n_columns=5).initialize(np.zeros((1, 1)), random_state=0)
     np.testing.assert_array_equal(som.grid_positions()[[0, 4, 5, 9]], [[0, 0], [0, 4], [1, 0], [1, 4]])
-    assert sorted(som._neighbours_within(1)[4].tolist()) == [3, 8, 9]
+    assert som.neighbours_of(4, 1).tolist() == [3, 8, 9]
 
 
 def test_distance_is_squared_euclidean():

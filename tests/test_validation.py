@@ -66,6 +66,11 @@ BAD_BATCHES = {
     "ragged": ([[1, 2, 3, 4], [1, 2]], r"expects X as a 2-D array of numbers"),
     "3-D": (np.zeros((2, 2, N_FEATURES)), r"dim 3.*dim <= 2"),
     "1-D": (np.zeros(N_FEATURES), r"Expected 2D array, got 1D array"),
+    "norm above the bound": ([row(0.1), row(1e155)], r"norm above 1e\+100 \(first in row 1\).*rescale"),
+    "finite but overflowing": ([row(1e308)], r"norm above 1e\+100"),
+    "complex": (np.full((2, N_FEATURES), 1 + 1j), r"Complex data not supported.*real numbers"),
+    "datetime64": (np.zeros((2, N_FEATURES), dtype="datetime64[s]"), r"real numbers; got dates"),
+    "timedelta64 list": ([[np.timedelta64(1, "s")] * N_FEATURES], r"real numbers; got time spans"),
 }
 
 BAD_SCANS = {
@@ -77,6 +82,10 @@ BAD_SCANS = {
     "2-D": (np.zeros((1, N_FEATURES)), r"1-D array of shape \(n_features,\).*shape \(1, 4\)"),
     "3-D": (np.zeros((1, 1, N_FEATURES)), r"1-D array of shape \(n_features,\)"),
     "scalar": (0.5, r"1-D array of shape \(n_features,\); got an array of shape \(\)"),
+    "norm above the bound": (row(1e155), r"norm above 1e\+100.*rescale"),
+    "complex": (np.array(row(0.5)) + 1j, r"Complex data not supported.*real numbers"),
+    "complex list": ([0.5, 0.5, 0.5, 0.5j], r"Complex data not supported"),
+    "datetime64": (np.zeros(N_FEATURES, dtype="datetime64[s]"), r"real numbers; got dates"),
 }
 
 BATCH_METHODS = ["partial_fit", "fit", "stream", "stream_nolearn", "novelty", "score_samples",
@@ -166,6 +175,9 @@ def test_unfitted_scoring_raises_not_fitted(method):
         ([0.0, np.nan], r"NaN or infinity"),
         ([0.0], r"one value per scan \(2\)"),
         ([[0.0, 1.0]], r"1-D array"),
+        ([11.0, 12.0 + 1j], r"timestamps must be real numbers; got complex"),
+        (np.array([11, 12], dtype="datetime64[s]"), r"timestamps must be real numbers; got dates"),
+        ([11.0, "x"], r"timestamps must be numbers"),
     ],
 )
 def test_bad_timestamps_are_refused_and_change_nothing(timestamps, message):
@@ -252,6 +264,11 @@ def test_rule_descriptions():
     assert Interval(numbers.Real, 0, 1).describe() == "a float in [0, 1]"
     assert Interval(numbers.Real, 0, None, closed="neither", allow_none=True).describe() == "a float in (0, inf) or None"
     assert Options(("hold", "forget")).describe() == "one of 'hold', 'forget'"
+
+
+def test_a_gap_beyond_the_float_range_is_refused():
+    with pytest.raises(ValueError, match=r"time between two scans must be finite"):
+        check_timestamps([-1.7e308, 1.7e308], 2, None)
 
 
 def test_check_timestamps_gives_elapsed_times():

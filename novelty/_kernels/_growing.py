@@ -29,6 +29,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..habituation.stanley import euler_steps
 from ._distances import block_cols, transposed, untransposed
 
 #: layout of a Stanley bank's parameter vector
@@ -73,17 +74,16 @@ def _two_nearest(WT, n, x, plan, acc, stack):
 
 
 # ------------------------------------------------------------ Stanley synapse
+_euler = njit(cache=True, error_model="numpy", inline="always")(euler_steps)
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def _stanley_one(y, stimulus, tau, dt, exact, alpha, y0):
     # StanleySynapse._advance for one unit
     if exact:
         y_inf = y0 - stimulus / alpha
         return y_inf + (y - y_inf) * math.exp(-alpha * dt / tau)
-    n_sub = max(1, math.ceil(dt))
-    h = dt / n_sub
-    for _ in range(n_sub):
-        y = y + (h / tau) * (alpha * (y0 - y) - stimulus)
-    return y
+    return _euler(y, stimulus, tau, dt, alpha, y0)
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -15,8 +15,8 @@ results are bit-identical, not merely close:
   :func:`._distances.block_cols` sums one block in that order;
 - the winner is the first unit with the least distance (``np.argmin``);
 - the weight update is ``w + eta * (x - w)`` per element;
-- the Euler step is ``y + (h / tau) * (alpha * (y0 - y) - S)`` over
-  ``ceil(dt)`` sub-steps; the exact step
+- the Euler step is :func:`~novelty.habituation.stanley.euler_steps`
+  itself, compiled; the exact step
   ``y_inf + (y - y_inf) * exp(-alpha * dt / tau)``.
 
 numba compiles without fast-math, so LLVM neither reorders these sums nor
@@ -34,6 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..habituation.stanley import euler_steps
 from ._distances import distances_cols, transposed, untransposed
 from ._pairwise import pairwise_plan  # noqa: F401  (re-exported for callers)
 
@@ -68,14 +69,8 @@ def _scheduled(decay, start, final, t, steps):
     return final + (start - final) / (1.0 + 2.0 * t / steps)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _euler(y, stimulus, tau, dt, alpha, y0):
-    # StanleySynapse._advance, method="euler": ceil(dt) equal sub-steps
-    n_sub = max(1, math.ceil(dt))
-    h = dt / n_sub
-    for _ in range(n_sub):
-        y = y + (h / tau) * (alpha * (y0 - y) - stimulus)
-    return y
+#: StanleySynapse._advance, method="euler": the reference's own function
+_euler = njit(cache=True, error_model="numpy", inline="always")(euler_steps)
 
 
 #: layout of the ``params`` vector of :func:`som_stanley_stream` (one array

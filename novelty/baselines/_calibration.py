@@ -199,7 +199,7 @@ class CalibratedDetector(NoveltyDetector):
         out = np.empty(X.shape[0])
         for i in range(X.shape[0]):
             raw = self._learn_one_raw(X[i])
-            out[i] = self._scale(np.array([raw]))[0]
+            out[i] = self._scale(self._finite_raw(np.array([raw])))[0]
             self._push_reference(raw)
         return out
 
@@ -210,7 +210,16 @@ class CalibratedDetector(NoveltyDetector):
             self._set_reference(self._reference_raw(X))
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
-        return self._scale(self._raw(X))
+        return self._scale(self._finite_raw(self._raw(X)))
+
+    def _finite_raw(self, raw: np.ndarray) -> np.ndarray:
+        # The scale maps NaN to a finite value, so a damaged model would pass unnoticed.
+        if np.isnan(raw).any():
+            raise StateError(
+                f"{type(self).__name__} computed a raw novelty that is not finite (NaN): its "
+                "learned state is damaged. Refit it."
+            )
+        return raw
 
     def raw_novelty(self, X) -> np.ndarray:
         """The detector's own score (higher = more novel), before calibration."""

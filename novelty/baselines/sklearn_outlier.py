@@ -305,6 +305,15 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
         return LocalOutlierFactor(n_neighbors=self.n_neighbors, metric=self.metric, p=self.p,
                                   leaf_size=self.leaf_size, novelty=True)
 
+    def _fit_model(self, X: np.ndarray) -> None:
+        if X.shape[0] < 2:
+            raise ValueError(
+                f"{type(self).__name__} needs at least 2 samples (each needs a neighbour); "
+                f"got n_samples = {X.shape[0]}. With fewer than n_neighbors + 1 = {self.n_neighbors + 1}, "
+                "n_neighbors is lowered to n_samples - 1."
+            )
+        super()._fit_model(X)
+
     def _reference_raw(self, X: np.ndarray) -> np.ndarray:
         # The training inputs' own factors exclude each input from its neighbours.
         return -np.asarray(self._estimator.negative_outlier_factor_, dtype=np.float64)

@@ -184,19 +184,26 @@ class SOM(Clusterer):
         return np.stack(np.divmod(np.arange(self.n_rows * self.n_columns), self.n_columns), axis=1)
 
     def _rebuild_scratch(self) -> None:
+        # the grid radius in use (the compiled kernels read and return it too)
         self._table_radius = self.current_radius()
-        self._neighbour_table = self._neighbours_within(self._table_radius)
 
-    def _neighbours_within(self, radius: int) -> list[np.ndarray]:
-        pos = self.grid_positions()
-        cheb = np.abs(pos[:, None, :] - pos[None, :, :]).max(axis=2)
-        np.fill_diagonal(cheb, radius + 1)  # the winner is not its own neighbour
-        return [np.flatnonzero(row <= radius) for row in cheb]
+    def neighbours_of(self, unit: int, radius: int) -> np.ndarray:
+        """Rows of the units within ``radius`` grid steps of ``unit`` (itself excluded), ascending.
+
+        Computed from the grid coordinates: memory and time grow with the
+        neighbourhood, not with the map (a table of every unit's neighbours
+        would hold n_units**2 entries: 1.6e9 for a 200 x 200 map).
+        """
+        row, col = divmod(int(unit), self.n_columns)
+        rows = np.arange(max(0, row - radius), min(self.n_rows, row + radius + 1))
+        cols = np.arange(max(0, col - radius), min(self.n_columns, col + radius + 1))
+        block = (rows[:, None] * self.n_columns + cols[None, :]).ravel()
+        return block[block != unit]
 
     def match(self, x: np.ndarray) -> Match:
         d = ((self.weights_ - x) ** 2).sum(axis=1)
         winner = int(np.argmin(d))
-        return Match(winner, float(d[winner]), self._neighbour_table[winner])
+        return Match(winner, float(d[winner]), self.neighbours_of(winner, self._table_radius))
 
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
         W = self.weights_

@@ -20,8 +20,16 @@ Two discretisations:
       y <- y + (dt / tau) * (alpha * (y0 - y) - S)                      (3)
 
   which from y = 1 with tau = 3.33 gives 0.6997, 0.4941, 0.3533, ... An
-  elapsed time dt > 1 is integrated as ceil(dt) equal sub-steps, so dt = 2
-  is exactly two scans' worth of steps.
+  elapsed time dt > 1 is integrated as n = ceil(dt) equal sub-steps of
+  h = dt / n, so dt = 2 is exactly two scans' worth of steps. Each sub-step
+  is the linear map ``y - y_inf <- (1 - alpha h / tau) (y - y_inf)``, so n of
+  them are
+
+      y <- y_inf + (y - y_inf) * (1 - alpha h / tau) ** n               (4)
+
+  which :func:`euler_steps` uses beyond 1024 sub-steps (a long gap in the
+  timestamps costs one step, not ceil(dt)); up to 1024 it iterates (3), so
+  the results of ordinary steps are those of the loop, bit for bit.
 - ``method="exact"``: equation (2), exact for any dt (irregular timestamps);
   from y = 1 with tau = 3.33 it gives 0.7424, 0.5545, 0.4174, ...
 
@@ -51,7 +59,32 @@ import numpy as np
 from .._validation import Interval, Options
 from .base import Synapse
 
-__all__ = ["StanleySynapse"]
+__all__ = ["StanleySynapse", "euler_steps"]
+
+#: sub-steps :func:`euler_steps` iterates one by one; beyond, equation (4)
+MAX_EULER_SUBSTEPS = 1024
+
+
+def euler_steps(y, stimulus, tau, dt, alpha, y0):
+    """Efficacy ``y`` (a float or an array) after ``dt`` under equation (3), in ceil(dt) sub-steps.
+
+    The reference and the compiled kernels both run this function, so that
+    the two cannot drift apart. Up to ``MAX_EULER_SUBSTEPS`` sub-steps it
+    iterates (3); beyond, it applies their closed form (4), the same
+    recursion to rounding, in constant time (with ``tau >= alpha``, checked
+    for ``method="euler"``, the factor ``1 - alpha h / tau`` lies in [0, 1)).
+    """
+    if dt <= MAX_EULER_SUBSTEPS:
+        n_sub = max(1, math.ceil(dt))
+        h = dt / n_sub
+        for _ in range(n_sub):
+            y = y + (h / tau) * (alpha * (y0 - y) - stimulus)
+        return y
+    # from 2**52 up every float is an integer (and ceil would overflow an int64)
+    n = dt if dt >= 4503599627370496.0 else float(math.ceil(dt))
+    h = dt / n
+    y_inf = y0 - stimulus / alpha
+    return y_inf + (y - y_inf) * (1.0 - (h / tau) * alpha) ** n
 
 
 class StanleySynapse(Synapse):
@@ -148,8 +181,5 @@ class StanleySynapse(Synapse):
             y_inf = self.y0 - stimulus / self.alpha
             y = y_inf + (y - y_inf) * math.exp(-self.alpha * dt / tau)
         else:
-            n_sub = max(1, math.ceil(dt))
-            h = dt / n_sub
-            for _ in range(n_sub):
-                y = y + (h / tau) * (self.alpha * (self.y0 - y) - stimulus)
+            y = euler_steps(y, stimulus, tau, dt, self.alpha, self.y0)
         self.efficacy_[rows] = y

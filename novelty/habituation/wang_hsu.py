@@ -62,6 +62,27 @@ Two discretisations:
   5e-6 of a fine numerical solution after 40 scans of stimulus), and because
   the grid is fixed, one step of dt = 2 is the same arithmetic as two of dt = 1.
 
+Long gaps
+---------
+Up to 1024 sub-steps both methods iterate as above. Beyond (a gap in the
+timestamps), the sub-steps stop as soon as the state has settled, and the
+rest of the gap is done in closed form:
+
+- ``z`` no longer changes (S = 0, gamma = 0, z = l, or z at its floor):
+  with ``z`` constant each sub-step is a linear map of ``y``, whose n-fold
+  power is ``y_inf + (y - y_inf) * rho ** n`` (Euler: ``rho = 1 - (h / tau)
+  (alpha z + beta S)``; exact: ``rho = exp(-(A + B))``), so the closed form
+  is the same recursion, to rounding;
+- or ``alpha z <= 2**-53 * beta S`` for every unit: the recovery term is
+  below the rounding of the habituation term, so ``y_inf <= 2**-53 y0`` and
+  freezing ``z`` in ``y``'s map changes ``y`` by at most ``2**-53 y0``; ``z``
+  itself follows its own closed form (Euler, where ``z - l`` rounds to
+  ``-l``: ``z (1 - h gamma l S) ** n``; exact: equation (3) over the rest).
+
+A gap then costs a number of sub-steps that depends on the parameters
+(about ``(ln(1 / (l - z0)) + 37) / (gamma l S)`` sub-steps for ``z`` to fall
+that far: 800 with the defaults), not on its length.
+
 Defaults
 --------
 Wang (1993) fitted the model to toads' habituation over minutes to weeks;
@@ -122,6 +143,15 @@ __all__ = ["WangHsuSynapse"]
 #: sub-step length of method="exact" under a stimulus (a divisor of 1, so the
 #: grid of one step of dt = n is that of n steps of dt = 1)
 _EXACT_SUBSTEP = 0.125
+
+#: sub-steps iterated whatever happens; beyond, a long gap ends in closed form
+#: once the state has settled (module docstring, "Long gaps")
+_MAX_SUBSTEPS = 1024
+
+
+def _n_substeps(span: float) -> float:
+    """ceil(span), at least 1, as a float (exact: from 2**52 up every float is an integer)."""
+    return max(1.0, float(math.ceil(span))) if span < 4503599627370496.0 else span
 
 
 class WangHsuSynapse(Synapse):
@@ -267,29 +297,63 @@ class WangHsuSynapse(Synapse):
         self.recovery_[rows] = z
 
     def _euler(self, y, z, s, tau, dt):
-        n_sub = max(1, math.ceil(dt))
+        n_sub = _n_substeps(dt)
         h = dt / n_sub
-        for _ in range(n_sub):
-            y, z = (
+        long_gap = n_sub > _MAX_SUBSTEPS
+        done = 0
+        while done < n_sub:
+            y_next, z_next = (
                 y + (h / tau) * (self.alpha * z * (self.y0 - y) - self.beta * y * s),
                 z + h * self.gamma * z * (z - self.l) * s,
             )
+            done += 1
+            if long_gap and self._settled(z, z_next, s):
+                rest = n_sub - done
+                c = h / tau
+                rate = c * (self.alpha * z_next + self.beta * s)
+                y_inf = self._level(c * self.alpha * z_next * self.y0, rate, y_next)
+                y_end = y_inf + (y_next - y_inf) * (1.0 - rate) ** rest
+                if not np.array_equal(z, z_next):
+                    z_next = z_next * (1.0 - h * self.gamma * self.l * s) ** rest
+                return y_end, z_next
+            y, z = y_next, z_next
         return y, z
+
+    def _settled(self, z, z_next, s) -> bool:
+        """Whether the rest of a long gap may be done in closed form (module docstring)."""
+        if np.array_equal(z, z_next):
+            return True
+        return self.beta * s > 0 and bool(np.all(self.alpha * z_next <= 2.0**-53 * self.beta * s))
+
+    @staticmethod
+    def _level(recovery, total, y):
+        """y_inf = recovery / total; where total vanishes nothing moves, so y itself."""
+        return np.where(total > 0, recovery / np.where(total > 0, total, 1.0), y)
 
     def _exact(self, y, z, s, tau, dt):
         if dt <= 0:
             return y, z
         coupled = s > 0 and self.beta > 0
-        n_sub = max(1, math.ceil(dt / _EXACT_SUBSTEP - 1e-9)) if coupled else 1
+        n_sub = _n_substeps(dt / _EXACT_SUBSTEP - 1e-9) if coupled else 1.0
         h = dt / n_sub
         b = self.beta * s * h / tau
-        for _ in range(n_sub):
-            z, z_integral = self._recovery_step(z, s, h)
+        long_gap = n_sub > _MAX_SUBSTEPS
+        done = 0
+        while done < n_sub:
+            z_next, z_integral = self._recovery_step(z, s, h)
             a = (self.alpha / tau) * z_integral
             total = a + b
             # total > 0 but for z and b both vanishing, when nothing moves
-            y_inf = np.where(total > 0, self.y0 * a / np.where(total > 0, total, 1.0), y)
+            y_inf = self._level(self.y0 * a, total, y)
             y = y_inf + (y - y_inf) * np.exp(-total)
+            done += 1
+            if long_gap and self._settled(z, z_next, s):
+                rest = n_sub - done
+                y = y_inf + (y - y_inf) * np.exp(-total * rest)
+                if not np.array_equal(z, z_next):
+                    z_next = self._recovery_step(z_next, s, h * rest)[0]
+                return y, z_next
+            z = z_next
         return y, z
 
     def _recovery_step(self, z: np.ndarray, s: float, h: float) -> tuple[np.ndarray, np.ndarray]:
