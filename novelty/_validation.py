@@ -148,11 +148,12 @@ def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray
     try:
         X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
                         ensure_all_finite=False)
-    except ValueError as exc:
+    except (TypeError, ValueError) as exc:
         # numpy's own conversion errors name neither the model nor what it expects
-        if not str(exc).startswith(("could not convert", "setting an array element")):
+        if not str(exc).startswith(("could not convert", "setting an array element", "float() argument")):
             raise
-        raise ValueError(
+        # the same type as numpy's (scikit-learn's checks expect a TypeError for objects)
+        raise type(exc)(
             f"{type(owner).__name__} expects X as a 2-D array of numbers of shape "
             f"(n_samples, n_features); got values that are not numeric ({exc})."
         ) from None

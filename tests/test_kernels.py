@@ -494,3 +494,41 @@ def test_a_som_with_its_own_neighbour_rate_learns_by_the_reference_loop():
     assert _kernels.learner(own.clusterer_, own.synapse_) is None
     np.testing.assert_array_equal(paper.clusterer_.weights_, own.clusterer_.weights_)
     np.testing.assert_array_equal(paper.synapse_.efficacy_, own.synapse_.efficacy_)
+
+
+# ------------------------------------------------- long gaps, extreme scans
+#: elapsed times from one scan to the next: ordinary, just beyond the sub-steps
+#: iterated one by one, a time column in nanoseconds, and far beyond an int64
+GAPS = [1.0, 1.0, 3.5, 1024.0, 1025.0, 1.0, 1e10, 1.0, 1e19, 2.0, 1e300, 1.0]
+
+
+@pytest.mark.parametrize("name", ["hsom", "gng-stanley", "gwr-novelty"])
+@pytest.mark.parametrize("params", [{}, {"synapse__others": "forget"}])
+def test_long_gaps_kernel_equals_reference_and_efficacy_stays_in_range(name, params):
+    X = np.random.default_rng(5).uniform(size=(len(GAPS), 4))
+    timestamps = np.cumsum(GAPS)
+    fast, slow = novelty.make(name, **params), novelty.make(name, **params)
+    _kernels.wait()
+    got = fast.stream(X, timestamps=timestamps)
+    with reference_only():
+        expected = slow.stream(X, timestamps=timestamps)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(fast.synapse_.efficacy_, slow.synapse_.efficacy_)
+    y = fast.synapse_.efficacy_
+    assert np.all((y >= fast.resting_novelty) & (y <= 1.0))
+
+
+@pytest.mark.parametrize("name", ["gwr-novelty", "gng-stanley", "hsom"])
+def test_scans_at_the_norm_bound_kernel_equals_reference(name):
+    X = np.random.default_rng(6).normal(size=(60, 4))
+    X *= 0.99e100 / np.linalg.norm(X, axis=1, keepdims=True)  # as far apart as allowed
+    fast, slow = novelty.make(name), novelty.make(name)
+    _kernels.wait()
+    got = fast.stream(X)
+    with reference_only():
+        expected = slow.stream(X)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(fast.clusterer_.weights_, slow.clusterer_.weights_)
+    assert np.all(np.isfinite(fast.clusterer_.weights_))
+    if name != "hsom":
+        assert_same_network(fast, slow)

@@ -4,6 +4,8 @@ Units are row-major on the grid: unit r * n_columns + c sits at (r, c).
 Hand values use dyadic fractions so that every expected weight is exact.
 """
 
+import tracemalloc
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -344,3 +346,25 @@ def test_neighbour_learning_rate_none_is_the_papers_shared_rate():
 def test_neighbour_learning_rate_out_of_range_is_refused():
     with pytest.raises(ValueError, match="neighbour_learning_rate"):
         SOM(neighbour_learning_rate=1.5).initialize(np.zeros((1, 2)), random_state=0)
+
+
+def test_neighbourhoods_are_the_chebyshev_balls_of_the_grid():
+    som = SOM(n_rows=4, n_columns=7).initialize(np.zeros((1, 1)), random_state=0)
+    pos = som.grid_positions()
+    for radius in range(0, 5):
+        for unit in range(28):
+            cheb = np.abs(pos - pos[unit]).max(axis=1)
+            expected = np.flatnonzero((cheb <= radius) & (np.arange(28) != unit))
+            np.testing.assert_array_equal(som.neighbours_of(unit, radius), expected)
+
+
+def test_a_large_map_needs_memory_in_proportion_to_its_units():
+    tracemalloc.start()
+    try:
+        som = SOM(n_rows=60, n_columns=60).initialize(np.zeros((1, 2)), random_state=0)
+        som.learn_one(np.array([0.5, 0.5]))
+        som._rebuild_scratch()  # what loading a model file runs
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 2_000_000  # 3600 units x 2 features are 58 kB; a unit-by-unit table 100 MB

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from novelty.habituation.stanley import StanleySynapse
+from novelty.habituation.stanley import MAX_EULER_SUBSTEPS, StanleySynapse, euler_steps
 
 NONE = np.empty(0, dtype=np.intp)
 TAU, TAU_N, ALPHA, Y0 = 3.33, 14.3, 1.05, 1.0
@@ -297,3 +297,25 @@ def test_grow_and_shrink_keep_the_others_values(values, n_new, data):
     syn.shrink(np.array(sorted(rows), dtype=np.intp))
     np.testing.assert_array_equal(syn.efficacy_, np.delete(before, rows))
     assert syn.n_units_ == n - len(rows)
+
+
+# ----------------------------------------------------------------- long gaps
+def test_euler_beyond_the_iterated_sub_steps_is_the_loop_in_closed_form():
+    for dt in (MAX_EULER_SUBSTEPS + 1.0, 3000.5):
+        for stimulus, tau in ((1.0, 3.33), (0.0, 14.3), (0.4, 60.0)):
+            n = math.ceil(dt)
+            y = 0.8
+            for _ in range(n):
+                y = y + (dt / n / tau) * (1.05 * (1.0 - y) - stimulus)
+            assert euler_steps(0.8, stimulus, tau, dt, 1.05, 1.0) == pytest.approx(y, rel=1e-13, abs=1e-15)
+
+
+@pytest.mark.parametrize("method", ["euler", "exact"])
+@pytest.mark.parametrize("dt", [1e10, 1e19, 1e300])
+def test_a_long_gap_costs_one_step_and_ends_at_the_fixed_point(method, dt):
+    syn = StanleySynapse(others="forget", method=method).initialize(3)
+    syn.step(0, np.array([1]), 1.0, 5.0)
+    syn.step(0, np.array([1]), 1.0, dt)  # held for dt: habituated fully; unit 2 rests at y0
+    np.testing.assert_allclose(syn.efficacy_, [syn.resting_efficacy, syn.resting_efficacy, 1.0], rtol=1e-15)
+    syn.step(2, NONE, 1.0, dt)  # units 0 and 1 forget for dt: back to y0
+    np.testing.assert_allclose(syn.efficacy_, [1.0, 1.0, syn.resting_efficacy], rtol=1e-15)

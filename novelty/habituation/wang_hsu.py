@@ -144,6 +144,9 @@ __all__ = ["WangHsuSynapse"]
 #: grid of one step of dt = n is that of n steps of dt = 1)
 _EXACT_SUBSTEP = 0.125
 
+#: the least speed of recovery z (the smallest normal float): z never reaches 0
+_Z_FLOOR = np.finfo(float).tiny
+
 #: sub-steps iterated whatever happens; beyond, a long gap ends in closed form
 #: once the state has settled (module docstring, "Long gaps")
 _MAX_SUBSTEPS = 1024
@@ -304,7 +307,9 @@ class WangHsuSynapse(Synapse):
         while done < n_sub:
             y_next, z_next = (
                 y + (h / tau) * (self.alpha * z * (self.y0 - y) - self.beta * y * s),
-                z + h * self.gamma * z * (z - self.l) * s,
+                # z > 0 always (z = 0 is no state a model file may hold): at the
+                # smallest normal float it stops, as in the exact solution
+                np.maximum(z + h * self.gamma * z * (z - self.l) * s, _Z_FLOOR),
             )
             done += 1
             if long_gap and self._settled(z, z_next, s):
@@ -314,7 +319,7 @@ class WangHsuSynapse(Synapse):
                 y_inf = self._level(c * self.alpha * z_next * self.y0, rate, y_next)
                 y_end = y_inf + (y_next - y_inf) * (1.0 - rate) ** rest
                 if not np.array_equal(z, z_next):
-                    z_next = z_next * (1.0 - h * self.gamma * self.l * s) ** rest
+                    z_next = np.maximum(z_next * (1.0 - h * self.gamma * self.l * s) ** rest, _Z_FLOOR)
                 return y_end, z_next
             y, z = y_next, z_next
         return y, z
@@ -369,7 +374,7 @@ class WangHsuSynapse(Synapse):
         with np.errstate(divide="ignore"):  # log(1 - q) = -inf at q = 1 is meant
             d = np.where(x < 0.5, -np.log1p(-np.minimum(x, 0.5)),
                          -np.logaddexp(np.log1p(-q), np.log(q) - k))
-        z_next = np.maximum(z * np.exp(d - k), np.finfo(float).tiny)
+        z_next = np.maximum(z * np.exp(d - k), _Z_FLOOR)
         return z_next, d / (self.gamma * s)
 
     def _check_state(self) -> None:

@@ -17,7 +17,7 @@ from sklearn.base import clone
 
 import novelty
 from novelty._component import StateError
-from novelty.habituation import StanleySynapse, WangHsuSynapse
+from novelty.habituation import StanleySynapse, WangHsuSynapse, wang_hsu
 
 NONE = np.empty(0, dtype=np.intp)
 
@@ -271,3 +271,35 @@ def test_exact_without_habituation_term_is_closed_form():
     syn.step(0, NONE, dt=6.0)
     integral = 6.0 - math.log(0.9 + 0.1 * math.exp(0.05 * 6.0)) / 0.05  # l h - ln(r) / (gamma S)
     assert syn.efficacy_[0] == pytest.approx(1 + (0.2 - 1) * math.exp(-1.05 * integral / 3.33), rel=1e-13)
+
+
+# ----------------------------------------------------------------- long gaps
+def habituated(method: str, others: str = "forget") -> WangHsuSynapse:
+    syn = WangHsuSynapse(method=method, others=others).initialize(3)
+    for _ in range(6):
+        syn.step(0, np.array([1]), 1.0, 1.0)
+    return syn
+
+
+@pytest.mark.parametrize("method, dt", [("euler", 5000.0), ("exact", 1500.0)])
+def test_a_long_gap_ends_in_closed_form_as_the_loop_would(method, dt, monkeypatch):
+    fast, slow = habituated(method), habituated(method)
+    fast.step(0, np.array([1]), 1.0, dt)
+    monkeypatch.setattr(wang_hsu, "_MAX_SUBSTEPS", 10**12)  # every sub-step iterated
+    slow.step(0, np.array([1]), 1.0, dt)
+    # once settled, the closed form is within 2**-53 y0 of the loop (module docstring)
+    np.testing.assert_allclose(fast.efficacy_, slow.efficacy_, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(fast.recovery_, slow.recovery_, rtol=1e-12, atol=1e-15)
+    assert fast.efficacy_[2] == pytest.approx(slow.efficacy_[2], rel=1e-15)  # forgetting at fixed z
+
+
+@pytest.mark.parametrize("method", ["euler", "exact"])
+@pytest.mark.parametrize("dt", [1e10, 1e19, 1e300])
+def test_a_long_gap_finishes_with_a_state_a_model_file_may_hold(method, dt):
+    syn = habituated(method)
+    syn.step(0, np.array([1]), 1.0, dt)
+    assert syn.efficacy_[0] < 1e-15  # held under the stimulus for dt: habituated to 0
+    syn.step(2, NONE, 0.0, dt)
+    assert np.all((syn.efficacy_ >= 0) & (syn.efficacy_ <= syn.y0))
+    assert np.all((syn.recovery_ > 0) & (syn.recovery_ <= syn.l))
+    syn._check_state()  # what loading a model file checks
