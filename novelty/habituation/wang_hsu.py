@@ -79,9 +79,11 @@ rest of the gap is done in closed form:
   itself follows its own closed form (Euler, where ``z - l`` rounds to
   ``-l``: ``z (1 - h gamma l S) ** n``; exact: equation (3) over the rest).
 
-A gap then costs a number of sub-steps that depends on the parameters
-(about ``(ln(1 / (l - z0)) + 37) / (gamma l S)`` sub-steps for ``z`` to fall
-that far: 800 with the defaults), not on its length.
+A gap then costs a number of sub-steps that depends on the parameters, not
+on its length: ``z`` takes about ``(ln(1 / (l - z0)) + 37) / (gamma l S)``
+units of time to fall that far, with the defaults 749 Euler sub-steps or
+6127 exact ones (measured: 0.05 s and 0.6 s for one group of synapses). A
+very small ``gamma`` makes it long.
 
 Defaults
 --------
