@@ -12,9 +12,11 @@ from __future__ import annotations
 import contextlib
 import copy
 import os
+import signal
 import subprocess
 import sys
 import threading
+import time
 import warnings
 
 import numpy as np
@@ -471,6 +473,59 @@ def test_import_novelty_does_not_import_numba():
             "novelty._kernels.wait()\n"
             "assert 'numba' in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def _plant_numba(folder):
+    """A ``numba.py`` in ``folder`` that leaves a mark when imported, then fails the import."""
+    mark = folder / "planted-numba-ran"
+    (folder / "numba.py").write_text(f"open({str(mark)!r}, 'w').close()\nraise ImportError('planted')\n")
+    return mark
+
+
+def _script(tmp_path, code: str):
+    """``code`` as a script file outside the working directory: its folder, not the cwd, leads sys.path."""
+    folder = tmp_path / "script"
+    folder.mkdir()
+    path = folder / "main.py"
+    path.write_text(code)
+    return path
+
+
+def test_the_background_compiler_ignores_the_working_directory(tmp_path):
+    cwd, cache = tmp_path / "cwd", tmp_path / "cold-cache"
+    cwd.mkdir()
+    mark = _plant_numba(cwd)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    # The plant works: a plain child started in that folder runs it.
+    subprocess.run([sys.executable, "-c", "import numba"], cwd=cwd, env=env, capture_output=True)
+    assert mark.exists()
+    mark.unlink()
+    # The library's compiler child does not (a module that imports numba, compiles nothing).
+    script = _script(tmp_path, "from novelty import _kernels\n"
+                               "compiled = _kernels._Compiled('_distances')\n"
+                               "assert compiled.wait(timeout=120) is not None, compiled.error\n")
+    subprocess.run([sys.executable, str(script)], cwd=cwd, env=env, check=True, timeout=180)
+    assert not mark.exists()
+
+
+def test_ctrl_c_while_waiting_at_exit_for_the_compiler_exits_130_quietly(tmp_path):
+    script = _script(tmp_path, "import sys\n"
+                               "from novelty import _kernels\n"
+                               "assert _kernels._Compiled('_som_stanley').get() is None\n"
+                               "print('compiling', flush=True)\n")  # then exit: waits for the compiler
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cold-cache"))
+    proc = subprocess.Popen([sys.executable, str(script)], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert proc.stdout.readline() == "compiling\n"
+        time.sleep(1.0)  # at exit, in the wait; a cold compile takes several seconds
+        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert proc.returncode == 130
+    assert "Traceback" not in err and "Exception ignored" not in err
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")

@@ -26,16 +26,19 @@ call waits for the compiler, a background thread has a child process compile
 the module into the cache (numba's compiler would hold this process's GIL)
 and then loads it from there; meanwhile learning runs the reference loop in small blocks and hands
 over to the kernel, mid-stream, as soon as it is ready (the two give
-identical states, so the hand-over is invisible in the results). The thread
-is not a daemon: a process that ends early waits for it, so that the cache
-gets written. :func:`wait` blocks until the kernels are
-ready (benchmarks, tests). Batch scoring splits large batches across threads
+identical states, so the hand-over is invisible in the results). A process
+that ends early waits for the thread at exit, so that the cache gets written;
+Ctrl-C during that wait stops the compiler and exits quietly with status 130.
+The child runs isolated (``python -I``, in the package's folder): nothing in
+the user's working directory or ``PYTHON*`` variables is imported or read.
+:func:`wait` blocks until the kernels are ready (benchmarks, tests). Batch scoring splits large batches across threads
 (``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel releases the
 GIL.
 """
 
 from __future__ import annotations
 
+import atexit
 import os
 import sys
 import threading
@@ -53,6 +56,10 @@ from ..habituation.stanley import StanleySynapse
 __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
 
+#: what the compiling child runs: ``python -I -c _CHILD module path...``
+_CHILD = "import importlib, sys; sys.path[:0] = sys.argv[2:]; importlib.import_module(sys.argv[1])"
+
+
 class _Compiled:
     """One module of kernels: loaded at once when numba's disk cache holds it, else
     compiled by a child process that a background thread waits for, while the
@@ -65,6 +72,7 @@ class _Compiled:
         self.started = False
         self.thread: threading.Thread | None = None  # the background compiler, if one runs
         self.error: BaseException | None = None  # raised in the thread, warned about here
+        self.child = None  # the compiling child process (a subprocess.Popen), while it runs
 
     def get(self):
         """The module if ready; else start compiling it (once) and return None."""
@@ -92,9 +100,28 @@ class _Compiled:
                 # with a loader thread would cost the caller, so load now.
                 self._compile()
                 return self.get()
-            self.thread = threading.Thread(target=self._compile, name=f"novelty-{self.name}")
+            # A daemon joined at exit by _wait_at_exit, not by the interpreter, which would
+            # report Ctrl-C during that wait as a traceback and exit with status 0.
+            self.thread = threading.Thread(target=self._compile, name=f"novelty-{self.name}",
+                                           daemon=True)
             self.thread.start()
+            atexit.register(self._wait_at_exit)
         return None
+
+    def _wait_at_exit(self) -> None:
+        try:
+            if self.thread is not None:
+                self.thread.join()
+        except KeyboardInterrupt:
+            child = self.child
+            if child is not None and child.poll() is None:
+                child.kill()
+            for stream in (sys.stdout, sys.stderr):
+                try:
+                    stream.flush()
+                except (AttributeError, OSError, ValueError):
+                    pass
+            os._exit(130)  # 128 + SIGINT, as the command line returns for Ctrl-C
 
     def _compile(self) -> None:
         import importlib
@@ -120,25 +147,37 @@ class _Compiled:
                    else [os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__")])
         return any(glob.glob(os.path.join(f, f"{self.name}.*.nbi")) for f in folders)
 
-    @staticmethod
-    def _compile_in_child(name: str) -> None:
+    def _compile_in_child(self, name: str) -> None:
         """Compile in a child process, which leaves the machine code in numba's disk cache.
 
         In a thread of this process numba's compiler holds the GIL for long
         stretches: the main thread, learning with the reference meanwhile, was
         measured 40x slower. A child that fails leaves no cache; the import in
         the thread then compiles after all.
+
+        The child is isolated (``-I``: neither the working directory nor
+        ``PYTHONPATH`` nor user site-packages on its path) and runs in the
+        folder that holds the package; it is given this process's absolute
+        ``sys.path`` entries, so it imports the same numba and novelty that
+        this process will, and never a module that happens to lie in the
+        working directory.
         """
-        import subprocess
+        import subprocess  # a local import: 3 ms of `import novelty` for a cold cache only
 
         if not sys.executable:
             return
         root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-            p for p in (root, os.environ.get("PYTHONPATH")) if p))
-        subprocess.run([sys.executable, "-c", f"import {name}"], env=env, check=False,
-                       stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                       stderr=subprocess.DEVNULL)
+        path = [root] + [p for p in sys.path if p and os.path.isabs(p) and p != root]
+        env = dict(os.environ)
+        if env.get("NUMBA_CACHE_DIR"):  # the child runs elsewhere: a relative folder would move
+            env["NUMBA_CACHE_DIR"] = os.path.abspath(env["NUMBA_CACHE_DIR"])
+        self.child = subprocess.Popen([sys.executable, "-I", "-c", _CHILD, name, *path], cwd=root,
+                                      env=env, stdin=subprocess.DEVNULL,
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            self.child.wait()
+        finally:
+            self.child = None
 
     def wait(self, timeout: float | None = None):
         self.get()
