@@ -101,26 +101,43 @@ class Component(BaseEstimator):
         """Recompute private caches (names starting with ``_``) from the state."""
 
 
+#: the largest count a model file may hold (steps, unit ids): exact in float64, and more than
+#: 28 years of scans at ten million a second
+MAX_COUNT = 2**53
+_INT64 = np.iinfo(np.int64)
+
+
 def check_array_state(owner: Component, name: str, ndim: int, dtype_kind: str = "f",
                       shape: tuple | None = None) -> np.ndarray:
-    """Check one state array read from a file: presence, rank, kind, shape, finiteness."""
+    """Check one state array read from a file: presence, rank, type, shape, finiteness.
+
+    Real arrays must be float64 (what learning computes in; a float16 copy
+    would change every result) and finite; integer arrays must fit int64.
+    """
     value = getattr(owner, name, None)
+    where = f"{type(owner).__name__}.{name}"
     if not isinstance(value, np.ndarray):
         raise StateError(f"{type(owner).__name__} state is missing the array '{name}'.")
     if value.ndim != ndim or value.dtype.kind not in dtype_kind:
-        raise StateError(
-            f"{type(owner).__name__}.{name} must be a {ndim}-D array of kind {dtype_kind!r}; "
-            f"got {value.ndim}-D {value.dtype}."
-        )
+        raise StateError(f"{where} must be a {ndim}-D array of kind {dtype_kind!r}; "
+                         f"got {value.ndim}-D {value.dtype}.")
+    if value.dtype.kind == "f" and value.dtype != np.float64:
+        raise StateError(f"{where} must be a float64 array; got {value.dtype}.")
     if shape is not None and any(s is not None and s != v for s, v in zip(shape, value.shape)):
-        raise StateError(f"{type(owner).__name__}.{name} has shape {value.shape}; expected {shape}.")
+        raise StateError(f"{where} has shape {value.shape}; expected {shape}.")
     if value.dtype.kind == "f" and not np.all(np.isfinite(value)):
-        raise StateError(f"{type(owner).__name__}.{name} contains NaN or infinity.")
+        raise StateError(f"{where} contains NaN or infinity.")
+    if value.dtype.kind in "iu" and value.size and (value.dtype.itemsize > 8 or (
+            value.dtype.kind == "u" and value.dtype.itemsize == 8 and value.max() > _INT64.max)):
+        raise StateError(f"{where} must hold integers within int64.")
     return value
 
 
-def check_int_state(owner: Component, name: str, low: int = 0) -> int:
+def check_int_state(owner: Component, name: str, low: int = 0, high: int = MAX_COUNT) -> int:
+    """Check one integer of the state read from a file: an int in ``[low, high]``."""
     value = getattr(owner, name, None)
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
-        raise StateError(f"{type(owner).__name__}.{name} must be an int >= {low}; got {value!r}.")
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not low <= value <= high:
+        bound = "2**53" if high == MAX_COUNT else str(high)
+        raise StateError(f"{type(owner).__name__}.{name} must be an int in [{low}, {bound}]; "
+                         f"got {value!r}.")
     return int(value)

@@ -342,6 +342,7 @@ class HabituatingFilter(NoveltyDetector):
             raise StateError(f"HabituatingFilter.match_scale_ must be None or a positive number; got {scale!r}.")
         if hasattr(self, "calibration_scans_"):
             check_array_state(self, "calibration_scans_", 2, shape=(None, self.n_features_in_))
+        self.synapse_.check_efficacy(self.stimulus)
 
 
 def hsom(**params) -> HabituatingFilter:

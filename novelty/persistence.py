@@ -14,27 +14,41 @@ Reading uses ``numpy.load(allow_pickle=False)`` and builds classes only from
 the registries, so a crafted file can neither unpickle objects nor import
 arbitrary modules: it can only name components that are already registered.
 Whatever is wrong with a file (not a zip, truncated, newer format, unknown
-names, inconsistent shapes) raises :class:`ModelFileError` and runs nothing.
+names, inconsistent shapes, impossible state) raises :class:`ModelFileError`
+and runs nothing; no other exception escapes :func:`load` for what a file
+holds.
+
+Reading is bounded before anything is read: members must be stored
+uncompressed, as :func:`save` writes them (a compressed member could inflate
+without limit: a zip bomb); each array's declared shape must account for
+exactly the bytes its member holds, so no allocation exceeds the file;
+the metadata is at most :data:`MAX_META_BYTES`; and no more bytes are read
+in all than the file holds (members that overlap are refused). :func:`save`
+reads the file back with the same checks before moving it into place, so no
+file is ever written that :func:`load` refuses.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
-import tempfile
 import zipfile
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ._atomic import write_atomically
 from ._component import Component, StateError
 
-__all__ = ["save", "load", "ModelFileError", "FORMAT", "FORMAT_VERSION"]
+__all__ = ["save", "load", "ModelFileError", "FORMAT", "FORMAT_VERSION", "MAX_META_BYTES"]
 
 FORMAT = "novelty-model"
 FORMAT_VERSION = 1
 _KINDS = ("detector", "clusterer", "synapse")
+#: the largest metadata entry read (a model's is a few kB; feature names can add more)
+MAX_META_BYTES = 64 * 2**20
 
 
 class ModelFileError(ValueError):
@@ -113,7 +127,13 @@ def _encode(component: Component, prefix: str, arrays_out: dict) -> dict:
 
 
 def save(detector: Component, path: str | os.PathLike) -> None:
-    """Write ``detector`` to ``path`` (written whole, then moved into place)."""
+    """Write ``detector`` to ``path``: whole, and only if :func:`load` will read it back.
+
+    The file is written under a temporary name beside ``path``, read back
+    with every check of :func:`load`, then moved into place; a state that
+    would not load (NaN weights, an impossible efficacy) raises
+    :class:`StateError` and leaves ``path`` as it was.
+    """
     from . import __version__
 
     if not hasattr(detector, "n_features_in_"):
@@ -122,16 +142,14 @@ def save(detector: Component, path: str | os.PathLike) -> None:
     root = _encode(detector, "root", arrays)
     meta = {"format": FORMAT, "format_version": FORMAT_VERSION, "novelty_version": __version__, "root": root}
     arrays["meta"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=path.name, suffix=".tmp", dir=path.parent or ".")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            np.savez(fh, **arrays)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+
+    def check(tmp: Path) -> None:
+        try:
+            _read(tmp, "the model")
+        except ModelFileError as exc:
+            raise StateError(f"Not saved to {path}: {exc}") from None
+
+    write_atomically(path, lambda fh: np.savez(fh, **arrays), check=check)
 
 
 # ------------------------------------------------------------------- reading
@@ -202,45 +220,102 @@ def _decode(spec: Any, prefix: str, npz) -> Component:
     return obj
 
 
-def load(path: str | os.PathLike) -> Component:
-    """Read a detector written by :func:`save` (or ``detector.save``)."""
-    with open(path, "rb") as fh:  # FileNotFoundError propagates as it is
+class _Archive:
+    """The members of a model file, each read only after its size and shape are checked."""
+
+    def __init__(self, zf: zipfile.ZipFile, budget: int, name: str):
+        self.zf, self.budget, self.name = zf, budget, name
+        self.members = {info.filename: info for info in zf.infolist()}
+        self.files = [n[:-4] for n in self.members if n.endswith(".npy")]
+
+    def __contains__(self, key: str) -> bool:
+        return f"{key}.npy" in self.members
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        info = self.members[f"{key}.npy"]
+        if info.compress_type != zipfile.ZIP_STORED:
+            raise ModelFileError(f"{self.name}: the entry {key!r} is compressed; model files store "
+                                 "their arrays uncompressed (a compressed entry could inflate without bound).")
+        self.budget -= info.file_size
+        if self.budget < 0:
+            raise ModelFileError(f"{self.name}: its entries claim more bytes than the file holds "
+                                 "(entries overlap).")
+        if key == "meta" and info.file_size > MAX_META_BYTES:
+            raise ModelFileError(f"{self.name}: the metadata entry has {info.file_size} bytes; "
+                                 f"at most {MAX_META_BYTES} are read.")
+        with self.zf.open(info) as fh:
+            version = np.lib.format.read_magic(fh)
+            if version not in ((1, 0), (2, 0)):
+                raise ModelFileError(f"{self.name}: the entry {key!r} has npy format {version}.")
+            read_header = (np.lib.format.read_array_header_1_0 if version == (1, 0)
+                           else np.lib.format.read_array_header_2_0)
+            shape, fortran, dtype = read_header(fh)
+            if dtype.hasobject or dtype.kind not in "biuf" or dtype.fields is not None:
+                raise ModelFileError(f"{self.name}: the entry {key!r} holds {dtype} values; "
+                                     "model files hold plain numbers.")
+            size = info.file_size - fh.tell()
+            declared = math.prod(shape) * dtype.itemsize
+            if declared != size:
+                raise ModelFileError(f"{self.name}: the entry {key!r} declares shape {shape} of "
+                                     f"{dtype} ({declared} bytes) but holds {size} bytes.")
+            data = fh.read(size)  # the archive's CRC is checked at the end
+        array = np.frombuffer(data, dtype=dtype).reshape(shape, order="F" if fortran else "C")
+        return array.astype(dtype.newbyteorder("="), copy=False)
+
+
+def _read_meta(npz: _Archive, name: str) -> dict:
+    if "meta" not in npz:
+        raise ModelFileError(f"{name} has no 'meta' entry; it is not a novelty model file.")
+    raw = npz["meta"]
+    if raw.dtype != np.uint8 or raw.ndim != 1:
+        raise ModelFileError(f"{name}: the 'meta' entry is not JSON text.")
+    meta = json.loads(raw.tobytes().decode("utf-8"))
+    if not isinstance(meta, dict) or meta.get("format") != FORMAT:
+        found = meta.get("format") if isinstance(meta, dict) else None
+        raise ModelFileError(f"{name} is not a novelty model file (format {found!r}).")
+    version = meta.get("format_version")
+    if not isinstance(version, int) or version < 1:
+        raise ModelFileError(f"{name} has an invalid format version {version!r}.")
+    if version > FORMAT_VERSION:
+        raise ModelFileError(
+            f"{name} was written in model format {version} (novelty "
+            f"{meta.get('novelty_version')}); this version reads format {FORMAT_VERSION} "
+            "or older. Upgrade novelty to read it."
+        )
+    return meta
+
+
+def _read(path: str | os.PathLike, name: str) -> Component:
+    """:func:`load`, naming the file ``name`` in messages."""
+    with open(path, "rb") as fh:  # FileNotFoundError and the like propagate as they are
         magic = fh.read(4)
-    if magic == b"\x93NUM":
-        raise ModelFileError(f"{path} is a single numpy array, not a novelty model file.")
-    if magic != b"PK\x03\x04":
-        # np.load would call anything else "pickled data" and suggest allow_pickle
-        raise ModelFileError(f"{path} is not a novelty model file (not an .npz archive).")
-    try:
-        npz = np.load(path, allow_pickle=False)
-    except FileNotFoundError:
-        raise
-    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
-        raise ModelFileError(f"{path} is not a novelty model file ({exc}).") from None
-    if not isinstance(npz, np.lib.npyio.NpzFile):
-        raise ModelFileError(f"{path} is a single numpy array, not a novelty model file.")
-    with npz:
+        if magic == b"\x93NUM":
+            raise ModelFileError(f"{name} is a single numpy array, not a novelty model file.")
+        if magic != b"PK\x03\x04":
+            # np.load would call anything else "pickled data" and suggest allow_pickle
+            raise ModelFileError(f"{name} is not a novelty model file (not an .npz archive).")
         try:
-            if "meta" not in npz.files:
-                raise ModelFileError(f"{path} has no 'meta' entry; it is not a novelty model file.")
-            raw = npz["meta"]
-            if raw.dtype != np.uint8 or raw.ndim != 1:
-                raise ModelFileError(f"{path}: the 'meta' entry is not JSON text.")
-            meta = json.loads(raw.tobytes().decode("utf-8"))
-            if not isinstance(meta, dict) or meta.get("format") != FORMAT:
-                raise ModelFileError(f"{path} is not a novelty model file (format {meta.get('format')!r}).")
-            version = meta.get("format_version")
-            if not isinstance(version, int) or version < 1:
-                raise ModelFileError(f"{path} has an invalid format version {version!r}.")
-            if version > FORMAT_VERSION:
-                raise ModelFileError(
-                    f"{path} was written in model format {version} (novelty "
-                    f"{meta.get('novelty_version')}); this version reads format {FORMAT_VERSION} "
-                    "or older. Upgrade novelty to read it."
-                )
-            return _decode(meta.get("root"), "root", npz)
+            fh.seek(0)
+            with zipfile.ZipFile(fh) as zf:
+                npz = _Archive(zf, os.fstat(fh.fileno()).st_size, name)
+                return _decode(_read_meta(npz, name).get("root"), "root", npz)
         except ModelFileError:
             raise
-        except (StateError, ValueError, TypeError, KeyError, AttributeError, EOFError,
-                zipfile.BadZipFile, UnicodeDecodeError, json.JSONDecodeError, OSError) as exc:
-            raise ModelFileError(f"{path} is not a valid novelty model file: {exc}") from None
+        except RecursionError:
+            raise ModelFileError(f"{name}: its metadata is nested too deeply.") from None
+        except Exception as exc:  # noqa: BLE001 - whatever a damaged file provokes is the file's fault
+            detail = str(exc) if isinstance(exc, StateError) else f"{type(exc).__name__}: {exc}"
+            raise ModelFileError(f"{name} is not a valid novelty model file: {detail}") from None
+
+
+def load(path: str | os.PathLike) -> Component:
+    """Read a detector written by :func:`save` (or ``detector.save``).
+
+    Raises
+    ------
+    ModelFileError
+        For anything wrong with what the file holds (and nothing else does).
+    OSError
+        When the file cannot be opened (``FileNotFoundError``, ...).
+    """
+    return _read(path, str(path))

@@ -1,10 +1,13 @@
 """Model files: exact round trips, the npz + JSON format, and every kind of bad file
 refused with ModelFileError without running anything."""
 
+import io
 import json
 import os
 import pickle
+import stat
 import tempfile
+import tracemalloc
 import zipfile
 from pathlib import Path
 
@@ -351,7 +354,7 @@ def tamper_meta(saved, tmp_path, change):
         (lambda m: m["root"]["params"].update(threshold={"__import__": "os"}), r"Unexpected object"),
         (lambda m: m["root"]["children"]["clusterer_"]["arrays"].append("ghost_"), r"lacks the array"),
         (lambda m: m["root"]["values"].update(n_features_in_=7), r"n_features_in_"),
-        (lambda m: m["root"]["values"].update(n_features_in_=5.0), r"n_features_in_ must be an int >= 1"),
+        (lambda m: m["root"]["values"].update(n_features_in_=5.0), r"n_features_in_ must be an int in \[1, 2\*\*53\]"),
         (lambda m: m["root"]["values"].update(last_time_="abc"), r"last_time_ must be None or a finite number"),
         (lambda m: m["root"]["values"].update(last_time_=[1, 2]), r"last_time_ must be None or a finite number"),
         (lambda m: m["root"]["children"]["clusterer_"]["values"].update(n_updates_=1.5), r"n_updates_ must be an int"),
@@ -502,3 +505,190 @@ def test_contamination_threshold_and_labels_round_trip(tmp_path):
     assert loaded.decision_scores_.tobytes() == det.decision_scores_.tobytes()
     assert loaded.threshold_ == det.threshold_ != det.threshold
     np.testing.assert_array_equal(loaded.labels_, det.labels_)
+
+
+# ------------------------------------------------- reading is bounded in memory
+def peak_mib(fn):
+    """Peak memory traced while ``fn`` runs (numpy's buffers included), in MiB."""
+    tracemalloc.start()
+    try:
+        fn()
+        return tracemalloc.get_traced_memory()[1] / 2**20
+    finally:
+        tracemalloc.stop()
+
+
+def npy_header(shape, dtype="<f8") -> bytes:
+    buffer = io.BytesIO()
+    np.lib.format.write_array_header_1_0(buffer, {"descr": dtype, "fortran_order": False, "shape": shape})
+    return buffer.getvalue()
+
+
+def rewrite_member(path, out, name, write):
+    """``path`` copied to ``out`` with the member ``name`` written by ``write(zip, name)``."""
+    with zipfile.ZipFile(path) as src, zipfile.ZipFile(out, "w") as dst:
+        for info in src.infolist():
+            if info.filename == name:
+                write(dst, name)
+            else:
+                dst.writestr(info, src.read(info))
+    return out
+
+
+def test_a_zip_bomb_is_refused_before_it_is_inflated(saved, tmp_path):
+    _, path = saved
+    shape = (2**21, 5)  # 80 MiB of zeros in a file of about 80 kB
+
+    def bomb_writer(zf, name):
+        info = zipfile.ZipInfo(name)
+        info.compress_type = zipfile.ZIP_DEFLATED
+        with zf.open(info, "w", force_zip64=True) as fh:
+            fh.write(npy_header(shape))
+            zeros = bytes(2**20)
+            for _ in range(shape[0] * shape[1] * 8 // len(zeros)):
+                fh.write(zeros)
+
+    bad = rewrite_member(path, tmp_path / "bomb.npz", "root/clusterer_/weights_.npy", bomb_writer)
+    assert bad.stat().st_size < 200_000
+
+    def load():
+        with pytest.raises(ModelFileError, match="compressed"):
+            novelty.load(bad)
+
+    assert peak_mib(load) < 8
+
+
+@pytest.mark.parametrize("shape", [(10**12, 16), (2**62, 2**62), (12, 10**6)])
+def test_a_declared_shape_larger_than_the_data_is_refused_before_allocation(saved, tmp_path, shape):
+    _, path = saved
+    bad = rewrite_member(path, tmp_path / "big.npz", "root/clusterer_/weights_.npy",
+                         lambda zf, name: zf.writestr(name, npy_header(shape) + bytes(480)))
+
+    def load():
+        with pytest.raises(ModelFileError, match=r"declares shape .* but holds 480 bytes"):
+            novelty.load(bad)
+
+    assert peak_mib(load) < 8
+
+
+@pytest.mark.parametrize("depth", [10_000, 200_000])
+def test_deeply_nested_metadata_is_a_model_file_error(saved, tmp_path, depth):
+    _, path = saved
+    entries = read_entries(path)
+    entries["meta"] = np.frombuffer(b"[" * depth + b"]" * depth, dtype=np.uint8)
+    with pytest.raises(ModelFileError):
+        novelty.load(write_entries(tmp_path / "deep.npz", entries))
+
+
+def central_record(data: bytes, name: str) -> int:
+    """Offset of the central-directory record of member ``name``."""
+    return data.rindex(b"PK\x01\x02", 0, data.rindex(name.encode()))
+
+
+@pytest.mark.parametrize("offset, flip", [(8, 0x01), (6, 0x40), (10, 0x0C)],
+                         ids=["encrypted-flag", "version-needed", "compression-method"])
+def test_damaged_zip_directory_is_a_model_file_error(saved, tmp_path, offset, flip):
+    _, path = saved
+    data = bytearray(path.read_bytes())
+    data[central_record(data, "root/clusterer_/unit_ids_.npy") + offset] ^= flip
+    bad = tmp_path / "flipped.npz"
+    bad.write_bytes(bytes(data))
+    with pytest.raises(ModelFileError):
+        novelty.load(bad)
+
+
+@pytest.mark.parametrize("header", [b"{'descr': '<f8', 'fortran_order': False, 'shape': (12, 5\x00), }",
+                                    b"{'descr': '<f8', 'fortran_order': False, 'shape': (12, 5), ",
+                                    b"{'descr': '<f8', 'fortran_order': False, 'shape': (12 + 5), }",
+                                    b"{'descr': 'O', 'fortran_order': False, 'shape': (12, 5), }"])
+def test_damaged_array_header_is_a_model_file_error(saved, tmp_path, header):
+    _, path = saved
+    with zipfile.ZipFile(path) as zf:
+        data = zf.read("root/clusterer_/weights_.npy")
+    start = data.index(b"{")
+    old = data[start : data.index(b"}") + 1]
+    new = data[:start] + header.ljust(len(old)) + data[start + len(old):]
+    bad = rewrite_member(path, tmp_path / "header.npz", "root/clusterer_/weights_.npy",
+                         lambda zf, name: zf.writestr(name, new))  # the archive is sound, the header not
+    with pytest.raises(ModelFileError):
+        novelty.load(bad)
+
+
+# ---------------------------------------------------------- impossible state
+def tamper_array(saved, tmp_path, entry, value):
+    _, path = saved
+    entries = read_entries(path)
+    entries[entry] = value(entries[entry])
+    return write_entries(tmp_path / "tampered.npz", entries)
+
+
+@pytest.mark.parametrize(
+    "entry, value, message",
+    [
+        ("root/synapse_/efficacy_", lambda e: np.where(np.arange(e.size) == 3, 5.0, e),
+         r"StanleySynapse.efficacy_ must lie in \[0.0476.*, 1\]"),
+        ("root/synapse_/efficacy_", lambda e: np.where(np.arange(e.size) == 0, -1e300, e),
+         r"efficacy_ must lie in"),
+        ("root/clusterer_/weights_", lambda w: w.astype(np.float16), r"weights_ must be a float64 array; got float16"),
+        ("root/synapse_/efficacy_", lambda e: e.astype(np.float32), r"efficacy_ must be a float64 array; got float32"),
+        ("root/clusterer_/unit_ids_", lambda u: u.astype(np.uint64) + np.uint64(2**63),
+         r"unit_ids_ must hold integers within int64"),
+    ],
+)
+def test_impossible_arrays_are_refused(saved, tmp_path, entry, value, message):
+    with pytest.raises(ModelFileError, match=message):
+        novelty.load(tamper_array(saved, tmp_path, entry, value))
+
+
+@pytest.mark.parametrize("field, value", [("n_updates_", 2**64), ("n_updates_", 2**53 + 1),
+                                          ("next_unit_id_", 2**63)])
+def test_counters_beyond_any_run_are_refused(saved, tmp_path, field, value):
+    bad = tamper_meta(saved, tmp_path, lambda m: m["root"]["children"]["clusterer_"]["values"].update(
+        {field: value}))
+    with pytest.raises(ModelFileError, match=rf"{field} must be an int in \[\d+, 2\*\*53\]"):
+        novelty.load(bad)
+
+
+def test_efficacy_range_follows_the_stimulus(tmp_path):
+    """Under a stimulus S, Stanley's efficacy stays in [y0 - S/alpha, y0]: S = 2 reaches below 0."""
+    det = fitted(stimulus=2.0)
+    det.partial_fit(np.tile(det.clusterer_.weights_[:1], (40, 1)))
+    assert det.synapse_.efficacy_.min() < 1 - 1 / 1.05  # below the range of S = 1
+    det.save(tmp_path / "m.npz")
+    assert_identical(det, novelty.load(tmp_path / "m.npz"))
+
+
+def test_gwr_firing_counters_are_checked(tmp_path):
+    det = novelty.make("gwr-novelty").fit(np.random.default_rng(0).uniform(size=(30, 3)))
+    det.save(tmp_path / "m.npz")
+    entries = read_entries(tmp_path / "m.npz")
+    entries["root/clusterer_/firing_/efficacy_"] = entries["root/clusterer_/firing_/efficacy_"] + 2.0
+    with pytest.raises(ModelFileError, match=r"efficacy_ must lie in"):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+# --------------------------------------------------- saving what loads, only
+def test_a_state_that_would_not_load_is_not_saved(tmp_path):
+    path = tmp_path / "m.npz"
+    good = fitted()
+    good.save(path)
+    before = path.read_bytes()
+    bad = fitted()
+    bad.clusterer_.weights_[0, 0] = np.nan
+    with pytest.raises(StateError, match=r"Not saved to .*m.npz.*NaN"):
+        bad.save(path)
+    assert path.read_bytes() == before and os.listdir(tmp_path) == ["m.npz"]
+    bad.clusterer_.weights_[0, 0] = 0.5
+    bad.synapse_.efficacy_[1] = 7.0
+    with pytest.raises(StateError, match=r"efficacy_ must lie in"):
+        bad.save(path)
+    assert path.read_bytes() == before and os.listdir(tmp_path) == ["m.npz"]
+
+
+def test_saved_files_get_the_usual_mode(tmp_path):
+    old = os.umask(0o022)
+    try:
+        fitted().save(tmp_path / "m.npz")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE((tmp_path / "m.npz").stat().st_mode) == 0o644

@@ -337,3 +337,4 @@ class GrowWhenRequired(Clusterer):
         a_t = getattr(self, "activity_threshold_", None)
         if isinstance(a_t, bool) or not isinstance(a_t, numbers.Real) or not 0 <= a_t <= 1:
             raise StateError(f"GrowWhenRequired.activity_threshold_ must be a number in [0, 1]; got {a_t!r}.")
+        firing.check_efficacy(1.0)  # step 10 presents S = 1

@@ -66,6 +66,30 @@ class Synapse(Component):
     def resting_efficacy(self) -> float:
         """The efficacy a synapse settles at under a constant stimulus S = 1."""
 
+    def efficacy_range(self, stimulus: float = 1.0) -> tuple[float, float]:
+        """The interval no efficacy leaves while every stimulus lies in ``[0, stimulus]``.
+
+        A model file whose efficacies lie outside it was tampered with, and is
+        refused (:meth:`check_efficacy`, called by the component that presents
+        the stimulus). A model that bounds its efficacy says so here; the
+        default bounds nothing.
+        """
+        return -np.inf, np.inf
+
+    def check_efficacy(self, stimulus: float = 1.0) -> None:
+        """Raise :class:`StateError` if an efficacy lies outside :meth:`efficacy_range`.
+
+        A relative slack of 1e-9 allows for rounding.
+        """
+        low, high = self.efficacy_range(stimulus)
+        y = self.efficacy_
+        slack = 1e-9 * max(1.0, abs(low) if np.isfinite(low) else 0.0, abs(high) if np.isfinite(high) else 0.0)
+        if y.size and (y.min() < low - slack or y.max() > high + slack):
+            raise StateError(
+                f"{type(self).__name__}.efficacy_ must lie in [{low:.6g}, {high:.6g}] "
+                f"(stimulus {stimulus:g}); it holds values from {y.min():.6g} to {y.max():.6g}."
+            )
+
     # ---------------------------------------------------------------- the bank
     def initialize(self, n_units: int) -> "Synapse":
         """Validate the parameters and create ``n_units`` unhabituated synapses."""

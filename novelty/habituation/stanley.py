@@ -172,6 +172,11 @@ class StanleySynapse(Synapse):
     def resting_efficacy(self) -> float:
         return float(self.y0 - 1.0 / self.alpha)
 
+    def efficacy_range(self, stimulus: float = 1.0) -> tuple[float, float]:
+        """``[y0 - stimulus / alpha, y0]``: each step moves ``y`` towards ``y_inf`` without
+        passing it (equation 2, or equation 3 with ``h / tau * alpha <= 1``)."""
+        return float(self.y0 - stimulus / self.alpha), float(self.y0)
+
     def _fresh(self, n: int) -> dict[str, np.ndarray]:
         return {"efficacy_": np.full(n, float(self.y0))}
 

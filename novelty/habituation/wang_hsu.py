@@ -379,6 +379,13 @@ class WangHsuSynapse(Synapse):
         z_next = np.maximum(z * np.exp(d - k), _Z_FLOOR)
         return z_next, d / (self.gamma * s)
 
+    def efficacy_range(self, stimulus: float = 1.0) -> tuple[float, float]:
+        """``[0, y0]``: ``y`` relaxes towards ``y0 A / (A + B)``, which lies in it. The
+        Euler step keeps to it for stimuli up to 1 only (see ``_validate_params``)."""
+        if self.method == "euler" and stimulus > 1:
+            return super().efficacy_range(stimulus)
+        return 0.0, float(self.y0)
+
     def _check_state(self) -> None:
         super()._check_state()
         z = self.recovery_
