@@ -515,7 +515,9 @@ def test_ctrl_c_while_waiting_at_exit_for_the_compiler_exits_130_quietly(tmp_pat
                                "print('compiling', flush=True)\n")  # then exit: waits for the compiler
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cold-cache"))
     proc = subprocess.Popen([sys.executable, str(script)], env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            # a run in the background ignores SIGINT, and children inherit that
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         assert proc.stdout.readline() == "compiling\n"
         time.sleep(1.0)  # at exit, in the wait; a cold compile takes several seconds
