@@ -197,3 +197,12 @@ def test_the_console_command_in_a_subprocess(tmp_path):
     assert bad.returncode == 2
     assert len(bad.stderr.strip().splitlines()) == 1
     assert bad.stderr.startswith("novelty run: error: Unknown detector 'hsomm'. Did you mean 'hsom'")
+
+
+def test_a_damaged_model_file_is_a_user_error(scans, tmp_path, capsys):
+    path, X = scans
+    model = tmp_path / "deep.npz"
+    meta = np.frombuffer(b"[" * 100_000 + b"]" * 100_000, dtype=np.uint8)
+    np.savez(model, meta=meta)  # metadata nested beyond any parser's recursion
+    assert main(["score", "--model", str(model), "--data", str(path)]) == 2
+    assert "nested too deeply" in one_error_line(capsys)

@@ -7,13 +7,14 @@ import os
 import pickle
 import stat
 import tempfile
+import time
 import tracemalloc
 import zipfile
 from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import novelty
@@ -692,3 +693,165 @@ def test_saved_files_get_the_usual_mode(tmp_path):
     finally:
         os.umask(old)
     assert stat.S_IMODE((tmp_path / "m.npz").stat().st_mode) == 0o644
+
+
+# --------------------------------------------------------------------- fuzz
+#: cheap settings for the detectors that are slow to fit; the others keep their defaults
+_FAST = {"autoencoder-filter": {"max_iter": 20}, "gmm": {"n_components": 2},
+         "isolation-forest": {"n_estimators": 10}}
+CORRUPTIONS = ("bit flips", "header bit flips", "truncation", "random bytes", "member swap",
+               "json edit", "array edit")
+
+
+def header_offsets(data: bytes) -> list[int]:
+    """Offsets of the zip records and npy headers, where a flipped bit changes how a file is read."""
+    offsets = []
+    for magic, length in ((b"PK\x03\x04", 30), (b"PK\x01\x02", 46), (b"PK\x05\x06", 22),
+                          (b"\x93NUMPY", 128)):
+        start = data.find(magic)
+        while start >= 0:
+            offsets.extend(range(start, min(start + length, len(data))))
+            start = data.find(magic, start + 1)
+    return offsets
+
+
+@pytest.fixture(scope="module")
+def every_saved_model(tmp_path_factory):
+    """One saved model of every registered detector: {name: file bytes}."""
+    from novelty.registry import detectors
+
+    folder = tmp_path_factory.mktemp("models")
+    X = np.random.default_rng(0).uniform(size=(40, 3))
+    files = {}
+    for name in sorted(detectors):
+        path = folder / f"{name}.npz"
+        novelty.make(name, **_FAST.get(name, {})).fit(X).save(path)
+        files[name] = path.read_bytes()
+    return files
+
+
+def json_values():
+    scalars = (st.none() | st.booleans() | st.integers(-2**70, 2**70) | st.text(max_size=8)
+               | st.floats(allow_nan=True, allow_infinity=True) | st.sampled_from([0, -1, 2**63, 1e308]))
+    return st.recursive(scalars, lambda inner: st.lists(inner, max_size=3)
+                        | st.dictionaries(st.text(max_size=6), inner, max_size=3), max_leaves=6)
+
+
+def json_paths(node, path=()):
+    yield path
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for key, child in items:
+        yield from json_paths(child, path + (key,))
+
+
+def edit_json(meta, path, value, delete):
+    if not path:
+        return value
+    parent = meta
+    for key in path[:-1]:
+        parent = parent[key]
+    if delete and isinstance(parent, dict):
+        del parent[path[-1]]
+    else:
+        parent[path[-1]] = value
+    return meta
+
+
+def random_array(draw):
+    dtype = draw(st.sampled_from(["<f8", ">f8", "<f4", "<f2", "<i8", "<i4", "<u8", "|u1", "|b1"]))
+    shape = tuple(draw(st.lists(st.integers(0, 6), max_size=3)))
+    raw = draw(st.binary(min_size=int(np.prod(shape)) * np.dtype(dtype).itemsize,
+                         max_size=int(np.prod(shape)) * np.dtype(dtype).itemsize))
+    return np.frombuffer(raw, dtype=dtype).reshape(shape)
+
+
+def rebuild(data: bytes, change) -> bytes:
+    """The archive ``data`` with its members' contents changed by ``change(dict of name: bytes)``."""
+    with zipfile.ZipFile(io.BytesIO(data)) as zf:
+        members = {info.filename: zf.read(info) for info in zf.infolist()}
+    change(members)
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w") as zf:
+        for name, content in members.items():
+            zf.writestr(name, content)
+    return out.getvalue()
+
+
+def npy_bytes(array) -> bytes:
+    buffer = io.BytesIO()
+    np.lib.format.write_array(buffer, array, allow_pickle=False)
+    return buffer.getvalue()
+
+
+@st.composite
+def corruptions(draw, files):
+    name = draw(st.sampled_from(sorted(files)))
+    data = files[name]
+    kind = draw(st.sampled_from(CORRUPTIONS))
+    if kind == "bit flips":
+        out = bytearray(data)
+        for i in draw(st.lists(st.integers(0, len(data) * 8 - 1), min_size=1, max_size=8)):
+            out[i // 8] ^= 1 << (i % 8)
+        return name, kind, bytes(out)
+    if kind == "header bit flips":
+        out = bytearray(data)
+        for i in draw(st.lists(st.sampled_from(header_offsets(data)), min_size=1, max_size=3)):
+            out[i] ^= 1 << draw(st.integers(0, 7))
+        return name, kind, bytes(out)
+    if kind == "truncation":
+        return name, kind, data[: draw(st.integers(0, len(data) - 1))]
+    if kind == "random bytes":
+        start = draw(st.integers(0, len(data) - 1))
+        junk = draw(st.binary(min_size=1, max_size=64))
+        return name, kind, data[:start] + junk + data[start + len(junk):]
+    with zipfile.ZipFile(io.BytesIO(data)) as zf:
+        names = zf.namelist()
+    if kind == "member swap":
+        a, b = draw(st.lists(st.sampled_from(names), min_size=2, max_size=2, unique=True))
+
+        def swap(members):
+            members[a], members[b] = members[b], members[a]
+        return name, kind, rebuild(data, swap)
+    if kind == "array edit":
+        target = draw(st.sampled_from([n for n in names if n != "meta.npy"]))
+        array = random_array(draw)
+        return name, kind, rebuild(data, lambda members: members.update({target: npy_bytes(array)}))
+    with zipfile.ZipFile(io.BytesIO(data)) as zf, zf.open("meta.npy") as fh:
+        meta = json.loads(np.lib.format.read_array(fh).tobytes())
+    path = draw(st.sampled_from(list(json_paths(meta))))
+    depth = draw(st.sampled_from([0, 0, 0, 50, 5_000, 100_000]))  # a value nested this deep
+    value = "<deep>" if depth else draw(json_values())
+    meta = edit_json(meta, path, value, draw(st.booleans()))
+    text = json.dumps(meta).replace('"<deep>"', "[" * depth + "]" * depth)
+    text = np.frombuffer(text.encode(), dtype=np.uint8)
+    return name, kind, rebuild(data, lambda members: members.update({"meta.npy": npy_bytes(text)}))
+
+
+def test_corrupted_model_files_give_only_model_file_error(every_saved_model, tmp_path):
+    """Random damage to a saved model of every registered detector: ModelFileError, or a model
+    that works (scores finite novelty on new data and saves again)."""
+    counts: dict = {}
+    X = np.random.default_rng(1).uniform(size=(20, 3))
+
+    @settings(max_examples=400, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(corruptions(every_saved_model))
+    def damaged(case):
+        name, kind, data = case
+        path = tmp_path / "damaged.npz"
+        path.write_bytes(data)
+        try:
+            model = novelty.load(path)
+        except ModelFileError:
+            outcome = "refused"
+        else:
+            outcome = "loaded"
+            assert np.all(np.isfinite(model.novelty(X))), (name, kind)
+            model.save(tmp_path / "again.npz")
+        counts[kind, outcome] = counts.get((kind, outcome), 0) + 1
+
+    start = time.perf_counter()
+    damaged()
+    elapsed = time.perf_counter() - start
+    print(f"\nmodel-file fuzz: {sum(counts.values())} files in {elapsed:.1f} s: "
+          + ", ".join(f"{k} {o} {n}" for (k, o), n in sorted(counts.items())))
+    assert {kind for kind, _ in counts} == set(CORRUPTIONS)
