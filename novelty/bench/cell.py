@@ -50,7 +50,7 @@ from . import metrics, river
 from .prequential import evaluate_exploration
 from .suite import Cell
 
-__all__ = ["run_cell", "train_detector", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
+__all__ = ["run_cell", "train_detector", "failed_row", "CellError", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
 
 #: columns that depend only on the cell: identical across backends and reruns
 METRIC_COLUMNS = [
@@ -196,9 +196,13 @@ def _evaluate(cell: Cell) -> tuple[dict, dict]:
     novelty = np.asarray(det.novelty(test.X), dtype=np.float64)
     score_time = time.perf_counter() - start
 
-    threshold = metrics.training_threshold(det.novelty(train.X), cell.threshold)
+    _check_finite(novelty, "test scans")
+    train_novelty = np.asarray(det.novelty(train.X), dtype=np.float64)
+    _check_finite(train_novelty, "training scans")
+    threshold = metrics.training_threshold(train_novelty, cell.threshold)
     clean, source = _clean_pass(data, test, y)
-    alarm_scores = det.novelty(clean) if clean is not None else novelty[~y]
+    alarm_scores = np.asarray(det.novelty(clean), dtype=np.float64) if clean is not None else novelty[~y]
+    _check_finite(alarm_scores, "clean-pass scans")
     resting = _resting(det)
     row = {
         "n_train": len(train), "n_test": len(test), "n_novel": int(y.sum()), "train_passes": passes,
@@ -228,6 +232,22 @@ def _evaluate(cell: Cell) -> tuple[dict, dict]:
     if test.run is not None:
         arrays["run"] = np.asarray(test.run)
     return row, arrays
+
+
+def _check_finite(scores: np.ndarray, what: str) -> None:
+    """A NaN or infinite score ranks nowhere: the cell fails rather than count on its other scans."""
+    bad = int(np.count_nonzero(~np.isfinite(scores)))
+    if bad:
+        raise CellError(f"the detector scored {bad} of {scores.size} {what} NaN or infinite")
+
+
+class CellError(ValueError):
+    """A cell that ran but whose result cannot be used (reported without a source location)."""
+
+
+def failed_row(cell: Cell, error: str) -> tuple[dict, dict]:
+    """The row of a cell that failed outside :func:`run_cell` (a dead worker, a timeout)."""
+    return {**cell_header(cell), "status": "error", "error": error, "warnings": ""}, {}
 
 
 def _peak_memory(cell: Cell, X_train: np.ndarray, passes: int, X_test: np.ndarray) -> float:
@@ -266,9 +286,10 @@ def cell_header(cell: Cell) -> dict:
 def run_cell(cell: Cell) -> tuple[dict, dict]:
     """Run one cell; return its results row and its per-scan arrays (for plots).
 
-    Never raises for a failure inside the cell: the row then has
+    Never raises for a failure inside the cell (any exception, ``SystemExit``
+    included; ``KeyboardInterrupt`` stops the run): the row then has
     ``status = "error"`` and ``error`` (the exception, one line), and the
-    arrays are empty.
+    arrays are empty. A cell whose scores include NaN or infinity fails.
     """
     from threadpoolctl import threadpool_limits
 
@@ -283,9 +304,12 @@ def run_cell(cell: Cell) -> tuple[dict, dict]:
                 values, arrays = _evaluate(cell)
             row.update(values)
             row["status"], row["error"] = "ok", ""
-        except Exception as exc:  # noqa: BLE001 - a failing cell is a result, not a crash
+        except KeyboardInterrupt:
+            raise
+        except BaseException as exc:  # noqa: BLE001 - a failing cell is a result, not a crash
             frame = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
-            where = f" (at {frame.filename.rsplit('/', 1)[-1]}:{frame.lineno})" if frame else ""
+            where = (f" (at {frame.filename.rsplit('/', 1)[-1]}:{frame.lineno})"
+                     if frame and not isinstance(exc, CellError) else "")
             message = " ".join(str(exc).split())
             row["status"], row["error"] = "error", f"{type(exc).__name__}: {message}{where}"
     messages = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))

@@ -6,10 +6,18 @@ record. A cell whose ``cell_id`` is there with ``status = "ok"`` is not run
 again; a failed cell is run again (its new line supersedes the old one).
 ``results.csv`` is rewritten from it after every run. The novelty of every
 test scan of a cell goes to ``cells/<cell_id>.npz`` for the plots.
+
+One run at a time writes to a folder: a run holds ``.lock`` (an advisory
+``flock``, released by the system when the process ends, however it ends;
+the file names the holder's pid) and a second run into the same folder
+refuses to start (:class:`OutputBusyError`) rather than compute every cell
+twice. Files are written under unique temporary names and renamed into
+place, so a reader never sees a part of one.
 """
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 import math
@@ -25,7 +33,9 @@ from typing import Iterable
 
 import numpy as np
 
-__all__ = ["ResultsStore", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_CSV"]
+from .._atomic import write_atomically
+
+__all__ = ["ResultsStore", "OutputBusyError", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_CSV"]
 
 RESULTS_JSONL = "results.jsonl"
 RESULTS_CSV = "results.csv"
@@ -127,6 +137,10 @@ def read_rows(path) -> list[dict]:
     return list(rows.values())
 
 
+class OutputBusyError(OSError):
+    """Another run is writing to the same output folder."""
+
+
 class ResultsStore:
     """The output folder of a benchmark run."""
 
@@ -141,6 +155,36 @@ class ResultsStore:
             raise FileExistsError(f"--out {self.out} exists and is not a folder.")
         self.cells_dir.mkdir(parents=True, exist_ok=True)
 
+    @contextlib.contextmanager
+    def lock(self):
+        """Hold the folder for this run; :class:`OutputBusyError` if another run holds it."""
+        try:
+            import fcntl
+        except ImportError:  # not POSIX: no lock
+            yield
+            return
+        path = self.out / ".lock"
+        with open(path, "a+", encoding="utf-8") as fh:
+            try:
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except BlockingIOError:
+                fh.seek(0)
+                holder = fh.read().strip() or "unknown"
+                raise OutputBusyError(
+                    f"Another novelty bench (pid {holder}) is writing to {self.out}; wait for it "
+                    "to finish, or give another --out."
+                ) from None
+            fh.seek(0)
+            fh.truncate()
+            fh.write(f"{os.getpid()}\n")
+            fh.flush()
+            try:
+                yield
+            finally:
+                fh.seek(0)
+                fh.truncate()
+                fcntl.flock(fh, fcntl.LOCK_UN)
+
     def rows(self) -> list[dict]:
         return read_rows(self.jsonl)
 
@@ -150,7 +194,7 @@ class ResultsStore:
 
     def append(self, row: dict, arrays: dict | None = None) -> None:
         if arrays:
-            np.savez(self.cells_dir / f"{row['cell_id']}.npz", **arrays)
+            write_atomically(self.cells_dir / f"{row['cell_id']}.npz", lambda fh: np.savez(fh, **arrays))
         torn = self._ends_torn()
         with open(self.jsonl, "a", encoding="utf-8") as fh:
             if torn:  # an interrupted write: keep the new row on a line of its own
@@ -178,11 +222,11 @@ class ResultsStore:
         columns: list[str] = []
         for row in rows:
             columns.extend(k for k in row if k not in columns)
-        tmp = self.csv.with_suffix(".csv.tmp")
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+
+        def write(fh) -> None:
             writer = csv.DictWriter(fh, fieldnames=columns, restval="")
             writer.writeheader()
             for row in rows:
                 writer.writerow({k: "" if v is None else v for k, v in row.items()})
-        os.replace(tmp, self.csv)
-        return self.csv
+
+        return write_atomically(self.csv, write, text=True)

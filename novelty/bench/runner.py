@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TextIO
 
 from ..exploration.summary import exploration_markdown, exploration_text
+from .._atomic import write_atomically
 from .backends import execute
 from .progress import Progress
 from .results import ResultsStore, provenance
@@ -45,6 +46,8 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     """Run ``suite`` into the folder ``out`` and return a :class:`BenchReport`.
 
     Cells already finished in ``out/results.jsonl`` are skipped (resume).
+    The run holds ``out`` (:meth:`ResultsStore.lock`): a second run into
+    the same folder raises :class:`~novelty.bench.results.OutputBusyError`.
     ``backend`` is ``"serial"``, ``"joblib"`` (``jobs`` processes) or
     ``"dask"`` (the scheduler at ``scheduler``, or a local cluster of ``jobs``
     workers; or an existing ``client``). ``command``, the command line that
@@ -52,6 +55,12 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     """
     store = ResultsStore(out)
     store.prepare()
+    with store.lock():
+        return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client)
+
+
+def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: str | None,
+         plots: bool, progress: TextIO | None, quiet: bool, client) -> BenchReport:
     cells = list({c.id: c for c in suite.cells()}.values())
     done = store.done()
     todo = [c for c in cells if c.id not in done]
@@ -84,7 +93,7 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     if suite.protocol == "exploration":
         text += "\n".join(exploration_markdown(report.rows)) + "\n"
         report.exploration = exploration_text(report.rows)
-    summary.write_text(text, encoding="utf-8")
+    write_atomically(summary, lambda fh: fh.write(text), text=True)
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
         from ..exploration.plots import plot_exploration

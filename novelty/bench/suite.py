@@ -16,6 +16,8 @@ The TOML form::
                            # default: the detector ranked first
     protocol = "holdout"   # or "exploration": every scan scored, then learned, in order
                            # (novelty.bench.prequential)
+    cell_timeout = 600     # optional: seconds a cell may run before it is stopped and
+                           # recorded as failed (cells then run in worker processes)
 
     [[detectors]]
     name = "hsom"                               # registry name
@@ -167,6 +169,8 @@ class Cell:
     memory: bool = True
     #: "holdout" (train, freeze, score) or "exploration" (:mod:`novelty.bench.prequential`)
     protocol: str = "holdout"
+    #: seconds the cell may run (None: no limit); not part of what it computes, nor of its id
+    timeout: float | None = None
     #: registry objects the parent process resolved, so that worker processes
     #: know names registered at run time: ((kind, name, object), ...)
     components: tuple = ()
@@ -203,13 +207,14 @@ class Suite:
     skipped: list[str] = field(default_factory=list)  # optional entries not registered
     reference: str | None = None  # label of the detector the others are paired with
     protocol: str = "holdout"
+    cell_timeout: float | None = None  # seconds; None: no limit
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)
         return [
             Cell(d, t, s, self.threshold,
                  self.memory is True or (self.memory == "first-seed" and s == self.seeds[0]),
-                 self.protocol, components)
+                 self.protocol, self.cell_timeout, components)
             for t in self.tasks
             for d in self.detectors
             for s in self.seeds
@@ -229,6 +234,10 @@ class Suite:
         _check_threshold(self.threshold)
         if self.protocol not in PROTOCOLS:
             raise SuiteError(f"Unknown protocol {self.protocol!r}; expected one of {', '.join(PROTOCOLS)}.")
+        timeout = self.cell_timeout
+        if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+                                    or not 0 < timeout < float("inf")):
+            raise SuiteError(f"cell_timeout must be a positive number of seconds; got {timeout!r}.")
         labels = [d.label for d in self.detectors]
         dupes = sorted({x for x in labels if labels.count(x) > 1})
         if dupes:
@@ -454,7 +463,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
     _known_keys(data, {"suite", "detectors", "tasks"}, source)
     head = _table(data.get("suite"), f"{source}: [suite]")
     _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference",
-                       "protocol"},
+                       "protocol", "cell_timeout"},
                 f"{source}: [suite]")
     seeds = head.get("seeds", [0])
     if isinstance(seeds, int) and not isinstance(seeds, bool):
@@ -498,7 +507,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
         raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
     suite = Suite(detectors, tasks, list(seeds), str(head.get("name", source)),
                   head.get("threshold", "max"), memory, skipped, reference,
-                  head.get("protocol", "holdout"))
+                  head.get("protocol", "holdout"), head.get("cell_timeout"))
     return suite.check()
 
 

@@ -17,7 +17,9 @@ results.csv and results.jsonl (one row a cell, with provenance), summary.md
 (the ranking, each detector paired with a reference detector cell by cell,
 ranks per task, Friedman and Wilcoxon-Holm tests, the command and versions)
 and plots/ (with a critical-difference diagram). Rerunning the same command
-resumes: finished cells are skipped. A suite is a TOML file (see
+resumes: finished cells are skipped. A cell that fails -- an error, a worker
+process that dies, a cell past --cell-timeout -- is recorded as failed and
+the run goes on; a rerun tries failed cells again. A suite is a TOML file (see
 benchmarks/suites/ in the source tree), the embedded --quick suite, or
 --detector/--task options. Your own scans are the task 'files' (--task 'files
 path=scans.csv ...' or a suite's [[tasks]] path = "scans.csv"; see 'novelty
@@ -71,6 +73,9 @@ def add_parser(subparsers):
                         "(default: serial, joblib with --jobs > 1, dask with --scheduler)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="Dask scheduler address (default with --backend dask: a local cluster)")
+    parser.add_argument("--cell-timeout", type=float, metavar="SECONDS",
+                        help="stop a cell that runs longer and record it as failed (cells then run "
+                        "in worker processes, serial runs in one); overrides the suite's cell_timeout")
     parser.add_argument("--no-plots", action="store_true", help="do not draw plots")
     parser.add_argument("--no-memory", action="store_true",
                         help="skip the peak-memory measurement (a second, traced run of each cell)")
@@ -119,6 +124,8 @@ def build_suite(args):
         suite.memory = False
     if args.reference:
         suite.reference = args.reference
+    if args.cell_timeout is not None:
+        suite.cell_timeout = args.cell_timeout
     return suite.check()
 
 
