@@ -283,13 +283,20 @@ def check_detector(spec: DetectorSpec):
 
 
 def _validate_tree(component) -> None:
-    """Run the parameter checks of a component and of the components it holds."""
+    """Run the parameter checks of a component and of the components it holds.
+
+    A ``random_state`` is checked here too (estimators check it only when
+    they fit, which would fail every cell): None or an int seed.
+    """
     validate = getattr(component, "_validate_params", None)
     if validate is not None:
         validate()
     get_params = getattr(component, "get_params", None)
     if get_params is not None:
-        for value in get_params(deep=False).values():
+        for key, value in get_params(deep=False).items():
+            if key == "random_state" and value is not None and (
+                    isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**32):
+                raise ValueError(f"random_state must be None or an int seed in [0, 2**32); got {value!r}.")
             if hasattr(value, "_validate_params"):
                 _validate_tree(value)
 
@@ -373,6 +380,9 @@ def _read_toml(path: Path) -> dict:
         raise SuiteError(f"Suite file {path} is a directory.") from None
     except tomllib.TOMLDecodeError as exc:
         raise SuiteError(f"Suite file {path} is not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise SuiteError(f"Suite file {path} is not UTF-8 text ({exc.reason}); "
+                         "save it as UTF-8.") from None
 
 
 def _table(value: Any, where: str) -> dict:
@@ -396,6 +406,13 @@ def _known_keys(entry: dict, allowed: set[str], where: str) -> None:
         raise SuiteError(f"{where}: unknown key {unknown[0]!r}; expected {', '.join(sorted(allowed))}.")
 
 
+def _label(entry: dict, name: str, where: str) -> str:
+    label = entry.get("label", name)
+    if not isinstance(label, str) or not label.strip():
+        raise SuiteError(f"{where}: label must be a non-empty string; got {label!r}.")
+    return label
+
+
 def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     _known_keys(entry, {"name", "params", "grid", "label", "optional", "policy"}, where)
     name = entry.get("name")
@@ -404,7 +421,7 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     params = _table(entry.get("params"), f"{where}: params")
     grid = _table(entry.get("grid"), f"{where}: grid")
     policy = entry.get("policy", "")
-    label = entry.get("label", f"{name} ({policy})" if policy else name)
+    label = _label(entry, f"{name} ({policy})" if policy else name, where)
     for key, values in grid.items():
         if not isinstance(values, list) or not values:
             raise SuiteError(f"{where}: grid value of {key!r} must be a non-empty array.")
@@ -498,7 +515,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
         options = _table(entry.get("options"), f"{where}: options")
         if name == FILES_TASK:
             options = _resolved(options, base)
-        tasks.append(TaskSpec(name, options, entry.get("label", name)))
+        tasks.append(TaskSpec(name, options, _label(entry, name, where)))
     memory = head.get("memory", True)
     if not isinstance(memory, bool) and memory != "first-seed":
         raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")

@@ -72,8 +72,19 @@ class Table:
 
 # ------------------------------------------------------------------ reading
 def header_of(first_row: Sequence[str]) -> list[str] | None:
-    """The column names if ``first_row`` is a header (not all numbers), else ``None``."""
-    if all(_is_float(c) for c in first_row):
+    """The column names if ``first_row`` is a header, else ``None``.
+
+    A header is a row of names: at least half of its cells are not numbers,
+    or the numbers in it are column positions (``,0,1,2`` as pandas writes
+    integer column names). A row of numbers with a few bad cells is data,
+    and its bad cells are reported, rather than taken as names (which would
+    silently drop a scan).
+    """
+    numbers = [c for c in first_row if _is_float(c)]
+    if len(numbers) == len(first_row):
+        return None
+    if 2 * len(numbers) > len(first_row) and not all(
+            c.strip().isdigit() and int(c) < len(first_row) for c in numbers):
         return None
     return [c.strip() for c in first_row]
 
@@ -86,11 +97,20 @@ def _column(cells: list[str]) -> np.ndarray:
 
 
 def _read_csv(path: Path) -> Table:
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path} is not UTF-8 text ({exc.reason}); "
+                         "save it as UTF-8.") from None
     if not rows:
         raise ValueError(f"{path} is empty.")
     header = header_of(rows[0])
+    if header is None:  # no names: every column is a sensor, every cell a number
+        for j, cell in enumerate(rows[0]):
+            if not _is_float(cell):
+                raise ValueError(f"{path}, line 1: column {j + 1} holds {cell.strip()!r}, which is "
+                                 "not a number (and too few of the row's cells are names for a header).")
     body = rows[1:] if header else rows
     if not body:
         raise ValueError(f"{path} has a header but no scans.")

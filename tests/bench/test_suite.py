@@ -191,3 +191,27 @@ options = { path = "data/scans.csv", train_rows = 2 }
 def test_a_files_task_without_its_file_is_refused_before_running(tmp_path, task, message):
     with pytest.raises(SuiteError, match=message):
         load_suite(write(tmp_path, f'[[detectors]]\nname = "hsom"\n[[tasks]]\n{task}\n'))
+
+
+@pytest.mark.parametrize("entry, message", [
+    ('[[detectors]]\nname = "hsom"\nlabel = 5\n[[tasks]]\nname = "inspection-easy"\n',
+     r"suite.toml: detectors\[0\]: label must be a non-empty string; got 5"),
+    ('[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "inspection-easy"\nlabel = ["a"]\n',
+     r"suite.toml: tasks\[0\]: label must be a non-empty string; got \['a'\]"),
+    ('[[detectors]]\nname = "hsom"\nparams = { random_state = "abc" }\n[[tasks]]\nname = "inspection-easy"\n',
+     r"Detector 'hsom': random_state must be None or an int seed in \[0, 2\*\*32\); got 'abc'"),
+    ('[[detectors]]\nname = "gng-stanley"\nparams = { random_state = -1 }\n'
+     '[[tasks]]\nname = "inspection-easy"\n', r"random_state must be None or an int seed"),
+    ('[suite]\ncell_timeout = 0\n[[detectors]]\nname = "hsom"\n[[tasks]]\nname = "inspection-easy"\n',
+     r"cell_timeout must be a positive number of seconds; got 0"),
+])
+def test_bad_fields_are_named(tmp_path, entry, message):
+    with pytest.raises(SuiteError, match=message):
+        load_suite(write(tmp_path, entry))
+
+
+def test_a_suite_file_that_is_not_utf8_is_named(tmp_path):
+    path = tmp_path / "suite.toml"
+    path.write_bytes(b'[[detectors]]\nname = "h\xffsom"\n')
+    with pytest.raises(SuiteError, match=rf"Suite file {path} is not UTF-8 text"):
+        load_suite(path)

@@ -157,3 +157,24 @@ def test_the_files_task_refuses_what_it_cannot_split(table, kwargs, message):
 def test_the_files_task_is_registered(table):
     task = load("files", path=str(table), columns="a,b", label="novel", train_rows=4)
     assert task.name == "files" and len(task.train()) == 4
+
+
+def test_a_first_row_with_one_bad_cell_is_not_taken_as_a_header(tmp_path):
+    path = tmp_path / "scans.csv"
+    path.write_text("0.1,abc,0.3\n0.2,0.5,0.6\n0.3,0.4,0.1\n")
+    with pytest.raises(ValueError, match=rf"{path}, line 1: column 2 holds 'abc', which is not a number"):
+        read_scans(path)
+
+
+@pytest.mark.parametrize("first_row", ["s0,s1,s2", ",0,1", "time,0,1"])  # pandas writes the last two
+def test_a_header_is_still_a_header(tmp_path, first_row):
+    path = tmp_path / "scans.csv"
+    path.write_text(f"{first_row}\n0.2,0.5,0.6\n0.3,0.4,0.1\n")
+    assert len(read_scans(path, columns=[1, 2]).X) == 2
+
+
+def test_a_file_that_is_not_utf8_is_named(tmp_path):
+    path = tmp_path / "scans.csv"
+    path.write_bytes(b"s0,s1\n0.1,0.2\n0.3,\xff\n")
+    with pytest.raises(ValueError, match=rf"{path} is not UTF-8 text \(invalid start byte\)"):
+        read_scans(path)
