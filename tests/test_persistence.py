@@ -6,10 +6,12 @@ import json
 import os
 import pickle
 import stat
+import struct
 import tempfile
 import time
 import tracemalloc
 import zipfile
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -855,3 +857,56 @@ def test_corrupted_model_files_give_only_model_file_error(every_saved_model, tmp
     print(f"\nmodel-file fuzz: {sum(counts.values())} files in {elapsed:.1f} s: "
           + ", ".join(f"{k} {o} {n}" for (k, o), n in sorted(counts.items())))
     assert {kind for kind, _ in counts} == set(CORRUPTIONS)
+
+
+def overlapping_archive(meta: bytes, names: list[str], kernel_bytes: int) -> bytes:
+    """A stored zip whose array entries nest: each entry's bytes hold the next entry whole.
+
+    The file holds the kernel once, but reading every entry reads it ``len(names)`` times
+    (the overlapping-entries bomb).
+    """
+    def npy(payload: bytes) -> bytes:
+        return npy_header((len(payload),), "|u1") + payload
+
+    def local(name: str, body: bytes) -> bytes:
+        return struct.pack("<4s2B4HL2L2H", b"PK\x03\x04", 20, 0, 0, 0, 0, 0x21, zlib.crc32(body),
+                           len(body), len(body), len(name), 0) + name.encode()
+
+    bodies = [npy(bytes(kernel_bytes))]
+    for name in reversed(names[1:]):
+        bodies.insert(0, npy(local(name, bodies[0]) + bodies[0]))
+    entries, offset = [], 0
+    for i, (name, body) in enumerate(zip(names, bodies)):
+        entries.append((name, body, offset))
+        if i + 1 < len(names):  # the next entry starts right after this one's npy header
+            inner = local(names[i + 1], bodies[i + 1]) + bodies[i + 1]
+            offset += len(local(name, body)) + len(body) - len(inner)
+    meta_npy = npy(meta)
+    data = local(names[0], bodies[0]) + bodies[0]
+    entries.append(("meta.npy", meta_npy, len(data)))
+    data += local("meta.npy", meta_npy) + meta_npy
+    directory = b"".join(
+        struct.pack("<4s4B4HL2L5H2L", b"PK\x01\x02", 20, 0, 20, 0, 0, 0, 0, 0x21, zlib.crc32(body),
+                    len(body), len(body), len(name), 0, 0, 0, 0, 0, where) + name.encode()
+        for name, body, where in entries)
+    end = struct.pack("<4s4H2LH", b"PK\x05\x06", 0, 0, len(entries), len(entries), len(directory),
+                      len(data), 0)
+    return data + directory + end
+
+
+def test_overlapping_entries_are_read_no_more_than_the_file_holds(saved, tmp_path):
+    _, path = saved
+    meta = meta_of(read_entries(path))
+    attrs = [f"a{i}_" for i in range(40)]
+    meta["root"]["arrays"] += attrs
+    names = [f"root/{a}.npy" for a in attrs]
+    bad = tmp_path / "overlap.npz"
+    bad.write_bytes(overlapping_archive(json.dumps(meta).encode(), names, 2**21))  # 2 MiB, 40 times
+    with zipfile.ZipFile(bad) as zf:  # a sound archive, as far as zipfile can tell
+        assert zf.getinfo(names[0]).file_size > 2**21
+
+    def load():
+        with pytest.raises(ModelFileError, match="entries overlap"):
+            novelty.load(bad)
+
+    assert peak_mib(load) < 12
