@@ -469,9 +469,16 @@ def test_feature_names_of_dict_scans_round_trip(tmp_path, keys):
 ])
 def test_bad_feature_names_in_a_file_are_refused(tmp_path, names, message):
     det = fitted()
-    det.feature_names_in_ = names
     if names.dtype == object:
+        det.feature_names_in_ = names
+        with pytest.raises(StateError, match=message):  # save refuses what load would refuse
+            det.save(tmp_path / "m.npz")
+        det.feature_names_in_ = np.array(list("abcde"), dtype=object)
         det.save(tmp_path / "m.npz")
+        entries = read_entries(tmp_path / "m.npz")
+        meta = meta_of(entries)
+        meta["root"]["values"]["feature_names_in_"] = {"__strings__": names.tolist()}
+        write_entries(tmp_path / "m.npz", with_meta(entries, meta))
     else:  # a float array is written as an array; tamper with the file instead
         det.feature_names_in_ = np.arange(5)
         det.save(tmp_path / "m.npz")
