@@ -206,3 +206,9 @@ def test_a_damaged_model_file_is_a_user_error(scans, tmp_path, capsys):
     np.savez(model, meta=meta)  # metadata nested beyond any parser's recursion
     assert main(["score", "--model", str(model), "--data", str(path)]) == 2
     assert "nested too deeply" in one_error_line(capsys)
+
+
+def test_cell_timeout_is_checked(tmp_path, capsys):
+    argv = ["bench", "--quick", "--cell-timeout", "-1", "--out", str(tmp_path / "out")]
+    assert main(argv) == 2
+    assert "cell_timeout must be a positive number of seconds; got -1.0" in one_error_line(capsys)
