@@ -56,11 +56,11 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     store = ResultsStore(out)
     store.prepare()
     with store.lock():
-        return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client)
+        return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client, command)
 
 
 def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: str | None,
-         plots: bool, progress: TextIO | None, quiet: bool, client) -> BenchReport:
+         plots: bool, progress: TextIO | None, quiet: bool, client, command: str | None) -> BenchReport:
     cells = list({c.id: c for c in suite.cells()}.values())
     done = store.done()
     todo = [c for c in cells if c.id not in done]
