@@ -100,6 +100,7 @@ class RiverDetector(NoveltyDetector):
         self.threshold = threshold
 
     def _validate_params(self) -> None:
+        super()._validate_params()
         cls = _river_class(self.model)
         valid = inspect.signature(cls).parameters
         unknown = sorted(set(self.params or {}) - set(valid))
