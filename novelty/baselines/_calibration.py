@@ -95,7 +95,7 @@ class _Scale:
         if self.empty:
             return np.ones_like(raw)
         u, f = self.values, self.levels
-        out = np.interp(raw, u, f)
+        out = self._interpolate(raw)
         low = raw < u[0]
         high = raw > u[-1]
         if low.any():
@@ -103,6 +103,18 @@ class _Scale:
         if high.any():
             out[high] = 1.0 - (1.0 - f[-1]) * np.exp(-(raw[high] - u[-1]) / self.lam)
         return out
+
+    def _interpolate(self, raw: np.ndarray) -> np.ndarray:
+        # np.interp forms the slope (F_k+1 - F_k) / (u_k+1 - u_k), which overflows
+        # when two knots differ by a subnormal amount; the fraction of the gap
+        # covered, (r - u_k) / (u_k+1 - u_k), always lies in [0, 1].
+        u, f = self.values, self.levels
+        if u.size == 1:
+            return np.full_like(raw, f[0])
+        k = np.clip(np.searchsorted(u, raw, side="right") - 1, 0, u.size - 2)
+        with np.errstate(invalid="ignore", over="ignore"):
+            t = np.clip((raw - u[k]) / (u[k + 1] - u[k]), 0.0, 1.0)
+        return f[k] + t * (f[k + 1] - f[k])
 
 
 def comparable(raw, reference) -> np.ndarray:

@@ -92,3 +92,13 @@ def test_online_learning_extends_the_reference_and_starts_fully_novel():
     assert det.reference_next_ == 3, "the three oldest slots were replaced"
     assert det.reference_[0] == expected[0]
     assert np.array_equal(det.reference_[3:], before[3:])
+
+
+def test_knots_a_subnormal_apart_give_a_finite_monotone_scale():
+    # np.interp's slope 0.33 / 2.2e-313 overflows to inf; the scale must not.
+    ref = [0.0, 2.2e-313, 4.4e-313]
+    raw = np.array([-1.0, 0.0, 1.1e-313, 2.2e-313, 3.3e-313, 4.4e-313, 1.0])
+    c = comparable(raw, ref)
+    assert np.all(np.isfinite(c)) and np.all((c >= 0) & (c <= 1))
+    assert np.all(np.diff(c) >= 0)
+    assert c[1:6].tolist() == pytest.approx([0.25, 0.375, 0.5, 0.625, 0.75])

@@ -303,3 +303,16 @@ def test_a_long_gap_finishes_with_a_state_a_model_file_may_hold(method, dt):
     assert np.all((syn.efficacy_ >= 0) & (syn.efficacy_ <= syn.y0))
     assert np.all((syn.recovery_ > 0) & (syn.recovery_ <= syn.l))
     syn._check_state()  # what loading a model file checks
+
+
+@pytest.mark.parametrize("stimulus", [5e-324, 1e-300, 1e-20])
+def test_a_vanishing_stimulus_leaves_the_exact_step_finite(stimulus):
+    # gamma * S underflows to 0 for a subnormal S: the step must not divide by it.
+    syn = WangHsuSynapse(method="exact").initialize(2)
+    syn.step(0, np.array([1]), stimulus=1.0)
+    before_y, before_z = syn.efficacy_.copy(), syn.recovery_.copy()
+    syn.step(0, np.array([1]), stimulus=stimulus, dt=2.0)
+    assert np.all(np.isfinite(syn.efficacy_)) and np.all(np.isfinite(syn.recovery_))
+    # so weak a stimulus acts like none: the efficacy recovers towards y0, z holds
+    assert np.all(syn.efficacy_ >= before_y) and np.all(syn.efficacy_ <= 1.0)
+    assert syn.recovery_ == pytest.approx(before_z, rel=1e-15)
