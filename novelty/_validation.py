@@ -36,6 +36,7 @@ __all__ = [
     "check_batch",
     "check_one",
     "check_timestamps",
+    "pass_timestamps",
     "scan_names",
     "frame_names",
     "check_feature_names",
@@ -373,3 +374,11 @@ def check_timestamps(timestamps: Any, n_samples: int, last_time: float | None) -
     if not np.all(np.isfinite(dt)):  # two finite times more than 1.8e308 apart
         raise ValueError("the time between two scans must be finite (below 1.8e308).")
     return dt
+
+
+def pass_timestamps(t, k: int) -> np.ndarray:
+    """The timestamps of the ``k``-th pass over a route first driven at times ``t``."""
+    t = np.asarray(t, dtype=np.float64)
+    steps = np.diff(t)
+    step = float(np.median(steps[steps > 0])) if np.any(steps > 0) else 1.0
+    return t + k * (t[-1] - t[0] + step)

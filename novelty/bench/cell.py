@@ -46,6 +46,7 @@ from typing import Any
 
 import numpy as np
 
+from .._validation import pass_timestamps
 from . import metrics, river
 from .prequential import evaluate_exploration
 from .suite import Cell
@@ -128,16 +129,8 @@ def train_detector(det, X: np.ndarray, passes: int = 1, timestamps=None):
     if timestamps is not None and "timestamps" not in inspect.signature(det.partial_fit).parameters:
         timestamps = None
     for k in range(passes):
-        det.partial_fit(X, timestamps=None if timestamps is None else _pass_clock(timestamps, k))
+        det.partial_fit(X, timestamps=None if timestamps is None else pass_timestamps(timestamps, k))
     return det
-
-
-def _pass_clock(t, k: int) -> np.ndarray:
-    """The timestamps of the ``k``-th pass over a route first driven at times ``t``."""
-    t = np.asarray(t, dtype=np.float64)
-    steps = np.diff(t)
-    step = float(np.median(steps[steps > 0])) if np.any(steps > 0) else 1.0
-    return t + k * (t[-1] - t[0] + step)
 
 
 def _clean_pass(data, test, y: np.ndarray) -> tuple[np.ndarray | None, str]:

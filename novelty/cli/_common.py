@@ -11,7 +11,6 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..datasets.files import PREPROCESSING
-from ..sonar.preprocessing import PAPER_THRESHOLD
 
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
            "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell"]
@@ -80,8 +79,8 @@ def add_data_options(parser, data_help: str = "scans: .csv or .npz") -> None:
     group.add_argument("--preprocess", choices=PREPROCESSING, default="none",
                        help="'paper': ranges (m) become 1 - min(r, T) / T, the paper's sonar "
                        "preprocessing (default: none, the values as they are)")
-    group.add_argument("--range-threshold", type=float, default=PAPER_THRESHOLD, metavar="T",
-                       help=f"T of --preprocess paper, in metres (default {PAPER_THRESHOLD:g})")
+    group.add_argument("--range-threshold", type=float, metavar="T",
+                       help="T of --preprocess paper, in metres (default: the paper's 4)")
     group.add_argument("--bin-length", type=float, metavar="M",
                        help="average the scans over each M metres of travel (needs a distance column)")
 
@@ -111,8 +110,13 @@ def carried_columns(data) -> dict:
 
 
 def alarms(det, novelty: np.ndarray) -> np.ndarray | None:
-    """1 where the novelty is above the detector's ``threshold`` (as ``predict`` says -1), else 0."""
-    threshold = getattr(det, "threshold", None)
+    """1 where the novelty is above the detector's threshold in force (as ``predict`` says -1), else 0.
+
+    That is ``threshold_`` (``threshold``, or what ``contamination`` sets), or
+    ``threshold`` for a detector without ``threshold_``; none, no alarms.
+    """
+    threshold = getattr(det, "threshold_", None) if hasattr(type(det), "threshold_") \
+        else getattr(det, "threshold", None)
     if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
         return None
     return (np.asarray(novelty) > threshold).astype(np.int8)

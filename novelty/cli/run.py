@@ -7,7 +7,7 @@ import sys
 
 import numpy as np
 
-from ..sonar.preprocessing import PAPER_THRESHOLD
+from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, parse_params, read_scans, write_novelty
 
@@ -20,7 +20,8 @@ raised (k of the last n scans, hysteresis). Scans are rows of a CSV
 (optional header) or the array X of an .npz file; --columns chooses the
 sensors, and columns named y/label, distance, run, time are carried to the
 output, not used as sensors (a time column gives the synapses real elapsed
-time). Writes one row a scan (scan, novelty, alarm, ...) to --out (CSV, or
+time; with --passes, each pass starts one typical step after the previous
+ended). Writes one row a scan (scan, novelty, alarm, ...) to --out (CSV, or
 .npz by extension; default: standard output). A batch-only detector is
 fitted on all the scans, then scores them.
 
@@ -93,7 +94,8 @@ def _run_file(det, args, alarm: Alarm | None) -> int:
     timestamps = data.columns.get("time")
     if getattr(det, "supports_online", True):
         for i in range(args.passes):
-            novelty = det.stream(data.X, timestamps=timestamps if i == 0 else None)
+            clock = None if timestamps is None else pass_timestamps(timestamps, i)
+            novelty = det.stream(data.X, timestamps=clock)
     else:
         print(f"novelty run: {args.detector} learns in batch only: fitted on all the scans, then scored.",
               file=sys.stderr)
@@ -139,8 +141,7 @@ class StreamReader:
     ``run``, ``time`` in seconds). Nothing is read ahead of the line scored.
     """
 
-    def __init__(self, lines, columns=None, label=None, time=None, preprocess=None,
-                 threshold=PAPER_THRESHOLD):
+    def __init__(self, lines, columns=None, label=None, time=None, preprocess=None, threshold=None):
         self.lines = lines
         self.options = dict(columns=columns, label=label, time=time)
         self.preprocess, self.threshold = preprocess, threshold

@@ -41,7 +41,6 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess as paper_preprocess
 from ._files import _is_float
 from .base import Dataset
 
@@ -292,13 +291,17 @@ def _check_preprocess(preprocess) -> str:
     return choice
 
 
-def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float = PAPER_THRESHOLD) -> np.ndarray:
+def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float | None = None) -> np.ndarray:
     """The detector's input from raw sensor values: checked, and preprocessed if asked."""
     if _check_preprocess(preprocess) == "paper":
+        # imported here: novelty.sonar loads the whole simulator (0.1 s), which every start of the
+        # command line would otherwise pay
+        from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess as paper_preprocess
+
         if np.isnan(X).any():
             raise ValueError("The sensor columns hold NaN; the paper's preprocessing needs ranges "
                              "(inf for no echo is accepted).")
-        X = paper_preprocess(X, threshold)
+        X = paper_preprocess(X, PAPER_THRESHOLD if threshold is None else threshold)
     if not np.all(np.isfinite(X)):
         raise ValueError("The sensor readings must be finite numbers (with preprocess='paper', "
                          "inf is read as no echo).")
@@ -306,7 +309,7 @@ def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float = PAPER_TH
 
 
 def read_scans(path, columns=None, label=None, time=None, preprocess=None,
-               threshold: float = PAPER_THRESHOLD, bin_length: float | None = None,
+               threshold: float | None = None, bin_length: float | None = None,
                split=None) -> Dataset:
     """The scans of a CSV or NPZ file as a :class:`~novelty.datasets.Dataset`.
 
@@ -324,8 +327,9 @@ def read_scans(path, columns=None, label=None, time=None, preprocess=None,
     preprocess : {None, "none", "paper"}
         ``"paper"``: ranges in metres become ``1 - min(r, threshold) / threshold``
         (Marsland et al., 2000, section 4.1; :func:`novelty.sonar.preprocess`).
-    threshold : float, default=4.0
-        The range (m) mapped to 0 by the paper's preprocessing.
+    threshold : float, optional
+        The range (m) mapped to 0 by the paper's preprocessing (default: the
+        paper's 4 m, :data:`novelty.sonar.preprocessing.PAPER_THRESHOLD`).
     bin_length : float, optional
         Average consecutive scans over each ``bin_length`` metres of travel
         (the paper's 10 cm smoothing, section 4.2); needs a ``distance`` column.
@@ -408,7 +412,7 @@ def smooth_by_distance(data: Dataset, bin_length: float) -> Dataset:
 
 # ------------------------------------------------------------------ the task
 def files(path, test_path=None, columns=None, label=None, time=None, split=None, train_rows=None,
-          preprocess=None, threshold: float = PAPER_THRESHOLD, bin_length=None, train_passes: int = 1):
+          preprocess=None, threshold=None, bin_length=None, train_passes: int = 1):
     """Task: the user's own scans (CSV or NPZ), learned in a training part, scored in a test part.
 
     The training and test parts come from one of (exactly one may be given;

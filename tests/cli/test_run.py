@@ -147,3 +147,14 @@ def test_a_bad_alarm_policy_is_a_user_error(spec, message, tmp_path, capsys):
     np.savetxt(path, np.random.default_rng(0).random((5, 2)), delimiter=",")
     assert main(["run", "hsom", "--data", str(path), "--alarm", spec]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_the_alarm_follows_the_detectors_threshold(tmp_path, capsys):
+    path = tmp_path / "scans.csv"
+    X = np.random.default_rng(2).random((40, 4))
+    np.savetxt(path, X, delimiter=",")
+    assert main(["run", "hsom", "--data", str(path), "--param", "n_rows=3", "--param", "threshold=0.7"]) == 0
+    table = rows(capsys.readouterr().out)[1:]
+    novelty_ = np.array([float(r[1]) for r in table])
+    assert 0 < (novelty_ > 0.7).sum() < len(table)
+    assert [int(r[2]) for r in table] == (novelty_ > 0.7).astype(int).tolist()
