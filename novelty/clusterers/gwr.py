@@ -86,6 +86,10 @@ from .base import Clusterer, Growth, Match
 
 __all__ = ["GrowWhenRequired"]
 
+#: Scans of the first batch that calibrate ``activity_threshold="auto"`` in a
+#: GWR used alone (a habituating filter's own ``calibration_scans`` default).
+_CALIBRATION_SCANS = 200
+
 
 class GrowWhenRequired(Clusterer):
     """Marsland's Grow-When-Required network: a unit is added where a familiar unit matches badly.
@@ -101,8 +105,8 @@ class GrowWhenRequired(Clusterer):
         ``a_T = exp(-d_T)`` with the insertion radius ``d_T`` a match scale
         (:mod:`novelty.match_scale`): in a habituating filter, the filter's
         (see :meth:`calibrate`); alone, the 0.9 quantile of the
-        nearest-distinct distances within the first batch (no growth while
-        that is unknown).
+        nearest-distinct distances within the first batch's first 200 scans
+        (no growth while that is unknown).
     habituation_threshold : float, default=0.1
         h_T: ... and the winner's firing counter is below it, that is the
         winner has fired often (step 7). The paper: 0.1.
@@ -230,7 +234,10 @@ class GrowWhenRequired(Clusterer):
         self.edge_ages_ = _graph.empty_graph(2)
         self.firing_ = self._new_firing_counters().initialize(2)
         if self.activity_threshold == "auto":
-            self.calibrate(ScaleCalibration(X[:0], X.shape[0], 0.9).extend(X).scale)
+            # The first scans only: the nearest-neighbour distances cost the square
+            # of their number (a 10,000-scan first batch took 20 s).
+            first = X[:_CALIBRATION_SCANS]
+            self.calibrate(ScaleCalibration(first, first.shape[0], 0.9).scale)
         else:
             self.activity_threshold_ = float(self.activity_threshold)
 

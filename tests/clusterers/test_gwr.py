@@ -231,3 +231,12 @@ def test_auto_threshold_is_exp_of_minus_the_radius():
     fixed = GrowWhenRequired(activity_threshold=0.7).initialize(X, random_state=0)
     fixed.calibrate(0.5)
     assert fixed.activity_threshold_ == 0.7 and not fixed.uses_match_scale
+
+
+def test_auto_threshold_alone_calibrates_on_the_first_200_scans():
+    # Rows after the 200th do not move a_T: on a grid of spacing 0.1 every
+    # nearest distinct neighbour is 0.1 away, so a_T = exp(-0.1) whatever follows.
+    grid = np.arange(200, dtype=np.float64)[:, None] * 0.1
+    far = np.random.default_rng(0).uniform(100, 1e4, size=(5000, 1))
+    gwr = GrowWhenRequired(activity_threshold="auto").initialize(np.vstack([grid, far]), random_state=0)
+    assert gwr.activity_threshold_ == pytest.approx(math.exp(-0.1), rel=1e-12)
