@@ -1,4 +1,4 @@
-"""Performance suite (issue 7): novelty against MiniSom and River, measured in one run.
+"""Performance suite: novelty against MiniSom and River, measured in one run.
 
 Run::
 

@@ -1,4 +1,4 @@
-"""Measured properties of the paper's environments (issue 3's "done when")."""
+"""Measured properties of the paper's environments: what the simulated corridors must show."""
 
 import functools
 
