@@ -1,7 +1,7 @@
 """scikit-learn's estimator checks and the project's conformance suite on the baselines.
 
 The registered baselines with their defaults are already checked through the
-registry (tests/test_sklearn_compat.py, tests/test_conformance.py); here the
+registry (tests/test_sklearn_compat.py, tests/testing/test_conformance.py); here the
 other configurations: the batch variants, other covariance forms and
 bandwidth rules, a small map, and the generic adapter around estimators
 that are not registered.

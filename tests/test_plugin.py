@@ -32,7 +32,7 @@ def plugin_env(tmp_path):
     (dist / "entry_points.txt").write_text(
         "[novelty.clusterers]\nleader = novelty_plugin_example:LeaderClusterer\n\n"
         "[novelty.datasets]\nbench-toy-task = toy:toy_task\n")
-    path = os.pathsep.join([str(tmp_path), str(PLUGIN / "src"), str(Path(__file__).parent), str(ROOT)])
+    path = os.pathsep.join([str(tmp_path), str(PLUGIN / "src"), str(Path(__file__).parent / "bench"), str(ROOT)])
     return {**os.environ, "PYTHONPATH": path, "CI": "true"}
 
 

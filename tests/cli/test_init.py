@@ -11,7 +11,7 @@ import pytest
 import novelty
 from novelty.cli import COMMANDS, main
 
-sys.path.insert(0, str(Path(__file__).parent / "bench"))
+sys.path.insert(0, str(Path(__file__).parents[1] / "bench"))
 import toy  # noqa: E402
 
 
