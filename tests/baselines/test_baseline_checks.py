@@ -4,7 +4,8 @@ The registered baselines with their defaults are already checked through the
 registry (tests/test_sklearn_compat.py, tests/testing/test_conformance.py); here the
 other configurations: the batch variants, other covariance forms and
 bandwidth rules, a small map, and the generic adapter around estimators
-that are not registered.
+that are not registered; and a point far from the training data is the
+most novel for every density and distance baseline.
 """
 
 import pytest
@@ -53,3 +54,13 @@ def _conformance():
 @pytest.mark.parametrize("check", list(_conformance()))
 def test_conformance_of_other_configurations(check):
     check()
+
+
+@pytest.mark.parametrize("det", [GaussianMixtureDetector(n_components=3), ParzenDetector(), SOMDistance(n_epochs=3),
+                                 SOMDistance(clusterer=SOM(n_rows=4, n_columns=4, init="sample"))],
+                         ids=["gmm", "parzen", "som-distance", "som-distance-sample"])
+def test_a_far_point_is_more_novel_than_every_training_point(det, blobs, far):
+    det.fit(blobs)
+    assert det.raw_novelty(far)[0] > det.raw_novelty(blobs).max()
+    assert det.novelty(far)[0] > det.novelty(blobs).max()
+    assert det.predict(far)[0] == -1

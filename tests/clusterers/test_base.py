@@ -1,5 +1,5 @@
-"""A custom clusterer registered in ten lines runs inside the habituating filter
-(the issue's "Done when"), and is saved and loaded like a built-in."""
+"""The clusterer interface: a custom clusterer registered in ten lines runs inside the
+habituating filter and is saved and loaded like a built-in; so do the built-in growing ones."""
 
 import numpy as np
 import pytest
@@ -101,3 +101,38 @@ def test_once_unregistered_its_files_cannot_be_read(tiny_kmeans, tmp_path):
     novelty.registry.clusterers.unregister("tiny-kmeans")
     with pytest.raises(ModelFileError, match="'tiny-kmeans', which is not registered"):
         novelty.load(tmp_path / "tiny.npz")
+
+
+# ------------------------------------ the built-in growing clusterers in the filter
+@pytest.mark.parametrize("name", ["gng", "gwr", "online-kmeans"])
+def test_through_the_filter_novelty_is_in_range(name, corridor, traversals):
+    rng = np.random.default_rng(3)
+    X = np.vstack(traversals(corridor(1, n_scans=150), 2, rng))
+    det = novelty.make("habituating", clusterer=name, synapse="stanley")
+    out = det.stream(X)
+    assert out.shape == (len(X),)
+    assert np.all((out >= det.resting_novelty - 1e-12) & (out <= 1.0))
+    assert out[0] == 1.0
+    assert det.synapse_.n_units_ == det.clusterer_.n_units_
+    assert np.all(np.isin(det.winners(X), det.clusterer_.unit_ids_))
+
+
+@pytest.mark.parametrize("name", ["gng", "gwr", "online-kmeans"])
+def test_save_load_round_trip(tmp_path, name, corridor, traversals):
+    rng = np.random.default_rng(4)
+    scans = traversals(corridor(1, n_scans=150), 2, rng) + traversals(corridor(2, n_scans=150), 1, rng)
+    extra = {} if name == "online-kmeans" else {"max_age": 20}   # so that units are also removed
+    det = novelty.make("habituating", clusterer=name, synapse="stanley", **extra)
+    det.fit(np.vstack(scans[:2]))
+    path = tmp_path / f"{name}.npz"
+    det.save(path)
+    back = novelty.load(path)
+    assert type(back.clusterer_) is type(det.clusterer_)
+    np.testing.assert_array_equal(back.novelty(scans[2]), det.novelty(scans[2]))
+    np.testing.assert_array_equal(back.stream(scans[2]), det.stream(scans[2]))
+    for attr in ("weights_", "unit_ids_"):
+        np.testing.assert_array_equal(getattr(back.clusterer_, attr), getattr(det.clusterer_, attr))
+    if name == "gwr":
+        assert type(back.clusterer_.firing_) is type(det.clusterer_.firing_)
+        np.testing.assert_array_equal(back.clusterer_.firing_.efficacy_, det.clusterer_.firing_.efficacy_)
+        np.testing.assert_array_equal(back.clusterer_.edge_ages_, det.clusterer_.edge_ages_)

@@ -1,4 +1,4 @@
-"""Tests that know the answer: geometry, the beam, echoes from simple walls."""
+"""The Polaroid ranger, answers known: the beam, echoes from simple walls, readings in inches."""
 
 import math
 
@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from novelty.sonar import NOMAD_200, PolaroidRanger
-from novelty.sonar.geometry import elevation_offset, mirror, ray_segment_distances
 from novelty.sonar.materials import MATERIALS
 from novelty.sonar.ranger import INCH
 from novelty.sonar.world import MapBuilder
@@ -19,26 +18,6 @@ def _wall_map(material, p0=(-20, 0), p1=(20, 0), z=(0.0, 2.6)):
     b = MapBuilder()
     b.wall(p0, p1, material, z=z)
     return b.build()
-
-
-def test_ray_hits_segment_at_known_distance_and_misses_behind():
-    t = ray_segment_distances(np.array([[0.0, 0.0], [0.0, 0.0]]),
-                              np.array([[1.0, 0.0], [-1.0, 0.0]]),
-                              np.array([[3.0, -1.0]]), np.array([[3.0, 1.0]]))
-    assert t[0, 0] == pytest.approx(3.0)
-    assert np.isinf(t[1, 0])
-
-
-def test_mirror_reflects_in_the_normal():
-    d = np.array([[math.cos(math.radians(-30)), math.sin(math.radians(-30))]])
-    out = mirror(d, np.array([[0.0, 1.0]]))
-    assert out[0] == pytest.approx([math.cos(math.radians(30)), math.sin(math.radians(30))])
-
-
-def test_elevation_offset_zero_when_surface_spans_sensor_height():
-    e = elevation_offset(np.array([1.0, 1.0]), np.array([0.0, 0.0]), np.array([2.0, 0.4]), 0.72)
-    assert e[0] == 0.0
-    assert e[1] == pytest.approx(math.atan2(0.32, 1.0))
 
 
 def test_beam_half_angle_is_the_piston_first_null():
