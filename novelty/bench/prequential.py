@@ -38,7 +38,7 @@ from typing import Callable
 import numpy as np
 
 from ..exploration import metrics as xm
-from .suite import SuiteError
+from .specs import SuiteError
 
 __all__ = ["POLICIES", "parse_policy", "default_policy", "prequential", "evaluate_exploration",
            "EXPLORATION_COLUMNS"]

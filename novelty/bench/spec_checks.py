@@ -1,0 +1,87 @@
+"""Checking a suite's detectors and tasks against the registries before anything runs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from .specs import _FILE_OPTIONS, FILES_TASK, DetectorSpec, SuiteError, TaskSpec
+
+__all__ = ["check_detector", "check_task"]
+
+
+def _check_threshold(rule: Any) -> None:
+    if rule == "max":
+        return
+    if isinstance(rule, (int, float)) and not isinstance(rule, bool) and 0 < rule <= 1:
+        return
+    raise SuiteError(f"threshold must be \"max\" or a quantile in (0, 1]; got {rule!r}.")
+
+
+def check_detector(spec: DetectorSpec):
+    """Build the detector once: the registry refuses unknown names and parameters."""
+    from ..registry import RegistryError, detectors
+    from . import river
+
+    try:
+        make = river.make if river.is_river(spec.name) else detectors.make
+        det = make(spec.name, **spec.params)
+        _validate_tree(det)
+    except RegistryError as exc:
+        raise SuiteError(str(exc)) from None
+    except (ValueError, TypeError, ImportError) as exc:
+        raise SuiteError(f"Detector {spec.label!r}: {exc}") from None
+    return det
+
+
+def _validate_tree(component) -> None:
+    """Run the parameter checks of a component and of the components it holds.
+
+    A ``random_state`` is checked here too (estimators check it only when
+    they fit, which would fail every cell): None or an int seed.
+    """
+    validate = getattr(component, "_validate_params", None)
+    if validate is not None:
+        validate()
+    get_params = getattr(component, "get_params", None)
+    if get_params is not None:
+        for key, value in get_params(deep=False).items():
+            if key == "random_state" and value is not None and (
+                    isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < 2**32):
+                raise ValueError(f"random_state must be None or an int seed in [0, 2**32); got {value!r}.")
+            if hasattr(value, "_validate_params"):
+                _validate_tree(value)
+
+
+def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
+    """The spec with its policy checked; a batch-only detector's default shown in its label."""
+    # imported here: the exploration harness pulls in the sonar simulator, which
+    # the hold-out protocol never needs
+    from .prequential import check_policy, default_policy
+
+    if spec.policy:
+        check_policy(spec.policy, det)
+        return spec
+    policy = default_policy(det)
+    if policy == "online":
+        return spec
+    return DetectorSpec(spec.name, spec.params, f"{spec.label} ({policy})", policy)
+
+
+def check_task(spec: TaskSpec) -> None:
+    """Check a task's name and option names without loading any data."""
+    from ..datasets import registry
+    from ..registry import RegistryError, check_parameters
+
+    try:
+        valid = registry.parameters(spec.name)
+        if valid is not None:
+            check_parameters(f"task '{spec.name}'", spec.options, valid)
+    except RegistryError as exc:
+        raise SuiteError(str(exc)) from None
+    if spec.name == FILES_TASK:
+        if "path" not in spec.options:
+            raise SuiteError(f"Task {spec.label!r}: the {FILES_TASK!r} task needs path= (a .csv or .npz file).")
+        for key in _FILE_OPTIONS:
+            if key in spec.options and not Path(str(spec.options[key])).is_file():
+                raise SuiteError(f"Task {spec.label!r}: data file not found: {spec.options[key]}")

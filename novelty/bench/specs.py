@@ -1,0 +1,199 @@
+"""The parts of a benchmark suite: detector and task specifications and cells.
+
+A :class:`DetectorSpec` names a detector of the registry with its parameters,
+a :class:`TaskSpec` a task (a dataset with a train/test split) with its
+options, and a :class:`Cell` one (detector, task, seed) run with its stable
+id. :func:`detector_from_text` and :func:`task_from_text` read them from the
+command line. :mod:`novelty.bench.suite` puts them together into a suite.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+__all__ = [
+    "SuiteError",
+    "DetectorSpec",
+    "TaskSpec",
+    "Cell",
+    "parse_value",
+    "parse_assignments",
+    "detector_from_text",
+    "task_from_text",
+]
+
+#: bumped when a change of the harness changes what a cell computes
+HARNESS_VERSION = 1
+#: how a cell trains and scores: see :mod:`novelty.bench.cell` and :mod:`novelty.bench.prequential`
+PROTOCOLS = ("holdout", "exploration")
+
+
+class SuiteError(ValueError):
+    """A suite that cannot be run: malformed, or naming unknown things."""
+
+
+#: the task made from the user's own files (:func:`novelty.datasets.files.files`)
+FILES_TASK = "files"
+#: its options that name files, read relative to the suite file
+_FILE_OPTIONS = ("path", "test_path")
+
+
+# ------------------------------------------------------------------ values
+def parse_value(text: str) -> Any:
+    """A command-line value: JSON where it parses, else the string itself.
+
+    ``5`` -> 5, ``1.05`` -> 1.05, ``true``/``True`` -> True, ``null``/``None``
+    -> None, ``[3, 4]`` -> [3, 4], ``som`` -> "som".
+
+    >>> [parse_value(v) for v in ("5", "1.05", "True", "som", "[3, 4]")]
+    [5, 1.05, True, 'som', [3, 4]]
+    """
+    aliases = {"True": True, "False": False, "None": None}
+    if text in aliases:
+        return aliases[text]
+    try:
+        return json.loads(text)
+    except ValueError:
+        return text
+
+
+def parse_assignments(items: Iterable[str], what: str = "parameter") -> dict[str, Any]:
+    """``["k=v", ...]`` -> ``{k: parse_value(v)}``; a bad item is a :class:`SuiteError`."""
+    out: dict[str, Any] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise SuiteError(f"A {what} must be written name=value; got {item!r}.")
+        out[key] = parse_value(value.strip())
+    return out
+
+
+def _canonical(value: Any) -> str:
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), default=str)
+
+
+def _format_value(value: Any) -> str:
+    return value if isinstance(value, str) else _canonical(value)
+
+
+# ------------------------------------------------------------------- specs
+@dataclass(frozen=True)
+class DetectorSpec:
+    """A detector by registry name with its parameters and a display label."""
+
+    name: str
+    params: Mapping[str, Any] = field(default_factory=dict)
+    label: str = ""
+    #: how the detector learns under the exploration protocol
+    #: (:mod:`novelty.bench.prequential`); "" for its default
+    policy: str = ""
+
+    def __post_init__(self):
+        object.__setattr__(self, "params", dict(self.params))
+        if not self.label:
+            object.__setattr__(self, "label", self.name)
+
+    def to_dict(self) -> dict:
+        out = {"name": self.name, "params": dict(self.params), "label": self.label}
+        if self.policy:  # only when set, so that earlier runs keep their cell ids
+            out["policy"] = self.policy
+        return out
+
+
+@dataclass(frozen=True)
+class TaskSpec:
+    """A task (a dataset with a train/test split) by registry name with options."""
+
+    name: str
+    options: Mapping[str, Any] = field(default_factory=dict)
+    label: str = ""
+
+    def __post_init__(self):
+        object.__setattr__(self, "options", dict(self.options))
+        if not self.label:
+            object.__setattr__(self, "label", self.name)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "options": dict(self.options), "label": self.label}
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One unit of work: a detector on a task with a seed.
+
+    A cell is a pure function of these fields (see :func:`novelty.bench.cell.run_cell`):
+    the seed is given to the task as ``seed`` and to the detector as
+    ``random_state``, unless the suite sets them itself.
+    """
+
+    detector: DetectorSpec
+    task: TaskSpec
+    seed: int
+    threshold: Any = "max"
+    memory: bool = True
+    #: "holdout" (train, freeze, score) or "exploration" (:mod:`novelty.bench.prequential`)
+    protocol: str = "holdout"
+    #: seconds the cell may run (None: no limit); not part of what it computes, nor of its id
+    timeout: float | None = None
+    #: registry objects the parent process resolved, so that worker processes
+    #: know names registered at run time: ((kind, name, object), ...)
+    components: tuple = ()
+
+    @property
+    def key(self) -> dict:
+        key = {
+            "harness": HARNESS_VERSION,
+            "detector": self.detector.to_dict(),
+            "task": self.task.to_dict(),
+            "seed": self.seed,
+            "threshold": self.threshold,
+        }
+        if self.protocol != "holdout":
+            key["protocol"] = self.protocol
+        return key
+
+    @property
+    def id(self) -> str:
+        """A short stable hash of what the cell computes (the resume key)."""
+        return hashlib.sha256(_canonical(self.key).encode()).hexdigest()[:16]
+
+
+def _resolved(options: dict, base: Path | None) -> dict:
+    """File options made absolute against the suite's folder (a suite runs from anywhere)."""
+    if base is None:
+        return options
+    return {k: str(base / v) if k in _FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
+
+
+# ------------------------------------------------------------ command line
+def detector_from_text(text: str) -> DetectorSpec:
+    """``"hsom n_rows=5 alpha=1.2"`` -> a :class:`DetectorSpec` (command line)."""
+    try:
+        words = shlex.split(text)
+    except ValueError as exc:
+        raise SuiteError(f"Cannot read detector {text!r}: {exc}.") from None
+    if not words:
+        raise SuiteError("An empty --detector was given.")
+    params = parse_assignments(words[1:])
+    label = words[0] if not params else f"{words[0]}[{','.join(words[1:])}]"
+    return DetectorSpec(words[0], params, label)
+
+
+def task_from_text(text: str) -> TaskSpec:
+    """``"inspection-easy n_scans=200"`` -> a :class:`TaskSpec` (command line)."""
+    try:
+        words = shlex.split(text)
+    except ValueError as exc:
+        raise SuiteError(f"Cannot read task {text!r}: {exc}.") from None
+    if not words:
+        raise SuiteError("An empty --task was given.")
+    options = parse_assignments(words[1:], "task option")
+    if words[0] == FILES_TASK:
+        options = _resolved(options, Path.cwd())
+    return TaskSpec(words[0], options)

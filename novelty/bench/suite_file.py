@@ -1,0 +1,112 @@
+"""Reading a suite file: TOML, and its detector and task entries as specifications.
+
+:func:`novelty.bench.suite.suite_from_dict` assembles the suite from these
+entries; the file's form is described in :mod:`novelty.bench.suite`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import sys
+from pathlib import Path
+from typing import Any
+
+from .specs import FILES_TASK, DetectorSpec, SuiteError, TaskSpec, _format_value, _resolved
+
+
+def _read_toml(path: Path) -> dict:
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.10
+        try:
+            import tomli as tomllib
+        except ImportError:
+            raise SuiteError(
+                "Reading TOML suites on Python 3.10 needs the 'tomli' package (pip install tomli)."
+            ) from None
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except FileNotFoundError:
+        raise SuiteError(f"Suite file not found: {path}") from None
+    except IsADirectoryError:
+        raise SuiteError(f"Suite file {path} is a directory.") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SuiteError(f"Suite file {path} is not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise SuiteError(f"Suite file {path} is not UTF-8 text ({exc.reason}); "
+                         "save it as UTF-8.") from None
+
+
+def _table(value: Any, where: str) -> dict:
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise SuiteError(f"{where} must be a table ({{ name = value, ... }}); got {value!r}.")
+    return value
+
+
+def _entries(data: dict, key: str, where: str) -> list[dict]:
+    entries = data.get(key, [])
+    if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+        raise SuiteError(f"{where}: '{key}' must be an array of tables ([[{key}]]).")
+    return entries
+
+
+def _known_keys(entry: dict, allowed: set[str], where: str) -> None:
+    unknown = sorted(set(entry) - allowed)
+    if unknown:
+        raise SuiteError(f"{where}: unknown key {unknown[0]!r}; expected {', '.join(sorted(allowed))}.")
+
+
+def _label(entry: dict, name: str, where: str) -> str:
+    label = entry.get("label", name)
+    if not isinstance(label, str) or not label.strip():
+        raise SuiteError(f"{where}: label must be a non-empty string; got {label!r}.")
+    return label
+
+
+def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
+    _known_keys(entry, {"name", "params", "grid", "label", "optional", "policy"}, where)
+    name = entry.get("name")
+    if not isinstance(name, str) or not name:
+        raise SuiteError(f"{where}: every detector needs a 'name' (a registry name).")
+    params = _table(entry.get("params"), f"{where}: params")
+    grid = _table(entry.get("grid"), f"{where}: grid")
+    policy = entry.get("policy", "")
+    label = _label(entry, f"{name} ({policy})" if policy else name, where)
+    for key, values in grid.items():
+        if not isinstance(values, list) or not values:
+            raise SuiteError(f"{where}: grid value of {key!r} must be a non-empty array.")
+        if key in params:
+            raise SuiteError(f"{where}: {key!r} is both in params and in grid.")
+    if not grid:
+        return [DetectorSpec(name, params, label, policy)]
+    keys = list(grid)
+    specs = []
+    for combo in itertools.product(*(grid[k] for k in keys)):
+        values = dict(zip(keys, combo))
+        suffix = ",".join(f"{k}={_format_value(v)}" for k, v in values.items())
+        specs.append(DetectorSpec(name, {**params, **values}, f"{label}[{suffix}]", policy))
+    return specs
+
+
+def _available(name: str, detector_registry) -> bool:
+    from . import river
+
+    return river.installed() if river.is_river(name) else name in detector_registry
+
+
+def _files_task(entry: dict, where: str, base: Path | None) -> TaskSpec:
+    """``[[tasks]] path = "scans.csv"``: the ``files`` task on that file."""
+    if entry.get("name", FILES_TASK) != FILES_TASK:
+        raise SuiteError(f"{where}: a task with a 'path' is the {FILES_TASK!r} task; "
+                         f"got name {entry['name']!r}.")
+    path = entry["path"]
+    if not isinstance(path, str) or not path:
+        raise SuiteError(f"{where}: path must be a file name; got {path!r}.")
+    options = _table(entry.get("options"), f"{where}: options")
+    if "path" in options:
+        raise SuiteError(f"{where}: give the path once (path = ..., not also in options).")
+    return TaskSpec(FILES_TASK, _resolved({"path": path, **options}, base),
+                    entry.get("label", Path(path).stem))
