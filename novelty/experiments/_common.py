@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 import novelty
-from novelty.reproduce import _pyplot as pyplot  # noqa: F401  (the experiments' figures)
+from novelty.reproduce.figures import _pyplot as pyplot  # noqa: F401  (the experiments' figures)
 from novelty.sonar import simulate
 
 #: Table 1's A column (Marsland et al. 2000): integrated output of trials 1-6.
