@@ -28,250 +28,30 @@ ever read as a sensor.
 :func:`files` is the registered task ``files``: the scans of one file split
 into a training and a test part by rows (``train_rows``), by a column
 (``split``) or by a second file (``test_path``).
+
+Reading a file into columns is :mod:`novelty.datasets.tables`, deciding which
+column is what :mod:`novelty.datasets.columns`; their names are importable
+from here too.
 """
 
 from __future__ import annotations
 
-import csv
-import fnmatch
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from pathlib import Path
-from typing import Iterable, Sequence
 
 import numpy as np
 
 from ._files import _is_float
 from .base import Dataset
+from .columns import (LABEL_COLUMNS, ROUTE_COLUMNS, TEXT_COLUMNS, TIME_COLUMNS, Layout,  # noqa: F401
+                      is_ros_export, plan_columns)
+from .tables import Table, header_of, read_table  # noqa: F401
 
 __all__ = ["Table", "Layout", "read_table", "plan_columns", "read_scans", "files", "PREPROCESSING"]
 
-#: columns found by name that are never sensors
-LABEL_COLUMNS = ("y", "label")
-TIME_COLUMNS = ("time", "timestamp", "field.header.stamp", "%time")
-ROUTE_COLUMNS = ("distance", "run", "split")
-#: further per-scan columns of the project's own exports (text, never sensors)
-TEXT_COLUMNS = ("features", "class", "row_index")
 #: preprocessing applied to the sensor columns, by name
 PREPROCESSING = ("none", "paper")
-
-
-@dataclass(frozen=True)
-class Table:
-    """A file's columns, in file order: numbers (float64) or text (str)."""
-
-    source: str
-    names: tuple[str, ...]
-    values: tuple[np.ndarray, ...]
-
-    @property
-    def n_rows(self) -> int:
-        return self.values[0].shape[0] if self.values else 0
-
-
-# ------------------------------------------------------------------ reading
-def header_of(first_row: Sequence[str]) -> list[str] | None:
-    """The column names if ``first_row`` is a header, else ``None``.
-
-    A header is a row of names: at least half of its cells are not numbers,
-    or the numbers in it are column positions (``,0,1,2`` as pandas writes
-    integer column names). A row of numbers with a few bad cells is data,
-    and its bad cells are reported, rather than taken as names (which would
-    silently drop a scan).
-    """
-    numbers = [c for c in first_row if _is_float(c)]
-    if len(numbers) == len(first_row):
-        return None
-    if 2 * len(numbers) > len(first_row) and not all(
-            c.strip().isdigit() and int(c) < len(first_row) for c in numbers):
-        return None
-    return [c.strip() for c in first_row]
-
-
-def _column(cells: list[str]) -> np.ndarray:
-    try:
-        return np.array([float(c) for c in cells], dtype=np.float64)
-    except ValueError:
-        return np.array([c.strip() for c in cells])
-
-
-def _read_csv(path: Path) -> Table:
-    try:
-        with open(path, newline="", encoding="utf-8") as fh:
-            rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path} is not UTF-8 text ({exc.reason}); "
-                         "save it as UTF-8.") from None
-    if not rows:
-        raise ValueError(f"{path} is empty.")
-    header = header_of(rows[0])
-    if header is None:  # no names: every column is a sensor, every cell a number
-        for j, cell in enumerate(rows[0]):
-            if not _is_float(cell):
-                raise ValueError(f"{path}, line 1: column {j + 1} holds {cell.strip()!r}, which is "
-                                 "not a number (and too few of the row's cells are names for a header).")
-    body = rows[1:] if header else rows
-    if not body:
-        raise ValueError(f"{path} has a header but no scans.")
-    width = len(header or body[0])
-    first_line = 2 if header else 1
-    for i, row in enumerate(body):
-        if len(row) != width:
-            raise ValueError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
-    names = header or [f"s{i}" for i in range(width)]
-    return Table(str(path), tuple(names), tuple(_column([r[j] for r in body]) for j in range(width)))
-
-
-def _read_npz(path: Path) -> Table:
-    try:
-        npz = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
-    with npz:
-        arrays = {k: npz[k] for k in npz.files}
-    if "X" not in arrays:
-        two_d = [k for k, a in arrays.items() if a.ndim == 2]
-        if len(two_d) != 1:
-            raise ValueError(f"{path} has no array named 'X' (it has {', '.join(arrays) or 'none'}).")
-        arrays["X"] = arrays.pop(two_d[0])
-    X = arrays.pop("X")
-    if X.ndim != 2:
-        raise ValueError(f"{path}: X must be a table of scans by sensors; got shape {X.shape}.")
-    names = [f"s{j}" for j in range(X.shape[1])]
-    values = [np.asarray(X[:, j]) for j in range(X.shape[1])]
-    for key, a in arrays.items():
-        if a.ndim == 1 and a.shape[0] == X.shape[0]:
-            names.append(key.removeprefix("column_"))
-            values.append(a.astype(np.float64) if np.issubdtype(a.dtype, np.number) else a.astype(str))
-    return Table(str(path), tuple(names), tuple(values))
-
-
-def read_table(path) -> Table:
-    """The columns of a CSV or NPZ file (see the module docstring)."""
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"Data file not found: {path}")
-    if path.is_dir():
-        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
-    table = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
-    if table.n_rows == 0:
-        raise ValueError(f"{path} has no scans.")
-    return table
-
-
-# ------------------------------------------------------------ choosing columns
-def is_ros_export(names: Sequence[str]) -> bool:
-    """A ``rostopic echo -p`` export: a ``%time`` column or ``field.*`` columns."""
-    return "%time" in names or any(n.startswith("field.") for n in names)
-
-
-def _is_ros_header(name: str) -> bool:
-    return name == "%time" or name.startswith("field.header.")
-
-
-def _nanoseconds(name: str) -> bool:
-    return name == "%time" or name.endswith(".stamp")
-
-
-@dataclass(frozen=True)
-class Layout:
-    """Which column of a file is what (indices into the file's columns)."""
-
-    names: tuple[str, ...]
-    sensors: tuple[int, ...]
-    label: int | None = None
-    time: int | None = None
-    distance: int | None = None
-    run: int | None = None
-    split: int | None = None
-
-    @property
-    def sensor_names(self) -> list[str]:
-        return [self.names[j] for j in self.sensors]
-
-    @property
-    def time_scale(self) -> float:
-        """Seconds per unit of the time column (ROS stamps are nanoseconds)."""
-        return 1e-9 if self.time is not None and _nanoseconds(self.names[self.time]) else 1.0
-
-    def not_a_number(self, j: int, cell) -> ValueError:
-        name = self.names[j]
-        hint = (f"choose the sensor columns with columns= (--columns), e.g. 'field.ranges*'"
-                if is_ros_export(self.names) else "choose the sensor columns with columns= (--columns)")
-        return ValueError(f"Column {name!r} holds text ({str(cell)[:30]!r}), not a sensor reading; {hint}.")
-
-
-def _find(names: Sequence[str], spec, what: str) -> list[int]:
-    """Indices of the columns ``spec`` names: a name, a pattern, or a 0-based index."""
-    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool) \
-            or isinstance(spec, str) and spec.strip().lstrip("-").isdigit():
-        j = int(spec)
-        if not 0 <= j < len(names):
-            raise ValueError(f"{what}: column index {j} is out of range; the file has {len(names)} "
-                             f"columns (0 to {len(names) - 1}).")
-        return [j]
-    if not isinstance(spec, str) or not spec.strip():
-        raise ValueError(f"{what}: expected a column name, pattern or index; got {spec!r}.")
-    spec = spec.strip()
-    if spec in names:
-        return [names.index(spec)]
-    found = [j for j, n in enumerate(names) if fnmatch.fnmatchcase(n, spec)]
-    if not found:
-        shown = ", ".join(names[:12]) + (", ..." if len(names) > 12 else "")
-        raise ValueError(f"{what}: no column {spec!r}; the file has {shown}.")
-    return found
-
-
-def _one(names: Sequence[str], spec, what: str) -> int | None:
-    if spec is None:
-        return None
-    found = _find(names, spec, what)
-    if len(found) != 1:
-        raise ValueError(f"{what}: {spec!r} names {len(found)} columns; expected one.")
-    return found[0]
-
-
-def _by_default(names: Sequence[str], candidates: Iterable[str]) -> int | None:
-    lowered = [n.lower() for n in names]
-    return next((lowered.index(c) for c in candidates if c in lowered), None)
-
-
-def _column_list(columns) -> list:
-    if isinstance(columns, str):
-        return [c for c in columns.split(",") if c.strip()]
-    if isinstance(columns, (list, tuple)):
-        return list(columns)
-    return [columns]
-
-
-def plan_columns(names: Sequence[str], columns=None, label=None, time=None, split=None) -> Layout:
-    """Decide which column is what (see the module docstring); names alone decide."""
-    names = tuple(names)
-    label_j = _one(names, label, "label") if label is not None else _by_default(names, LABEL_COLUMNS)
-    time_j = _one(names, time, "time") if time is not None else _by_default(names, TIME_COLUMNS)
-    split_j = _one(names, split, "split") if split is not None else _by_default(names, ("split",))
-    distance_j, run_j = _by_default(names, ("distance",)), _by_default(names, ("run",))
-    roles = {j for j in (label_j, time_j, split_j, distance_j, run_j) if j is not None}
-    if columns is not None:
-        chosen = [j for spec in _column_list(columns) for j in _find(names, spec, "columns")]
-        sensors = list(dict.fromkeys(chosen))
-        taken = sorted(roles & set(sensors))
-        if taken:
-            raise ValueError(f"columns: {names[taken[0]]!r} is the label, time, distance, run or split "
-                             "column, not a sensor.")
-    else:
-        if is_ros_export(names):
-            fields = [n for n in names if not _is_ros_header(n)]
-            ranges = [n for n in fields if n.startswith("field.ranges")]
-            example = "field.ranges*" if ranges else ",".join(fields[:3])
-            raise ValueError("This is a ROS 'rostopic echo -p' export: its header columns (%time, "
-                             "field.header.*) are not sensor readings. Choose the sensor columns with "
-                             f"columns= (--columns), e.g. {example!r}.")
-        skip = {n.lower() for n in TEXT_COLUMNS + TIME_COLUMNS + LABEL_COLUMNS + ROUTE_COLUMNS}
-        sensors = [j for j, n in enumerate(names) if j not in roles and n.lower() not in skip]
-    if not sensors:
-        raise ValueError("No sensor columns: every column is a label, time, distance, run or split column.")
-    return Layout(names, tuple(sensors), label_j, time_j, distance_j, run_j, split_j)
 
 
 # ------------------------------------------------------------ scans of a file

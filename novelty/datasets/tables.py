@@ -1,0 +1,116 @@
+"""Reading a CSV or NPZ file of scans into named columns (the format is described in :mod:`novelty.datasets.files`)."""
+
+from __future__ import annotations
+
+import csv
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from ._files import _is_float
+
+__all__ = ["Table", "header_of", "read_table"]
+
+
+@dataclass(frozen=True)
+class Table:
+    """A file's columns, in file order: numbers (float64) or text (str)."""
+
+    source: str
+    names: tuple[str, ...]
+    values: tuple[np.ndarray, ...]
+
+    @property
+    def n_rows(self) -> int:
+        return self.values[0].shape[0] if self.values else 0
+
+
+def header_of(first_row: Sequence[str]) -> list[str] | None:
+    """The column names if ``first_row`` is a header, else ``None``.
+
+    A header is a row of names: at least half of its cells are not numbers,
+    or the numbers in it are column positions (``,0,1,2`` as pandas writes
+    integer column names). A row of numbers with a few bad cells is data,
+    and its bad cells are reported, rather than taken as names (which would
+    silently drop a scan).
+    """
+    numbers = [c for c in first_row if _is_float(c)]
+    if len(numbers) == len(first_row):
+        return None
+    if 2 * len(numbers) > len(first_row) and not all(
+            c.strip().isdigit() and int(c) < len(first_row) for c in numbers):
+        return None
+    return [c.strip() for c in first_row]
+
+
+def _column(cells: list[str]) -> np.ndarray:
+    try:
+        return np.array([float(c) for c in cells], dtype=np.float64)
+    except ValueError:
+        return np.array([c.strip() for c in cells])
+
+
+def _read_csv(path: Path) -> Table:
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path} is not UTF-8 text ({exc.reason}); "
+                         "save it as UTF-8.") from None
+    if not rows:
+        raise ValueError(f"{path} is empty.")
+    header = header_of(rows[0])
+    if header is None:  # no names: every column is a sensor, every cell a number
+        for j, cell in enumerate(rows[0]):
+            if not _is_float(cell):
+                raise ValueError(f"{path}, line 1: column {j + 1} holds {cell.strip()!r}, which is "
+                                 "not a number (and too few of the row's cells are names for a header).")
+    body = rows[1:] if header else rows
+    if not body:
+        raise ValueError(f"{path} has a header but no scans.")
+    width = len(header or body[0])
+    first_line = 2 if header else 1
+    for i, row in enumerate(body):
+        if len(row) != width:
+            raise ValueError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
+    names = header or [f"s{i}" for i in range(width)]
+    return Table(str(path), tuple(names), tuple(_column([r[j] for r in body]) for j in range(width)))
+
+
+def _read_npz(path: Path) -> Table:
+    try:
+        npz = np.load(path, allow_pickle=False)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
+    with npz:
+        arrays = {k: npz[k] for k in npz.files}
+    if "X" not in arrays:
+        two_d = [k for k, a in arrays.items() if a.ndim == 2]
+        if len(two_d) != 1:
+            raise ValueError(f"{path} has no array named 'X' (it has {', '.join(arrays) or 'none'}).")
+        arrays["X"] = arrays.pop(two_d[0])
+    X = arrays.pop("X")
+    if X.ndim != 2:
+        raise ValueError(f"{path}: X must be a table of scans by sensors; got shape {X.shape}.")
+    names = [f"s{j}" for j in range(X.shape[1])]
+    values = [np.asarray(X[:, j]) for j in range(X.shape[1])]
+    for key, a in arrays.items():
+        if a.ndim == 1 and a.shape[0] == X.shape[0]:
+            names.append(key.removeprefix("column_"))
+            values.append(a.astype(np.float64) if np.issubdtype(a.dtype, np.number) else a.astype(str))
+    return Table(str(path), tuple(names), tuple(values))
+
+
+def read_table(path) -> Table:
+    """The columns of a CSV or NPZ file (see the module docstring)."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"Data file not found: {path}")
+    if path.is_dir():
+        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
+    table = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
+    if table.n_rows == 0:
+        raise ValueError(f"{path} has no scans.")
+    return table
