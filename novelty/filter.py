@@ -99,12 +99,22 @@ class HabituatingFilter(NoveltyDetector):
             n(x) = 1 - (1 - y_s) * exp(-d^2 / (2 sigma^2))
 
         low only for an input that is close to a habituated unit.
-    match_scale : float or None, default=None
-        sigma, a distance. None: calibrated on the first
-        ``calibration_scans`` scans learned (below).
+    match_scale : float, "scott" or None, default=None
+        sigma, a distance, or how to calibrate it on the first
+        ``calibration_scans`` scans learned (below;
+        :mod:`novelty.match_scale`). None: the ``match_quantile`` quantile
+        of each calibration scan's distance to its nearest distinct other
+        calibration scan. ``"scott"`` (ours): Scott's normal-reference
+        bandwidth of the calibration scans (Scott 1992), with ``m`` scans in
+        ``d`` dimensions and ``s_j^2`` the sample variance of coordinate
+        ``j``::
+
+            sigma = sqrt(mean_j s_j^2) * m^(-1/(d+4))
+
+        the bandwidth of a Parzen window on those scans (``parzen``), a
+        tighter match than the quantile.
     match_quantile : float, default=0.9
-        The calibrated sigma is this quantile of each calibration scan's
-        distance to its nearest distinct other calibration scan.
+        The quantile of the calibration with ``match_scale=None``.
     calibration_scans : int, default=200
         How many of the first scans learned calibrate sigma (when it is not
         given and the rule or the clusterer needs it). The scans are taken
@@ -153,7 +163,7 @@ class HabituatingFilter(NoveltyDetector):
         "stimulus": Interval(numbers.Real, 0, None),
         "n_epochs": Interval(numbers.Integral, 1, None),
         "novelty_rule": Options(("efficacy", "mismatch")),
-        "match_scale": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
+        "match_scale": (Options(("scott",)), Interval(numbers.Real, 0, None, closed="neither", allow_none=True)),
         "match_quantile": Interval(numbers.Real, 0, 1),
         "calibration_scans": Interval(numbers.Integral, 2, None),
     }
@@ -237,8 +247,9 @@ class HabituatingFilter(NoveltyDetector):
         self.clusterer_ = clusterer
         self.synapse_ = synapse
         needed = self.novelty_rule == "mismatch" or clusterer.uses_match_scale
-        self.match_scale_ = None if self.match_scale is None else float(self.match_scale)
-        if needed and self.match_scale is None:
+        calibrated = self._calibration_rule() is not None
+        self.match_scale_ = None if calibrated else float(self.match_scale)
+        if needed and calibrated:
             self.calibration_scans_ = np.empty((0, X.shape[1]))
         elif hasattr(self, "calibration_scans_"):
             del self.calibration_scans_
@@ -251,7 +262,13 @@ class HabituatingFilter(NoveltyDetector):
             self.match_scale_ = None
         scans = getattr(self, "calibration_scans_", None)
         self._calibration = None if scans is None else ScaleCalibration(
-            scans, self.calibration_scans, self.match_quantile)
+            scans, self.calibration_scans, self.match_quantile, self._calibration_rule())
+
+    def _calibration_rule(self) -> str | None:
+        """The rule that calibrates sigma (:mod:`novelty.match_scale`), None when it is given."""
+        if self.match_scale is None:
+            return "quantile"
+        return self.match_scale if isinstance(self.match_scale, str) else None
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         calibration = self._calibration

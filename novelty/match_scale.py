@@ -12,19 +12,44 @@ It is near its floor only when the input is both close to its winner and the
 winner is habituated; it is 1 for an input far from every unit, whatever the
 winner's efficacy; with ``sigma -> inf`` it is the paper's ``y_s``.
 
-The match scale ``sigma`` is calibrated from the inputs themselves: a quantile
-(``q``, 0.9 by default) of each calibration scan's distance to its nearest
-*distinct* other scan (leave-one-out nearest neighbours; exact repeats are
-ignored, so that a scan seen twice does not count as its own neighbour).
+The match scale ``sigma`` is calibrated from the first ``m`` inputs
+themselves, by one of two rules:
+
+- ``"quantile"``: a quantile (``q``, 0.9 by default) of each calibration
+  scan's distance to its nearest *distinct* other scan (leave-one-out nearest
+  neighbours; exact repeats are ignored, so that a scan seen twice does not
+  count as its own neighbour);
+- ``"scott"``: Scott's normal-reference bandwidth (Scott 1992, chapter 6),
+  per coordinate ``h_j = s_j m^(-1/(d+4))`` with ``s_j^2`` the sample
+  variance (denominator ``m - 1``) of coordinate ``j`` over the ``m`` scans
+  in ``d`` dimensions, combined into one isotropic scale by their root mean
+  square::
+
+      sigma = sqrt(mean_j s_j^2) * m^(-1/(d+4))
+
+  With it, ``exp(-d^2 / (2 sigma^2))`` is a Gaussian kernel of the bandwidth
+  a Parzen window of these scans would take (the ``parzen`` baseline's
+  rule), centred on the winner instead of on every scan. It is 0.1-0.4 times
+  the quantile scale on the tasks the project ships: a tighter match.
+
 :class:`ScaleCalibration` collects the scans one at a time, so the scale after
 ``m`` scans is the same however they were batched.
+
+References
+----------
+Scott, D. W. (1992). Multivariate Density Estimation: Theory, Practice, and
+Visualization. Wiley, chapter 6 (the normal-reference rule for kernel
+estimators in d dimensions, h_j = s_j n^(-1/(d+4))).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["mismatch_novelty", "nearest_distinct", "ScaleCalibration"]
+__all__ = ["mismatch_novelty", "nearest_distinct", "scott_scale", "ScaleCalibration", "RULES"]
+
+#: the calibration rules of the match scale
+RULES = ("quantile", "scott")
 
 
 def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | None) -> np.ndarray:
@@ -55,6 +80,25 @@ def nearest_distinct(X: np.ndarray) -> np.ndarray:
     return out
 
 
+def scott_scale(X: np.ndarray) -> float | None:
+    """Scott's rule over the rows of ``X``: ``sqrt(mean_j s_j^2) * m^(-1/(d+4))`` (None if all equal).
+
+    ``s_j^2`` is the sample variance (denominator ``m - 1``) of column ``j``;
+    ``m`` rows, ``d`` columns. None for fewer than two rows or when no column
+    varies (no two distinct rows).
+
+    >>> scott_scale(np.array([[0.0, 0.0], [2.0, 0.0]]))   # s^2 = (2, 0): sqrt(1) * 2 ** (-1 / 6)
+    0.8908987181403393
+    """
+    m, d = X.shape
+    if m < 2:
+        return None
+    spread = float(np.sqrt(X.var(axis=0, ddof=1).mean()))
+    if not spread > 0.0:
+        return None
+    return spread * m ** (-1.0 / (d + 4))
+
+
 def _distances(B: np.ndarray, x: np.ndarray) -> np.ndarray:
     # One formula for both orders of a pair: (b - x)^2 == (x - b)^2 exactly.
     return np.sqrt(((B - x) ** 2).sum(axis=1))
@@ -70,7 +114,10 @@ class ScaleCalibration:
     capacity : int
         How many scans calibrate the scale; later scans are not collected.
     quantile : float
-        The quantile of the nearest-distinct distances that is the scale.
+        The quantile of the nearest-distinct distances that is the scale
+        (rule ``"quantile"``).
+    rule : {"quantile", "scott"}, default="quantile"
+        How the scans make the scale (see the module).
 
     >>> cal = ScaleCalibration(np.empty((0, 1)), capacity=3, quantile=0.5)
     >>> cal.scale, [cal.add(np.array([v])) for v in (0.0, 0.0, 2.0, 5.0)], cal.full
@@ -79,15 +126,19 @@ class ScaleCalibration:
     2.0
     """
 
-    def __init__(self, scans: np.ndarray, capacity: int, quantile: float):
+    def __init__(self, scans: np.ndarray, capacity: int, quantile: float, rule: str = "quantile"):
+        if rule not in RULES:
+            raise ValueError(f"The match scale's rule must be one of {RULES}; got {rule!r}.")
         self.scans = scans
         self.capacity = capacity
         self.quantile = quantile
-        self._nearest = nearest_distinct(scans)
+        self.rule = rule
+        self._nearest = nearest_distinct(scans) if rule == "quantile" else None
 
     def __eq__(self, other) -> bool:
         return (isinstance(other, ScaleCalibration) and self.capacity == other.capacity
-                and self.quantile == other.quantile and np.array_equal(self.scans, other.scans))
+                and self.quantile == other.quantile and self.rule == other.rule
+                and np.array_equal(self.scans, other.scans))
 
     @property
     def full(self) -> bool:
@@ -95,7 +146,9 @@ class ScaleCalibration:
 
     @property
     def scale(self) -> float | None:
-        """The quantile of the nearest-distinct distances; None before two distinct scans."""
+        """The scale of the scans collected; None before two distinct scans."""
+        if self.rule == "scott":
+            return scott_scale(self.scans)
         finite = self._nearest[np.isfinite(self._nearest)]
         return float(np.quantile(finite, self.quantile)) if finite.size else None
 
@@ -109,9 +162,12 @@ class ScaleCalibration:
         """Collect ``x`` unless full; return whether the scale changed."""
         if self.full:
             return False
+        before = self.scale
+        if self.rule == "scott":
+            self.scans = np.vstack([self.scans, x[None, :]])
+            return self.scale != before
         d = _distances(self.scans, x)
         distinct = d > 0.0
-        before = self.scale
         np.minimum(self._nearest, np.where(distinct, d, np.inf), out=self._nearest)
         own = d[distinct].min() if distinct.any() else np.inf
         self._nearest = np.append(self._nearest, own)

@@ -29,7 +29,7 @@ from __future__ import annotations
 from .filter import HabituatingFilter
 
 __all__ = ["gwr_novelty", "gng_stanley", "som_wang_hsu", "gwr_wang_hsu", "gng_wang_hsu",
-           "hsom_mismatch"]
+           "hsom_mismatch", "kmeans_stanley"]
 
 
 #: Growing networks start from units drawn uniformly in [0, 1]^d (the range of
@@ -38,6 +38,12 @@ __all__ = ["gwr_novelty", "gng_stanley", "som_wang_hsu", "gwr_wang_hsu", "gng_wa
 _GROWING = {"clusterer__init": "uniform"}
 
 _MISMATCH = {"novelty_rule": "mismatch"}
+
+#: k-means as a novelty filter's clusterer (ours): 100 units placed on the first
+#: distinct scans (MacQueen's start, the same scan by scan and in batches), each
+#: the running mean of what it wins; the match scale a Parzen window would take
+_KMEANS_NOVELTY = {**_MISMATCH, "n_clusters": 100, "init": "first", "learning_rate": "count",
+                   "match_scale": "scott"}
 
 #: GWR as a novelty detector (ours): a unit for every input farther than the
 #: calibrated radius, which then stands for that input as its winner
@@ -120,3 +126,19 @@ def hsom_mismatch(**params) -> HabituatingFilter:
     with sigma calibrated on the first 200 scans learned.
     """
     return _compose("som", "stanley", params, _MISMATCH)
+
+
+def kmeans_stanley(**params) -> HabituatingFilter:
+    """Online k-means, 100 units on the first distinct scans, Stanley synapses; mismatch at Scott's scale (ours).
+
+    The simplest clusterer (``online-kmeans``, MacQueen 1967) in a novelty
+    filter with Stanley synapses with the paper's values: ``n_clusters=100``
+    units placed on the first 100 distinct scans learned
+    (``init="first"``, MacQueen's start), each the running mean of the
+    scans it wins (``learning_rate="count"``); scored by habituation x
+    mismatch (``novelty_rule="mismatch"``) with sigma Scott's bandwidth of
+    the first 200 scans (``match_scale="scott"``). The novelty of a scan is
+    low only when it is within about a Parzen bandwidth of a unit that has
+    won often.
+    """
+    return _compose("online-kmeans", "stanley", params, _KMEANS_NOVELTY)

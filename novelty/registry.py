@@ -297,6 +297,7 @@ detectors = Registry(
         "gwr-wang-hsu": "novelty.presets:gwr_wang_hsu",
         "gng-wang-hsu": "novelty.presets:gng_wang_hsu",
         "hsom-mismatch": "novelty.presets:hsom_mismatch",
+        "kmeans-stanley": "novelty.presets:kmeans_stanley",
         "kohonen-filter": "novelty.baselines.kohonen:KohonenNoveltyFilter",
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",

@@ -1,11 +1,12 @@
 """The match scale and the habituation x mismatch novelty (novelty.match_scale)."""
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from novelty.match_scale import ScaleCalibration, mismatch_novelty, nearest_distinct
+from novelty.match_scale import ScaleCalibration, mismatch_novelty, nearest_distinct, scott_scale
 
 
 def test_mismatch_novelty_by_hand():
@@ -51,3 +52,78 @@ def test_one_at_a_time_equals_all_at_once(X, capacity, q):
     assert cal.scale == (float(np.quantile(finite, q)) if finite.size else None)
     np.testing.assert_array_equal(cal.scans, kept)
     assert ScaleCalibration(kept, capacity, q).scale == cal.scale  # rebuilt from a model file
+
+
+# ------------------------------------------------------------- Scott's rule
+def test_scott_scale_by_hand():
+    # columns (0, 2, 1) and (0, 0, 3): sample variances 1 and 3, mean 2; m = 3, d = 2
+    X = np.array([[0.0, 0.0], [2.0, 0.0], [1.0, 3.0]])
+    assert scott_scale(X) == np.sqrt(2.0) * 3.0 ** (-1.0 / 6.0)
+    # one column: Scott's univariate rule s * m^(-1/5)
+    assert scott_scale(np.array([[1.0], [3.0]])) == np.sqrt(2.0) * 2.0 ** (-0.2)
+
+
+def test_scott_scale_is_none_without_two_distinct_scans():
+    assert scott_scale(np.empty((0, 3))) is None
+    assert scott_scale(np.ones((1, 3))) is None
+    assert scott_scale(np.full((5, 3), 0.25)) is None
+
+
+def test_calibration_rule_scott_takes_the_first_scans():
+    X = np.array([[0.0], [2.0], [4.0], [100.0]])
+    cal = ScaleCalibration(np.empty((0, 1)), capacity=3, quantile=0.9, rule="scott")
+    changed = [cal.add(x) for x in X]
+    assert changed == [False, True, True, False]  # no scale after one scan; the fourth is not collected
+    assert cal.scale == 2.0 * 3.0 ** (-0.2)       # s = 2 over (0, 2, 4)
+
+
+def test_calibration_rule_is_checked():
+    with pytest.raises(ValueError, match="rule"):
+        ScaleCalibration(np.empty((0, 1)), 3, 0.9, rule="silverman")
+
+
+@settings(max_examples=30, deadline=None)
+@given(X=hnp.arrays(np.float64, st.tuples(st.integers(1, 30), st.integers(1, 4)),
+                    elements=st.sampled_from([0.0, 0.5, 1.0, 2.5, -3.0])),
+       capacity=st.integers(2, 40))
+def test_scott_one_at_a_time_equals_all_at_once(X, capacity):
+    cal = ScaleCalibration(np.empty((0, X.shape[1])), capacity, 0.9, "scott").extend(X)
+    kept = X[:capacity]
+    assert cal.scale == scott_scale(kept)
+    assert ScaleCalibration(kept, capacity, 0.9, "scott") == cal
+
+
+@settings(max_examples=30, deadline=None)
+@given(X=hnp.arrays(np.float64, st.tuples(st.integers(2, 30), st.integers(1, 4)),
+                    elements=st.floats(-10, 10)),
+       shift=st.floats(-100, 100), factor=st.floats(0.01, 100))
+def test_scott_scale_is_shift_invariant_and_scales_with_the_data(X, shift, factor):
+    base = scott_scale(X)
+    if base is None or base < 1e-6:
+        return
+    np.testing.assert_allclose(scott_scale(X + shift), base, rtol=1e-6)
+    np.testing.assert_allclose(scott_scale(X * factor), base * factor, rtol=1e-9)
+
+
+# ------------------------------------------------------------- in the filter
+def test_filter_scott_scale_is_that_of_the_first_scans_in_any_batching():
+    import novelty
+
+    X = np.random.default_rng(0).uniform(size=(60, 4))
+    whole = novelty.make("hsom", novelty_rule="mismatch", match_scale="scott", calibration_scans=40)
+    out = whole.stream(X)
+    assert whole.match_scale_ == scott_scale(X[:40])
+    pieces = novelty.make("hsom", novelty_rule="mismatch", match_scale="scott", calibration_scans=40)
+    parts = np.concatenate([pieces.stream(X[:7]), pieces.stream(X[7:33]), pieces.stream(X[33:])])
+    assert parts.tobytes() == out.tobytes()
+    assert pieces.match_scale_ == whole.match_scale_
+
+
+@pytest.mark.parametrize("bad", ["silverman", "Scott", -1.0, 0.0, True])
+def test_filter_refuses_a_bad_match_scale(bad):
+    import novelty
+
+    det = novelty.make("hsom", novelty_rule="mismatch", match_scale=bad)
+    with pytest.raises(ValueError, match="match_scale"):
+        det.fit(np.zeros((3, 2)))
+    assert not hasattr(det, "clusterer_")

@@ -494,6 +494,8 @@ def test_bad_feature_names_in_a_file_are_refused(tmp_path, names, message):
     ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 20}),
     ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
                      "firing_condition": False, "new_unit_wins": True, "calibration_scans": 20}),
+    ("hsom", {"novelty_rule": "mismatch", "match_scale": "scott", "calibration_scans": 20}),
+    ("kmeans-stanley", {"calibration_scans": 20, "n_clusters": 25}),  # units still being placed at 12
 ])
 def test_match_scale_and_calibration_round_trip(tmp_path, name, params, n_scans):
     rng = np.random.default_rng(0)

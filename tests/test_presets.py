@@ -16,6 +16,7 @@ PRESETS = {
     "gwr-wang-hsu": ("gwr", WangHsuSynapse),
     "gng-wang-hsu": ("gng", WangHsuSynapse),
     "hsom-mismatch": ("som", StanleySynapse),
+    "kmeans-stanley": ("online-kmeans", StanleySynapse),
 }
 
 
@@ -45,7 +46,8 @@ def test_preset_routes_parameters_and_streams(name):
     cname, synapse_class = PRESETS[name]
     det = novelty.make(name, tau_winner=5.0, others="forget")
     assert det.synapse.tau_winner == 5.0 and det.synapse.others == "forget"
-    X = np.random.default_rng(0).random((80, 5))
+    rng = np.random.default_rng(0)
+    X = rng.random((20, 5))[rng.integers(0, 20, 80)]  # 20 places, each passed 4 times on average
     out = det.stream(X)
     assert out[0] == 1.0 and np.all((out >= 0) & (out <= 1))
     assert out[40:].mean() < 1.0

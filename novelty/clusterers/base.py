@@ -110,8 +110,8 @@ class Clusterer(Component):
         """Which inputs would be given a new unit of their own if they were learned now.
 
         ``rows`` and ``distances`` are the inputs' winners and squared
-        distances. None (the default): no input is (a network that reports
-        ``Growth.new_winner`` must answer).
+        distances. None (the default): no input is (a network whose
+        ``Growth.new_winner`` follows from a poor match must answer).
         """
         return None
 

@@ -17,6 +17,19 @@ adapting::
 It is the simplest baseline for the clusterer of a novelty filter: what the
 topology (SOM, GNG, GWR) and the growth (GNG, GWR) of the others add.
 
+With ``init="first"`` the units are placed as MacQueen places them: the
+first k inputs are the first k means. The network starts with one unit on
+the first input (standing for no input yet: ``n_s = 0``, so that learning
+that input leaves it there with ``n_s = 1``); each later input at a positive
+distance from every unit, while there are fewer than k, becomes a unit of its
+own (``n_s = 1``) that stands for it as its winner (``Growth.new_winner``);
+an exact repeat of a unit is learned by it instead. A stream learned scan by
+scan and the same scans learned in batches place the same units. Placing
+is how the network starts, not a judgement of the input: scoring without
+learning reads the units placed so far (:meth:`Clusterer.grows_for` answers
+None), so that a network which has seen fewer than k distinct inputs still
+ranks new inputs by their match.
+
 References
 ----------
 MacQueen, J. (1967). Some methods for classification and analysis of
@@ -48,18 +61,22 @@ class OnlineKMeans(Clusterer):
     learning_rate : "count" or float, default="count"
         "count": 1 / n_s, the number of inputs the winner has stood for
         (MacQueen); a float in (0, 1]: that constant rate.
-    init : {"sample", "uniform"}, default="sample"
+    init : {"sample", "uniform", "first"}, default="sample"
         Initial units: random rows of the first batch (distinct where it has
-        enough rows), or drawn uniformly in ``init_range``.
+        enough rows), drawn uniformly in ``init_range``, or ``"first"``: the
+        first ``n_clusters`` distinct inputs learned, one unit at a time, as
+        MacQueen (1967) starts (see the module).
     init_range : tuple of float, default=(0.0, 1.0)
         Range of the uniform initialisation.
 
     Attributes
     ----------
-    weights_ : ndarray of shape (n_clusters, n_features)
-        Unit prototypes.
-    counts_ : ndarray of shape (n_clusters,), dtype int64
-        n_s: inputs each unit stands for (its initial position counts as one).
+    weights_ : ndarray of shape (n_units, n_features)
+        Unit prototypes: ``n_clusters`` of them, or with ``init="first"``
+        one per distinct input placed so far (at most ``n_clusters``).
+    counts_ : ndarray of shape (n_units,), dtype int64
+        n_s: inputs each unit stands for (an initial position drawn by
+        ``"sample"`` or ``"uniform"`` counts as one).
 
     References
     ----------
@@ -78,7 +95,7 @@ class OnlineKMeans(Clusterer):
     _parameter_rules = {
         "n_clusters": Interval(numbers.Integral, 1, None),
         "learning_rate": (Options(("count",)), Interval(numbers.Real, 0, 1, closed="right")),
-        "init": Options(("sample", "uniform")),
+        "init": Options(("sample", "uniform", "first")),
     }
 
     def __init__(self, n_clusters=10, learning_rate="count", init="sample", init_range=(0.0, 1.0)):
@@ -92,8 +109,15 @@ class OnlineKMeans(Clusterer):
         _graph.check_init_range(self)
 
     def _initialize(self, X: np.ndarray, rng: np.random.Generator) -> None:
+        if self.init == "first":
+            self.weights_ = X[:1].copy()
+            self.counts_ = np.zeros(1, dtype=np.int64)
+            return
         self.weights_ = _graph.initial_weights(X, rng, self.n_clusters, self.init, self.init_range)
         self.counts_ = np.ones(self.n_clusters, dtype=np.int64)
+
+    def _placing(self) -> bool:
+        return self.init == "first" and self.n_units_ < self.n_clusters
 
     def match(self, x: np.ndarray) -> Match:
         d = ((self.weights_ - x) ** 2).sum(axis=1)
@@ -101,6 +125,11 @@ class OnlineKMeans(Clusterer):
         return Match(s, float(d[s]), NO_UNITS)
 
     def adapt(self, x: np.ndarray, match: Match) -> Growth:
+        if self._placing() and match.distance > 0.0:
+            self.weights_ = np.vstack([self.weights_, x[None, :]])
+            self.counts_ = np.append(self.counts_, np.int64(1))
+            self.unit_ids_ = np.append(self.unit_ids_, self._new_unit_ids(1))
+            return Growth(added=1, new_winner=True)
         s = match.winner
         self.counts_[s] += 1
         rate = 1.0 / self.counts_[s] if self.learning_rate == "count" else self.learning_rate
@@ -110,8 +139,10 @@ class OnlineKMeans(Clusterer):
     def _check_state(self) -> None:
         super()._check_state()
         n = self.weights_.shape[0]
-        if n != self.n_clusters:
+        if n != self.n_clusters and not (self.init == "first" and n < self.n_clusters):
             raise StateError(f"OnlineKMeans.weights_ has {n} units; n_clusters is {self.n_clusters}.")
         counts = check_array_state(self, "counts_", 1, "iu", shape=(n,))
-        if np.any(counts < 1):
-            raise StateError("OnlineKMeans.counts_ must be at least 1 (the initial position counts).")
+        least = 0 if self.init == "first" else 1
+        if np.any(counts < least):
+            raise StateError(f"OnlineKMeans.counts_ must be at least {least}"
+                             + (" (the initial position counts)." if least else "."))
