@@ -40,7 +40,7 @@ import math
 import numpy as np
 
 from ..bench import metrics as bench_metrics
-from .tasks import FAMILIAR
+from .runs import FAMILIAR
 
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
