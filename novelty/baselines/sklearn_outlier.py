@@ -36,6 +36,10 @@ wrapping an arbitrary estimator instance cannot be saved (its parameter is
 an object a model file cannot name); ``save`` says so. To make another
 estimator saveable, subclass as the four below do and register the subclass.
 
+The adapter and its four detectors share one module although it is long:
+each subclass only declares an estimator's parameters and how to build it,
+mostly documentation, and none of them reads without the adapter.
+
 References
 ----------
 Liu, F. T., Ting, K. M. & Zhou, Z.-H. (2008). Isolation forest. Proc. ICDM

@@ -24,6 +24,10 @@ The seeds of one task are not independent samples of a population of tasks
 (they share the task's generator), so a p-value over (task, seed) cells
 speaks of these tasks, not of sonar tasks in general.
 
+The module is a little over 300 lines and kept whole: every test reads the
+same cell table and ranks, and a reader checks them all against Demsar (2006)
+in one place.
+
 References
 ----------
 Demsar, J. (2006). Statistical comparisons of classifiers over multiple data

@@ -45,6 +45,10 @@ probability ``dropout``. With ``resolution`` set, readings are finally
 rounded to its multiples: 0.0254 m gives the whole inches the Nomad 200
 reports (Nomadic Technologies, 1997); the default keeps them continuous.
 
+The model is one module although it is long: the beam, the direct, multipath
+and edge echoes and the noise act together on every ray of one reading, and
+apart each piece would be read without the others that decide what it does.
+
 References
 ----------
 Polaroid Corporation (1987). Ultrasonic Ranging System (handbook and 6500
