@@ -31,9 +31,9 @@ that ends early waits for the thread at exit, so that the cache gets written;
 Ctrl-C during that wait stops the compiler and exits quietly with status 130.
 The child runs isolated (``python -I``, in the package's folder): nothing in
 the user's working directory or ``PYTHON*`` variables is imported or read.
-:func:`wait` blocks until the kernels are ready (benchmarks, tests). Batch scoring splits large batches across threads
-(``NOVELTY_NUM_THREADS``, default: the usable cores); the kernel releases the
-GIL.
+:func:`wait` blocks until the kernels are ready (benchmarks, tests). Batch
+scoring is :mod:`.scoring`: a float32 pre-filter with exact re-checks, on
+threads (``NOVELTY_NUM_THREADS``, default: the usable cores).
 """
 
 from __future__ import annotations
@@ -52,6 +52,7 @@ from ..clusterers.gwr import GrowWhenRequired
 from ..clusterers.kmeans import OnlineKMeans
 from ..clusterers.som import SOM
 from ..habituation.stanley import StanleySynapse
+from .scoring import score
 
 __all__ = ["learner", "scorer", "kernels_enabled", "wait"]
 
@@ -192,12 +193,13 @@ class _Compiled:
 
 _SOM = _Compiled("_som_stanley")
 _GROWING = _Compiled("_growing")
+_NEAREST = _Compiled("_nearest")  # batch scoring (see .scoring)
 
 
 def _after_fork_in_child() -> None:
     # A compiler thread does not survive fork(); a child forked while one was
     # running would wait for it forever, so it starts its own when it needs one.
-    for compiled in (_SOM, _GROWING):
+    for compiled in (_SOM, _GROWING, _NEAREST):
         if compiled.module is None and compiled.error is None:
             compiled.started, compiled.thread = False, None
 
@@ -217,6 +219,7 @@ def wait(timeout: float | None = None):
     Returns the SOM module, or None when kernels are unavailable.
     """
     _GROWING.wait(timeout)
+    _NEAREST.wait(timeout)
     return _SOM.wait(timeout)
 
 
@@ -297,7 +300,7 @@ def scorer(clusterer, synapse) -> Callable | None:
 
     The novelty is ``efficacy_[winners(X)]``; ``winners`` (int64) and
     ``distances``, if given, receive each row's winning row and its squared
-    distance, as ``match`` computes it.
+    distance, as ``match`` computes them (:mod:`.scoring`).
 
     Scoring only reads the weights and the efficacies, so any synapse model
     with a plain ``efficacy_`` array will do.
@@ -307,9 +310,13 @@ def scorer(clusterer, synapse) -> Callable | None:
     W, y = getattr(clusterer, "weights_", None), getattr(synapse, "efficacy_", None)
     if not (_plain(W, 2) and _plain(y, 1) and y.shape[0] == W.shape[0]):
         return None
-    if _SOM.module is None and _SOM.get() is None:
+    if _NEAREST.module is None and _NEAREST.get() is None:
         return None
-    return _score_nearest
+    return _score
+
+
+def _score(net, syn, X, winners=None, distances=None):
+    return score(_NEAREST.module, net.weights_, syn.efficacy_, X, winners, distances)
 
 
 # ---------------------------------------------------------------- parameters
@@ -516,67 +523,3 @@ def _learn_growing(net, syn, X: np.ndarray, dt: np.ndarray, stimulus: float,
 
 
 _growing_handing_over = _handing_over(_GROWING, _learn_growing)
-
-
-# ------------------------------------------------------------------- scoring
-#: rows per kernel call when scoring: bounds the scratch (winners, distances)
-#: to 256 kB a thread, whatever the batch; from two chunks on, threads share the work
-_SCORE_CHUNK = 16384
-_NO_DT = np.empty(0)
-_pool = None
-
-
-def _threads() -> int:
-    value = os.environ.get("NOVELTY_NUM_THREADS", "")
-    if value.isdigit() and int(value) > 0:
-        return int(value)
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # not on Linux
-        return max(1, os.cpu_count() or 1)
-
-
-def _score_params() -> np.ndarray:
-    params = _params.get("score")
-    if params is None:  # scoring reads none of them; ones keep every division defined
-        params = _params["score"] = np.ones(len(_SOM.module.PARAMS))
-    return params
-
-
-def _score_part(W, y, X, out, rows, dist, plan, params) -> None:
-    for lo in range(0, X.shape[0], _SCORE_CHUNK):
-        block = _c(X[lo : lo + _SCORE_CHUNK])  # a read-only batch is copied block by block
-        m = block.shape[0]
-        _SOM.module.som_stanley_stream(W, y, block, _NO_DT, rows[lo : lo + m], out[lo : lo + m],
-                                       dist[lo : lo + m], plan, params, False, 0, 0)
-
-
-def _score_nearest(net, syn, X: np.ndarray, winners: np.ndarray | None = None,
-                   distances: np.ndarray | None = None) -> np.ndarray:
-    global _pool
-    n = X.shape[0]
-    out = np.empty(n)
-    rows = np.empty(n, dtype=np.int64) if winners is None else winners
-    dist = np.empty(n) if distances is None else distances
-    plan = _plan(X.shape[1])
-    params = _score_params()
-    if n == 1:  # score_one: the shortest path
-        _SOM.module.som_stanley_stream(net.weights_, syn.efficacy_, _c(X), _NO_DT, rows, out,
-                                       dist, plan, params, False, 0, 0)
-        return out
-    if n < 2 * _SCORE_CHUNK or _threads() == 1:
-        _score_part(net.weights_, syn.efficacy_, X, out, rows, dist, plan, params)
-        return out
-    # The kernel releases the GIL (nogil): contiguous parts score in parallel.
-    threads = min(_threads(), n // _SCORE_CHUNK)
-    if _pool is None or _pool._max_workers < threads:
-        from concurrent.futures import ThreadPoolExecutor
-
-        _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="novelty-score")
-    bounds = np.linspace(0, n, threads + 1).astype(int)
-    jobs = [_pool.submit(_score_part, net.weights_, syn.efficacy_, X[a:b], out[a:b], rows[a:b],
-                         dist[a:b], plan, params)
-            for a, b in zip(bounds[:-1], bounds[1:])]
-    for job in jobs:
-        job.result()
-    return out

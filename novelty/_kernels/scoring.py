@@ -1,0 +1,105 @@
+"""Batch scoring without learning: each scan's nearest unit and its efficacy, on every core.
+
+:func:`score` gives what the reference gives (``Clusterer.match`` scan by
+scan: the winner is the first unit of least squared distance, the distance
+is ``((W - x) ** 2).sum(axis=1)`` at the winner; the novelty its efficacy),
+bit for bit, through the compiled :func:`._nearest.nearest` (a float32
+pre-filter with exact float64 re-checks; its docstring derives the bound).
+The batch is cut into chunks of :data:`CHUNK` scans (bounding the kernel's
+scratch whatever the batch) that threads score in parallel: the kernel
+releases the GIL. The number of threads is ``NOVELTY_NUM_THREADS`` when set
+to a positive integer, else the cores this process may use. Scans are
+independent, so the result does not depend on the threads.
+
+No numba here: the compiled module is passed in by :mod:`novelty._kernels`,
+which compiles and loads it.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from ._pairwise import pairwise_plan
+
+__all__ = ["score", "threads"]
+
+#: scans per kernel call: from two chunks on, threads share the work
+CHUNK = 16384
+
+_plans: dict[int, np.ndarray] = {}
+_lock = threading.Lock()
+_pool: ThreadPoolExecutor | None = None
+_pool_size = 0
+
+
+def threads() -> int:
+    """Threads that score a large batch: ``NOVELTY_NUM_THREADS``, else the usable cores."""
+    value = os.environ.get("NOVELTY_NUM_THREADS", "")
+    if value.isdigit() and int(value) > 0:
+        return int(value)
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _plan(n_features: int) -> np.ndarray:
+    plan = _plans.get(n_features)
+    if plan is None:
+        plan = _plans[n_features] = pairwise_plan(n_features)
+    return plan
+
+
+def _executor(n_threads: int) -> ThreadPoolExecutor:
+    """A pool of at least ``n_threads`` workers, kept between calls."""
+    global _pool, _pool_size
+    with _lock:
+        if _pool is None or _pool_size < n_threads:
+            # a smaller pool still in use finishes its work; its idle threads end
+            # when it is garbage collected
+            _pool = ThreadPoolExecutor(max_workers=n_threads, thread_name_prefix="novelty-score")
+            _pool_size = n_threads
+        return _pool
+
+
+def _contiguous(a: np.ndarray) -> np.ndarray:
+    if a.dtype == np.float64 and a.flags.c_contiguous:
+        return a
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
+          winners: np.ndarray | None = None, distances: np.ndarray | None = None) -> np.ndarray:
+    """The efficacies ``y`` of the nearest rows of ``W`` to the rows of ``X``.
+
+    ``module`` is the compiled :mod:`._nearest`; ``W`` (C-contiguous float64)
+    and ``y`` are read, never written. ``winners`` (int64) and ``distances``,
+    if given, receive each scan's winning row and its squared distance.
+    """
+    n = X.shape[0]
+    out = np.empty(n)
+    rows = np.empty(n, dtype=np.int64) if winners is None else winners
+    dist = np.empty(n) if distances is None else distances
+    plan = _plan(W.shape[1])
+    kernel = module.nearest
+
+    def part(lo: int, hi: int) -> None:
+        for a in range(lo, hi, CHUNK):
+            b = min(a + CHUNK, hi)
+            # a read-only or strided batch is copied chunk by chunk
+            kernel(W, y, _contiguous(X[a:b]), rows[a:b], out[a:b], dist[a:b], plan)
+
+    n_threads = min(threads(), n // CHUNK)
+    if n_threads < 2:
+        part(0, n)
+        return out
+    bounds = np.linspace(0, n, n_threads + 1).astype(int)
+    pool = _executor(n_threads)
+    jobs = [pool.submit(part, int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
+    for job in jobs:
+        job.result()
+    return out
