@@ -365,17 +365,6 @@ def test_other_networks_batch_scoring_equals_reference(clusterer, rule):
         np.testing.assert_array_equal(got, [det.score_one(x) for x in probe])
 
 
-def test_threaded_scoring_equals_reference(monkeypatch):
-    """Large batches are split across threads; the result does not depend on it."""
-    monkeypatch.setattr(_kernels, "_SCORE_CHUNK", 1000)
-    monkeypatch.setenv("NOVELTY_NUM_THREADS", "3")
-    det = novelty.make("hsom").fit(corridor(2000))
-    probe = np.random.default_rng(0).uniform(0, 1, (10_007, 16))
-    got = det.novelty(probe)
-    with reference_only():
-        np.testing.assert_array_equal(got, det.novelty(probe))
-
-
 # ----------------------------------------------------------------- dispatch
 def test_other_components_use_the_reference():
     class MySOM(novelty.SOM):

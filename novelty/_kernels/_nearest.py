@@ -13,9 +13,12 @@ bit, at a fraction of the cost:
 2. **Decision**: if the gap ``s_b - s_a`` exceeds the bound ``T`` below, unit
    ``a`` is the reference's winner, and its distance is computed once, in
    float64 in numpy's order (:func:`row_distance`). Otherwise (ties, near
-   ties, tiny or huge magnitudes) the scan takes the exact path: all
-   distances in numpy's order (:func:`._distances.distances_cols`) and the
-   first of the least, what the reference does.
+   ties) every unit ``j`` with ``s_j <= s_a + T`` is a candidate (the others
+   are farther than ``a``), the candidates' distances are computed in
+   numpy's order and the first of the least wins, as in the reference.
+   Scans beyond float32's range (below) take the exact path: all distances
+   in numpy's order (:func:`._distances.distances_cols`), the first of the
+   least.
 
 **The bound.** Let ``u = 2**-24`` (float32's unit roundoff), ``t = 2**-126``
 (float32's smallest normal number: the absolute error of one rounding that
@@ -35,15 +38,16 @@ section 3.1, for the dot product summed in any order):
   <= e := gamma_{n+4}(u) r^2 + A``, with
   ``A = 3 t (sqrt(n) r + 2 n + 2)`` bounding every underflow term.
 
-So ``D_j - D_a >= (s_j - s_a) - 2 e`` for the exact squared distances
+So ``D_j - D_a >= (s_j - s_a) - 2 e`` (the pre-filter's values ``s^`` written ``s``) for the exact squared distances
 ``D_j = |x - w_j|^2``. The reference's float64 distances are the exact ones
 up to ``|d_j - D_j| <= gamma_{n+2}(2**-53) D_j`` (a rounded difference,
 squared, then a sum of non-negative terms; float64 underflow is far below
-``A``), and ``D_j <= r^2``. Hence ``s_b - s_a > T_0 := 2 e + 2 gamma_{n+2}(2**-53) r^2``
-implies ``d_a < d_j`` for every other unit ``j``, strictly: unit ``a`` is
-``np.argmin(d)``. :func:`nearest` demands ``s_b - s_a > T = 2 T_0``; the
-factor 2 covers the rounding of computing ``r``, ``T`` and the gap
-themselves in float64 (relative errors of order ``2**-50``).
+``A``), and ``D_j <= r^2``. Hence ``s_j - s_a > T_0 := 2 e + 2 gamma_{n+2}(2**-53) r^2``
+implies ``d_a < d_j``, strictly: such a unit ``j`` is not the winner, and
+when it holds for all ``j != a`` (``s_b - s_a > T_0``) unit ``a`` is
+``np.argmin(d)``. :func:`nearest` uses ``T = 2 T_0``; the factor 2 covers the
+rounding of computing ``r``, ``T``, the gap and ``s_a + T`` in float64
+(relative errors of order ``2**-50`` of ``r^2``, while ``T_0 >= 40 * 2**-24 r^2``).
 
 float32 overflows beyond ``3.4e38``: when ``r > 1e18`` the products and sums
 above might overflow, and the scan takes the exact path (every scan, when
@@ -137,9 +141,10 @@ def row_distance(W, j, X, i, plan, stack):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _prefilter(Wf, wn, XT, acc, s1, s2, arg):
-    """For each lane b (a scan, as column ``XT[:, b]``): the least ``s1[b]`` and second least
-    ``s2[b]`` of ``wn[j] - 2 Wf[j].XT[:, b]`` over the units j, and the first unit of the least.
+def _prefilter(Wf, wn, XT, S, acc, s1, s2, arg):
+    """For each lane b (a scan, as column ``XT[:, b]``): ``S[j, b] = wn[j] - 2 Wf[j].XT[:, b]``
+    for every unit j, their least ``s1[b]`` and second least ``s2[b]``, and the first unit
+    of the least ``arg[b]``.
 
     A function of its own (not inlined): in the caller's body LLVM vectorised
     it less well.
@@ -171,40 +176,50 @@ def _prefilter(Wf, wn, XT, acc, s1, s2, arg):
         jj = np.int32(j)
         for b in range(LANES):  # least and second least, without branches
             v = wj - np.float32(2.0) * acc[b]
+            S[j, b] = v
             arg[b] = jj if v < s1[b] else arg[b]
             s2[b] = min(s2[b], max(v, s1[b]))
             s1[b] = min(s1[b], v)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _resolve(W, WT, y, X, start, m, lanes, norm, s1, s2, arg, w_max, plan, acc8, stack, one,
+def _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan, acc8, stack, one,
              winners, novelty, distances):
-    """Winners of the scans ``start, ..., start + m - 1``: the pre-filter's where the gap
-    test holds (``lanes``: it ran), else the exact path's. Returns how many took the latter."""
+    """Winners of the scans ``start, ..., start + m - 1`` from the pre-filter's values
+    (``lanes``: it ran; else, or beyond its range, the exact path). Returns how many
+    scans were re-checked (more than one candidate) or took the exact path."""
     n_units, n = W.shape
     g32 = (n + 4) * U32 / (1.0 - (n + 4) * U32)
     g64 = (n + 2) * U64 / (1.0 - (n + 2) * U64)
     root_n = math.sqrt(n)
-    n_exact = 0
+    n_checked = 0
     for b in range(m):
         i = start + b
-        exact = True
-        if lanes:
-            r = norm[b] + w_max
-            if r <= LIMIT:
-                e = g32 * r * r + 3.0 * TINY32 * (root_n * r + 2.0 * n + 2.0)
-                bound = 2.0 * (2.0 * e + 2.0 * g64 * r * r)
-                exact = not (np.float64(s2[b]) - np.float64(s1[b]) > bound)
-        if exact:
-            n_exact += 1
+        r = norm[b] + w_max
+        if not lanes or r > LIMIT:
+            n_checked += 1
             a, best = _exact(WT, X, i, plan, acc8, stack)
         else:
+            e = g32 * r * r + 3.0 * TINY32 * (root_n * r + 2.0 * n + 2.0)
+            bound = 2.0 * (2.0 * e + 2.0 * g64 * r * r)
             a = arg[b]
             best = row_distance(W, a, X, i, plan, one)
+            least = np.float64(s1[b])
+            if np.float64(s2[b]) - least <= bound:
+                # candidates: every unit within the bound of the least; the others are
+                # farther than unit a. The first of the least exact distance among them.
+                n_checked += 1
+                limit = least + bound
+                for j in range(n_units):
+                    if j != a and np.float64(S[j, b]) <= limit:
+                        d = row_distance(W, j, X, i, plan, one)
+                        if d < best or (d == best and j < a):
+                            a = j
+                            best = d
         winners[i] = a
         novelty[i] = y[a]
         distances[i] = best
-    return n_exact
+    return n_checked
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -226,7 +241,7 @@ def nearest(W, y, X, winners, novelty, distances, plan):
     """Each row of ``X``: its nearest unit (row of ``W``), that unit's efficacy ``y`` and
     squared distance, written to ``winners``, ``novelty`` and ``distances``.
 
-    Returns how many rows took the exact path (the gap test failed).
+    Returns how many rows were re-checked or took the exact path (the gap test failed).
     """
     n_units, n = W.shape
     n_scans = X.shape[0]
@@ -250,6 +265,7 @@ def nearest(W, y, X, winners, novelty, distances, plan):
     # the pre-filter's lanes
     XT = np.zeros((n, LANES), dtype=np.float32)
     norm = np.zeros(LANES)
+    S = np.empty((n_units, LANES), dtype=np.float32)
     acc = np.empty(LANES, dtype=np.float32)
     s1 = np.empty(LANES, dtype=np.float32)
     s2 = np.empty(LANES, dtype=np.float32)
@@ -271,7 +287,7 @@ def nearest(W, y, X, winners, novelty, distances, plan):
             for b in range(m, LANES):  # a short last block: lanes of zeros, ignored
                 for k in range(n):
                     XT[k, b] = 0.0
-            _prefilter(Wf, wn, XT, acc, s1, s2, arg)
-        n_exact += _resolve(W, WT, y, X, start, m, lanes, norm, s1, s2, arg, w_max, plan,
+            _prefilter(Wf, wn, XT, S, acc, s1, s2, arg)
+        n_exact += _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan,
                             acc8, stack, one, winners, novelty, distances)
     return n_exact
