@@ -67,9 +67,10 @@ def _executor(n_threads: int) -> ThreadPoolExecutor:
 
 
 def _contiguous(a: np.ndarray) -> np.ndarray:
-    if a.dtype == np.float64 and a.flags.c_contiguous:
+    """``a`` as the kernel's signature wants it: C-contiguous, writable float64 (copied if not)."""
+    if a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable:
         return a
-    return np.ascontiguousarray(a, dtype=np.float64)
+    return np.array(a, dtype=np.float64, order="C")
 
 
 def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,

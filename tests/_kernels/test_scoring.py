@@ -264,5 +264,8 @@ def test_read_only_and_strided_batches():
     np.testing.assert_array_equal(det.novelty(X), expected)
     X.flags.writeable = False
     np.testing.assert_array_equal(det.novelty(X), expected)
+    C = np.ascontiguousarray(X)
+    C.flags.writeable = False
+    np.testing.assert_array_equal(det.novelty(C), expected)
     every_other = np.repeat(X, 2, axis=0)[::2]  # a strided view
     np.testing.assert_array_equal(det.novelty(every_other), expected)
