@@ -102,8 +102,8 @@ scans both times. Early in a first exposure the efficacy levels off near
 
 What could and could not be verified
 ------------------------------------
-Equations (1)-(2) are the form in the issue, attributed to Marsland's (2003)
-review. The structure agrees with Wang's (1993) account of the same model, as
+Equations (1)-(2) are the form this project was given, attributed to
+Marsland's (2003) review. The structure agrees with Wang's (1993) account of the same model, as
 its abstract describes it: two interacting equations, one for the synaptic
 weight and one for the speed of recovery, the latter an inverse S-shaped
 curve whose high values mean fast recovery (short-term habituation) and low

@@ -52,8 +52,8 @@ def test_euler_sequence_of_the_winner_from_rest():
         assert y == pytest.approx(euler_closed_form(n), rel=1e-13, abs=1e-15)
 
 
-def test_euler_sequence_rounded_as_in_the_issue():
-    # The issue quotes the maxima of the paper's Table 1: 0.7, 0.4943, 0.3533.
+def test_euler_sequence_rounded_as_quoted():
+    # The maxima 0.7, 0.4943, 0.3533 were quoted to this project as those of the paper's Table 1.
     ys = winner_sequence(StanleySynapse().initialize(1), 3)
     assert [round(y, 2) for y in ys] == [0.70, 0.49, 0.35]
     assert round(ys[2], 4) == 0.3533
