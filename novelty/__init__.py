@@ -21,9 +21,8 @@ import importlib
 from typing import Any
 
 from . import registry as _registries
+from ._version import __version__
 from .registry import InvalidParameterError, Registry, RegistryError, UnknownNameError
-
-__version__ = "0.1.0"
 
 __all__ = [
     "__version__",
@@ -89,10 +88,7 @@ def available(kind: str | None = None) -> dict:
     ``kind`` is one of ``"detectors"``, ``"clusterers"``, ``"synapses"``,
     ``"datasets"``; without it, all of them.
     """
-    from .datasets import registry as dataset_registry
-
-    registries = {"detectors": _registries.detectors, "clusterers": _registries.clusterers,
-                  "synapses": _registries.synapses, "datasets": dataset_registry}
+    registries = {f"{k}s": _registries.of_kind(k) for k in _registries.KINDS}
     if kind is not None:
         if kind not in registries:
             raise ValueError(f"Unknown kind {kind!r}; expected one of {', '.join(registries)}.")

@@ -39,6 +39,9 @@ class Component(BaseEstimator):
     """
 
     _parameter_rules: dict = {}
+    #: the kind of component (``"detector"``, ``"clusterer"``, ``"synapse"``): the registry
+    #: that names it in a model file (:func:`novelty.registry.of_kind`); set by the three bases
+    _kind: str | None = None
 
     def _validate_params(self) -> None:
         validate_parameters(self)

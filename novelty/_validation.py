@@ -32,6 +32,7 @@ __all__ = [
     "Interval",
     "Options",
     "Instance",
+    "Bounds",
     "validate_parameters",
     "check_batch",
     "check_one",
@@ -117,11 +118,24 @@ class Instance:
         return self.description
 
 
+@dataclass(frozen=True)
+class Bounds:
+    """A pair ``(low, high)`` of finite real numbers (booleans are not numbers here), ``low < high``."""
+
+    def accepts(self, value: Any) -> bool:
+        finite = Interval(numbers.Real)
+        return (isinstance(value, (tuple, list)) and len(value) == 2
+                and all(finite.accepts(v) for v in value) and bool(value[0] < value[1]))
+
+    def describe(self) -> str:
+        return "a pair (low, high) of finite floats with low < high"
+
+
 def validate_parameters(owner: Any, rules: dict | None = None) -> None:
     """Check every parameter of ``owner`` against ``rules`` (default: ``owner._parameter_rules``).
 
-    Each rule is an :class:`Interval`, :class:`Options`, :class:`Instance` or a
-    tuple of them (any may accept).
+    Each rule is an :class:`Interval`, :class:`Options`, :class:`Instance`,
+    :class:`Bounds` or a tuple of them (any may accept).
     """
     if rules is None:
         rules = getattr(owner, "_parameter_rules", {})

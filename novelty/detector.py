@@ -45,6 +45,7 @@ from sklearn.base import OutlierMixin
 from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
+from . import persistence
 from ._component import Component, StateError, _is_state_name, check_array_state, check_int_state
 from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
                           frame_names, scan_names, validate_parameters)
@@ -134,6 +135,7 @@ class NoveltyDetector(OutlierMixin, Component):
         convention; :meth:`predict` says -1 and +1).
     """
 
+    _kind = "detector"
     #: whether ``partial_fit`` / ``learn_one`` keep learning after ``fit``
     supports_online = True
     #: modules of optional dependencies the detector needs to fit (e.g. ``("pyod",)``)
@@ -423,8 +425,6 @@ class NoveltyDetector(OutlierMixin, Component):
     # ------------------------------------------------------------------ files
     def save(self, path) -> None:
         """Write the detector to ``path`` (npz arrays + JSON metadata; no pickle)."""
-        from .persistence import save
-
         with _lock_of(self):
-            save(self, path)
+            persistence.save(self, path)
 

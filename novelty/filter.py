@@ -22,7 +22,6 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
-from sklearn.base import clone
 
 from . import _kernels
 from ._component import StateError, check_array_state
@@ -31,7 +30,7 @@ from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
 from .match_scale import ScaleCalibration, mismatch_novelty
-from .registry import InvalidParameterError, check_parameters
+from .registry import InvalidParameterError, build, check_parameters, of_kind
 
 __all__ = ["HabituatingFilter", "learn_stream", "hsom"]
 
@@ -196,22 +195,20 @@ class HabituatingFilter(NoveltyDetector):
         >>> det.clusterer.n_rows, det.synapse.alpha
         (5, 1.2)
         """
-        from .registry import clusterers, synapses
-
         own_names = cls._get_param_names()
         own = {k: params.pop(k) for k in list(params) if k in own_names}
-        parts = {"clusterer": (clusterer, clusterers), "synapse": (synapse, synapses)}
+        parts = {"clusterer": clusterer, "synapse": synapse}
         routed: dict[str, dict] = {"clusterer": {}, "synapse": {}}
         valid: dict[str, list[str]] = {}
-        for part, (spec, registry) in parts.items():
+        for part, spec in parts.items():
             if isinstance(spec, str):
-                valid[part] = registry.parameters(spec) or []
+                valid[part] = of_kind(part).parameters(spec) or []
             else:
                 valid[part] = list(spec.get_params(deep=False))
         for key, value in params.items():
             part, _, name = key.partition("__")
             if name and part in routed:
-                check_parameters(f"{part} {parts[part][0]!r}", {name: value}, valid[part])
+                check_parameters(f"{part} {parts[part]!r}", {name: value}, valid[part])
                 routed[part][name] = value
                 continue
             takers = [p for p in routed if key in valid[p]]
@@ -224,24 +221,13 @@ class HabituatingFilter(NoveltyDetector):
                 all_valid = own_names + [n for p in routed for n in valid[p]]
                 check_parameters("the habituating filter", {key: value}, all_valid)
             routed[takers[0]][key] = value
-        built = {}
-        for part, (spec, registry) in parts.items():
-            if isinstance(spec, str):
-                built[part] = registry.make(spec, **routed[part])
-            else:
-                built[part] = clone(spec).set_params(**routed[part])
+        built = {part: build(part, spec, **routed[part]) for part, spec in parts.items()}
         return cls(clusterer=built["clusterer"], synapse=built["synapse"], **own)
-
-    def _component(self, spec, kind: str):
-        from .registry import clusterers, synapses
-
-        registry = clusterers if kind == "clusterer" else synapses
-        return registry.make(spec) if isinstance(spec, str) else clone(spec)
 
     # ------------------------------------------------------------------- hooks
     def _start(self, X: np.ndarray) -> None:
-        clusterer = self._component(self.clusterer, "clusterer")
-        synapse = self._component(self.synapse, "synapse")
+        clusterer = build("clusterer", self.clusterer)
+        synapse = build("synapse", self.synapse)
         clusterer.initialize(X, self.random_state)
         synapse.initialize(clusterer.n_units_)
         self.clusterer_ = clusterer
@@ -336,12 +322,12 @@ class HabituatingFilter(NoveltyDetector):
 
     def _first_novelty(self) -> float:
         # A first perception wins a unit whose synapse has not habituated: y0.
-        return float(self._component(self.synapse, "synapse").initialize(1).efficacy_[0])
+        return float(build("synapse", self.synapse).initialize(1).efficacy_[0])
 
     @property
     def resting_novelty(self) -> float:
         """The novelty of a fully familiar input (the output neuron's resting activity)."""
-        synapse = self.synapse_ if hasattr(self, "synapse_") else self._component(self.synapse, "synapse")
+        synapse = self.synapse_ if hasattr(self, "synapse_") else build("synapse", self.synapse)
         return synapse.resting_efficacy
 
     def _check_state(self) -> None:

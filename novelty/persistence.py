@@ -40,7 +40,9 @@ from typing import Any
 import numpy as np
 
 from ._atomic import write_atomically
+from ._version import __version__
 from ._component import Component, StateError
+from .registry import UnknownNameError, of_kind
 
 __all__ = ["save", "load", "ModelFileError", "FORMAT", "FORMAT_VERSION", "MAX_META_BYTES"]
 
@@ -55,27 +57,15 @@ class ModelFileError(ValueError):
     """A file that is not a readable novelty model."""
 
 
-def _registry(kind: str):
-    from . import registry
-
-    return {"detector": registry.detectors, "clusterer": registry.clusterers,
-            "synapse": registry.synapses}[kind]
-
-
 def _kind_of(component: Component) -> str:
-    from .clusterers.base import Clusterer
-    from .detector import NoveltyDetector
-    from .habituation.base import Synapse
-
-    for kind, base in (("detector", NoveltyDetector), ("clusterer", Clusterer), ("synapse", Synapse)):
-        if isinstance(component, base):
-            return kind
+    if isinstance(component, Component) and component._kind in _KINDS:
+        return component._kind
     raise StateError(f"{type(component).__name__} is not a detector, clusterer or synapse.")
 
 
 def _name_of(component: Component) -> tuple[str, str]:
     kind = _kind_of(component)
-    name = _registry(kind).name_of(component)
+    name = of_kind(kind).name_of(component)
     if name is None:
         raise StateError(
             f"{type(component).__name__} is not registered as a {kind}, so a model file "
@@ -134,8 +124,6 @@ def save(detector: Component, path: str | os.PathLike) -> None:
     would not load (NaN weights, an impossible efficacy) raises
     :class:`StateError` and leaves ``path`` as it was.
     """
-    from . import __version__
-
     if not hasattr(detector, "n_features_in_"):
         raise StateError(f"This {type(detector).__name__} is not fitted; there is nothing to save.")
     arrays: dict[str, np.ndarray] = {}
@@ -174,10 +162,8 @@ def _decode_value(value: Any) -> Any:
 def _class_for(kind: Any, name: Any) -> type:
     if kind not in _KINDS or not isinstance(name, str):
         raise ModelFileError(f"Model file names an invalid component ({kind!r}, {name!r}).")
-    from .registry import UnknownNameError
-
     try:
-        cls = _registry(kind).get(name)
+        cls = of_kind(kind).get(name)
     except UnknownNameError as exc:
         raise ModelFileError(f"Model file needs the {kind} {name!r}, which is not registered: {exc}") from None
     if not (isinstance(cls, type) and issubclass(cls, Component)):

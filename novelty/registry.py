@@ -1,6 +1,8 @@
 """Name registries for detectors, clusterers, synapses and datasets.
 
-One :class:`Registry` per kind of component. Each maps a short lower-case name
+One :class:`Registry` per kind of component, all of them here:
+:func:`of_kind` finds the one of a kind, :func:`build` makes a component of
+a kind from a name or an instance. Each maps a short lower-case name
 (``"som"``, ``"stanley"``, ``"hsom"``) to a class or factory. Three sources
 feed a registry, in this order of precedence:
 
@@ -36,6 +38,10 @@ __all__ = [
     "clusterers",
     "synapses",
     "detectors",
+    "datasets",
+    "KINDS",
+    "of_kind",
+    "build",
 ]
 
 
@@ -310,3 +316,72 @@ detectors = Registry(
         "pyod": "novelty.baselines.pyod_outlier:PyODDetector",
     },
 )
+
+#: datasets and tasks (:mod:`novelty.datasets`); their built-ins:
+_DATASETS = {
+    "paper-a": "novelty.datasets.paper:paper_a",
+    "paper-a-star": "novelty.datasets.paper:paper_a_star",
+    "paper-b": "novelty.datasets.paper:paper_b",
+    "paper-c": "novelty.datasets.paper:paper_c",
+    "paper-control": "novelty.datasets.paper:paper_control",
+    "paper-a-to-a-star": "novelty.datasets.paper:paper_a_to_a_star",
+    "paper-a-to-b": "novelty.datasets.paper:paper_a_to_b",
+    "paper-a-to-c": "novelty.datasets.paper:paper_a_to_c",
+    "inspection": "novelty.datasets.inspection:inspection",
+    "inspection-easy": "novelty.datasets.inspection:inspection_easy",
+    "inspection-medium": "novelty.datasets.inspection:inspection_medium",
+    "inspection-hard": "novelty.datasets.inspection:inspection_hard",
+    "exploration-tour": "novelty.exploration.tasks:paper_tour",
+    "exploration-open-door": "novelty.exploration.tasks:open_door",
+    "exploration-patrol": "novelty.exploration.tasks:patrol",
+    "uci-wall-following": "novelty.datasets.uci:uci_wall_following",
+    "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
+    "uci-sonar": "novelty.datasets.uci:uci_sonar",
+    "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
+    "files": "novelty.datasets.files:files",
+}
+
+datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)
+
+#: the registries by the kind they hold
+_BY_KIND = {r.kind: r for r in (detectors, clusterers, synapses, datasets)}
+#: the kinds of component, singular: ``"detector"``, ``"clusterer"``, ``"synapse"``, ``"dataset"``
+KINDS = tuple(_BY_KIND)
+
+
+def of_kind(kind: str) -> Registry:
+    """The registry of ``kind``: ``"detector"``, ``"clusterer"``, ``"synapse"`` or ``"dataset"``.
+
+    >>> of_kind("synapse") is synapses
+    True
+    >>> of_kind("model")
+    Traceback (most recent call last):
+    ...
+    novelty.registry.RegistryError: Unknown kind of component 'model'; expected 'detector', 'clusterer', 'synapse' or 'dataset'.
+    """
+    try:
+        return _BY_KIND[kind]
+    except (KeyError, TypeError):
+        kinds = [repr(k) for k in KINDS]
+        raise RegistryError(f"Unknown kind of component {kind!r}; expected {', '.join(kinds[:-1])} "
+                            f"or {kinds[-1]}.") from None
+
+
+def build(kind: str, spec: Any, **params: Any) -> Any:
+    """A new component of ``kind`` from ``spec``, a registered name or an instance.
+
+    A name is made by the registry of ``kind`` with ``params``; an instance
+    is cloned (its parameters, never its learnt state) and then given
+    ``params``, so that the caller's object is never changed.
+
+    >>> som = build("clusterer", "som", n_rows=3)
+    >>> som.n_rows, build("clusterer", som, n_columns=4).n_rows
+    (3, 3)
+    >>> build("clusterer", som) is som
+    False
+    """
+    if isinstance(spec, str):
+        return of_kind(kind).make(spec, **params)
+    from sklearn.base import clone  # scikit-learn is heavy: kept out of ``import novelty``
+
+    return clone(spec).set_params(**params)

@@ -7,6 +7,7 @@ import textwrap
 from importlib.metadata import EntryPoint
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import novelty
@@ -263,3 +264,29 @@ def test_descriptions_is_read_only(reg):
     view = reg.descriptions()
     with pytest.raises(TypeError):
         view["square"] = "changed"
+
+
+# ------------------------------------------------------- one registry per kind
+def test_of_kind_finds_each_registry_by_the_kind_it_holds():
+    from novelty import datasets
+
+    assert registry_module.KINDS == ("detector", "clusterer", "synapse", "dataset")
+    for kind in registry_module.KINDS:
+        assert registry_module.of_kind(kind).kind == kind
+    assert registry_module.of_kind("clusterer") is registry_module.clusterers
+    assert registry_module.of_kind("dataset") is datasets.registry
+    for bad in ("clusterers", "model", None):
+        with pytest.raises(RegistryError, match="expected 'detector', 'clusterer', 'synapse' or 'dataset'"):
+            registry_module.of_kind(bad)
+
+
+def test_build_makes_a_name_and_clones_an_instance_without_touching_it():
+    som = registry_module.build("clusterer", "som", n_rows=3, learning_rate=0.5)
+    assert isinstance(som, SOM) and (som.n_rows, som.learning_rate) == (3, 0.5)
+    som.initialize(np.zeros((2, 4)), random_state=0)
+    copy = registry_module.build("clusterer", som, n_columns=2)
+    assert isinstance(copy, SOM) and copy is not som
+    assert (copy.n_rows, copy.n_columns, copy.learning_rate) == (3, 2, 0.5)
+    assert som.n_columns == 10 and not hasattr(copy, "weights_"), "parameters copied, state and caller's object not"
+    with pytest.raises(UnknownNameError, match="soom"):
+        registry_module.build("clusterer", "soom")

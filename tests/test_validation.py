@@ -10,7 +10,8 @@ from hypothesis import strategies as st
 from sklearn.exceptions import NotFittedError
 
 import novelty
-from novelty._validation import Interval, Options, check_timestamps
+from novelty._validation import Bounds, Interval, Options, check_timestamps
+from novelty.registry import clusterers
 
 N_FEATURES = 4
 
@@ -304,3 +305,32 @@ def test_rejected_input_leaves_state_unchanged(X, method, one_at_a_time):
         else:
             call(det, method, X)
     assert_equal_deep(before, snapshot(det))
+
+
+# ------------------------------------------------------------ init_range
+@pytest.mark.parametrize("value, accepted", [
+    ((0.0, 1.0), True), ([-2, 3], True), ((np.float32(0.5), 2), True),
+    ((1.0, 0.0), False), ((0.5, 0.5), False), ((True, 2.0), False), ((0.0, True), False), ((False, True), False),
+    ((0.0, float("inf")), False), ((float("nan"), 1.0), False), ((0.0,), False), ((0.0, 1.0, 2.0), False),
+    ("ab", False), (None, False), ((0.0, "1"), False),
+])
+def test_the_bounds_rule(value, accepted):
+    assert Bounds().accepts(value) is accepted
+
+
+INIT_RANGE = [name for name in clusterers.names() if "init_range" in (clusterers.parameters(name) or [])]
+
+
+def test_every_builtin_clusterer_with_an_initial_range_is_checked():
+    assert {"som", "gng", "gwr", "online-kmeans"} <= set(INIT_RANGE)
+
+
+@pytest.mark.parametrize("name", INIT_RANGE)
+@pytest.mark.parametrize("bad", [(False, 1.0), (0.0, True), (1.0, 0.0), (0.0, float("inf"))])
+def test_every_clusterers_initial_range_is_one_check_refusing_booleans(name, bad):
+    net = clusterers.make(name, init_range=bad, init="uniform")
+    with pytest.raises(ValueError, match=rf"^The 'init_range' parameter of {type(net).__name__} must be a pair "
+                                         r"\(low, high\) of finite floats with low < high\. Got "):
+        net.initialize(np.zeros((4, 2)), random_state=0)
+    assert not hasattr(net, "weights_")
+

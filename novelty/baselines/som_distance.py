@@ -36,10 +36,10 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
-from sklearn.base import clone
 
 from .._component import StateError
 from .._validation import Instance, Interval
+from ..registry import build
 from ..clusterers.base import Clusterer
 from ._calibration import CalibratedDetector
 
@@ -107,11 +107,7 @@ class SOMDistance(CalibratedDetector):
         self.contamination = contamination
 
     def _new_clusterer(self) -> Clusterer:
-        if self.clusterer is None or isinstance(self.clusterer, str):
-            from ..registry import clusterers
-
-            return clusterers.make(self.clusterer or "som")
-        return clone(self.clusterer)
+        return build("clusterer", "som" if self.clusterer is None else self.clusterer)
 
     def _start(self, X: np.ndarray) -> None:
         super()._start(X)

@@ -47,6 +47,7 @@ from typing import Any
 import numpy as np
 
 from .._validation import pass_timestamps
+from ..registry import detectors, of_kind
 from . import metrics, river
 from .prequential import evaluate_exploration
 from .suite import Cell
@@ -68,19 +69,10 @@ MEASURED_COLUMNS = [
 _TRACE_LOCK = threading.Lock()  # tracemalloc is process-wide: one traced run at a time
 
 
-def _registries() -> dict:
-    from .. import registry
-    from ..datasets import registry as datasets
-
-    return {"detector": registry.detectors, "clusterer": registry.clusterers,
-            "synapse": registry.synapses, "dataset": datasets}
-
-
 def _ensure_registered(components) -> None:
     """Register, in this (worker) process, the objects the parent resolved."""
-    registries = _registries()
     for kind, name, obj in components:
-        registry = registries[kind]
+        registry = of_kind(kind)
         try:
             if name in registry and registry.get(name) is obj:
                 continue
@@ -107,7 +99,6 @@ def load_task(cell: Cell):
 
 def make_detector(cell: Cell):
     """The cell's detector, seeded with the cell's seed unless the suite set one."""
-    from ..registry import detectors
 
     make = river.make if river.is_river(cell.detector.name) else detectors.make
     det = make(cell.detector.name, **cell.detector.params)

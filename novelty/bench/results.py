@@ -34,6 +34,7 @@ from typing import Iterable
 import numpy as np
 
 from .._atomic import write_atomically
+from .._version import __version__
 
 __all__ = ["ResultsStore", "OutputBusyError", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_CSV"]
 
@@ -44,8 +45,6 @@ _VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "numba", "joblib", "d
 
 def _version(dist: str) -> str | None:
     if dist == "novelty":  # this package, whatever its distribution is named (the index's "novelty" is not it)
-        from .. import __version__
-
         return __version__
     try:
         return importlib_metadata.version(dist)

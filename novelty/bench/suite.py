@@ -58,6 +58,8 @@ from .specs import (FILES_TASK, HARNESS_VERSION, PROTOCOLS, Cell, DetectorSpec, 
 from .suite_file import (_available, _entries, _expand_detector, _files_task, _known_keys, _label,
                          _read_toml, _table)
 
+from ..registry import of_kind
+
 __all__ = [
     "SuiteError",
     "DetectorSpec",
@@ -142,21 +144,16 @@ def _resolve_components(suite: Suite) -> tuple:
     test's task) are unknown to a fresh worker; the cell carries the objects
     (pickled by reference) and the worker registers what it lacks.
     """
-    from ..datasets import registry as datasets
-    from ..registry import clusterers, detectors, synapses
-
     wanted = [("detector", d.name) for d in suite.detectors]
     for d in suite.detectors:
         for part in ("clusterer", "synapse"):
             if isinstance(d.params.get(part), str):
                 wanted.append((part, d.params[part]))
     wanted += [("dataset", t.name) for t in suite.tasks]
-    registries = {"detector": detectors, "clusterer": clusterers, "synapse": synapses,
-                  "dataset": datasets}
     found = []
     for kind, name in dict.fromkeys(wanted):
-        if name in registries[kind]:
-            found.append((kind, name, registries[kind].get(name)))
+        if name in of_kind(kind):
+            found.append((kind, name, of_kind(kind).get(name)))
     return tuple(found)
 
 

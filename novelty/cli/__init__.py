@@ -31,6 +31,7 @@ import os
 import sys
 from typing import Sequence
 
+from .._version import __version__
 from ._common import NoveltyParser, one_line, user_errors
 
 __all__ = ["main", "COMMANDS", "build_parser"]
@@ -58,8 +59,6 @@ run 'novelty COMMAND --help' for the options and examples of each command."""
 
 
 def build_parser() -> NoveltyParser:
-    from .. import __version__
-
     parser = NoveltyParser(
         prog="novelty",
         description="Habituation-based novelty detection: list components, benchmark detectors, "

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import re
 
+from ..registry import of_kind
 from ._common import add_command
 
 KINDS = ("detectors", "clusterers", "synapses", "datasets")
@@ -18,14 +19,6 @@ def add_parser(subparsers):
     )
     parser.add_argument("kind", nargs="?", choices=KINDS, help="list only this kind")
     return parser
-
-
-def _registries():
-    from .. import registry
-    from ..datasets import registry as datasets
-
-    return {"detectors": registry.detectors, "clusterers": registry.clusterers,
-            "synapses": registry.synapses, "datasets": datasets}
 
 
 #: a Sphinx role (:func:`~novelty.x.name`) or a literal (``name``) in a docstring
@@ -55,10 +48,9 @@ def _describe(registry, name: str) -> str:
 
 
 def run(args) -> int:
-    registries = _registries()
     kinds = [args.kind] if args.kind else list(KINDS)
     for i, kind in enumerate(kinds):
-        registry = registries[kind]
+        registry = of_kind(kind[:-1])
         names = registry.names()
         title = "datasets and tasks" if kind == "datasets" else kind
         if i:

@@ -7,13 +7,11 @@ on the diagonal. A flat matrix keeps every operation a row or column slice,
 which a compiled kernel can take over unchanged, and it is a plain array a
 model file holds as it is.
 
-Also here: the two-unit initialisation both networks start from, and the
-check of its ``init_range`` parameter.
+Also here: the initialisation the networks (and online k-means) start from.
 """
 
 from __future__ import annotations
 
-import numbers
 
 import numpy as np
 
@@ -32,7 +30,6 @@ __all__ = [
     "delete_units",
     "edge_list",
     "check_graph",
-    "check_init_range",
     "initial_weights",
 ]
 
@@ -117,21 +114,6 @@ def check_graph(owner, name: str, n_units: int) -> np.ndarray:
     if ages.size and ages.min() < NO_EDGE:
         raise StateError(f"{cls}.{name} holds negative ages other than {NO_EDGE} (no edge).")
     return ages
-
-
-def check_init_range(owner) -> None:
-    """The ``init_range`` parameter: a pair (low, high) of finite floats, low < high."""
-    r = owner.init_range
-    if not (
-        isinstance(r, (tuple, list))
-        and len(r) == 2
-        and all(isinstance(v, numbers.Real) and not isinstance(v, bool) and np.isfinite(v) for v in r)
-        and r[0] < r[1]
-    ):
-        raise ValueError(
-            f"The 'init_range' parameter of {type(owner).__name__} must be a pair (low, high) of "
-            f"finite floats with low < high. Got {r!r} instead."
-        )
 
 
 def initial_weights(X: np.ndarray, rng: np.random.Generator, n_units: int, init: str,

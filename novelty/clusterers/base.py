@@ -80,6 +80,8 @@ class Clusterer(Component):
         The id the next new unit will get.
     """
 
+    _kind = "clusterer"
+
     # ---------------------------------------------------------- to implement
     @abstractmethod
     def _initialize(self, X: np.ndarray, rng: np.random.Generator) -> None:

@@ -53,7 +53,7 @@ import numbers
 import numpy as np
 
 from .._component import StateError, check_array_state, check_int_state
-from .._validation import Interval, Options
+from .._validation import Bounds, Interval, Options
 from . import _graph
 from .base import Clusterer, Growth, Match
 
@@ -130,6 +130,7 @@ class GrowingNeuralGas(Clusterer):
         "max_age": Interval(numbers.Integral, 1, None),
         "max_units": Interval(numbers.Integral, 2, None),
         "init": Options(("sample", "uniform")),
+        "init_range": Bounds(),
     }
 
     def __init__(
@@ -153,10 +154,6 @@ class GrowingNeuralGas(Clusterer):
         self.max_units = max_units
         self.init = init
         self.init_range = init_range
-
-    def _validate_params(self) -> None:
-        super()._validate_params()
-        _graph.check_init_range(self)
 
     # ------------------------------------------------------------------ step 0
     def _initialize(self, X: np.ndarray, rng: np.random.Generator) -> None:

@@ -75,12 +75,12 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
-from sklearn.base import clone
 
 from .._component import StateError
-from .._validation import Instance, Interval, Options
+from .._validation import Bounds, Instance, Interval, Options
 from ..habituation.base import Synapse
 from ..match_scale import ScaleCalibration
+from ..registry import build
 from . import _graph
 from .base import Clusterer, Growth, Match
 
@@ -185,6 +185,7 @@ class GrowWhenRequired(Clusterer):
         "max_units": Interval(numbers.Integral, 2, None, allow_none=True),
         "firing": (Options((None,)), Instance((str, Synapse), "a synapse name or a Synapse instance")),
         "init": Options(("sample", "uniform")),
+        "init_range": Bounds(),
     }
 
     def __init__(
@@ -213,20 +214,12 @@ class GrowWhenRequired(Clusterer):
         self.init = init
         self.init_range = init_range
 
-    def _validate_params(self) -> None:
-        super()._validate_params()
-        _graph.check_init_range(self)
-
     def _new_firing_counters(self) -> Synapse:
         if self.firing is None:
             from ..habituation.stanley import StanleySynapse
 
             return StanleySynapse(method="exact")
-        if isinstance(self.firing, str):
-            from ..registry import synapses
-
-            return synapses.make(self.firing)
-        return clone(self.firing)
+        return build("synapse", self.firing)
 
     # ------------------------------------------------------------------ step 1
     def _initialize(self, X: np.ndarray, rng: np.random.Generator) -> None:

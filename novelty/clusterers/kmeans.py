@@ -44,7 +44,7 @@ import numbers
 import numpy as np
 
 from .._component import StateError, check_array_state
-from .._validation import Interval, Options
+from .._validation import Bounds, Interval, Options
 from . import _graph
 from .base import NO_GROWTH, NO_UNITS, Clusterer, Growth, Match
 
@@ -96,6 +96,7 @@ class OnlineKMeans(Clusterer):
         "n_clusters": Interval(numbers.Integral, 1, None),
         "learning_rate": (Options(("count",)), Interval(numbers.Real, 0, 1, closed="right")),
         "init": Options(("sample", "uniform", "first")),
+        "init_range": Bounds(),
     }
 
     def __init__(self, n_clusters=10, learning_rate="count", init="sample", init_range=(0.0, 1.0)):
@@ -103,10 +104,6 @@ class OnlineKMeans(Clusterer):
         self.learning_rate = learning_rate
         self.init = init
         self.init_range = init_range
-
-    def _validate_params(self) -> None:
-        super()._validate_params()
-        _graph.check_init_range(self)
 
     def _initialize(self, X: np.ndarray, rng: np.random.Generator) -> None:
         if self.init == "first":

@@ -38,7 +38,7 @@ import numbers
 import numpy as np
 
 from .._component import StateError, check_int_state
-from .._validation import Interval, Options
+from .._validation import Bounds, Interval, Options
 from .base import NO_GROWTH, Clusterer, Growth, Match
 
 __all__ = ["SOM"]
@@ -109,6 +109,7 @@ class SOM(Clusterer):
         "learning_rate_final": Interval(numbers.Real, 0, 1),
         "radius_final": Interval(numbers.Real, 0, None),
         "init": Options(("uniform", "sample")),
+        "init_range": Bounds(),
     }
 
     def __init__(
@@ -136,20 +137,6 @@ class SOM(Clusterer):
         self.init = init
         self.init_range = init_range
         self.neighbour_learning_rate = neighbour_learning_rate
-
-    def _validate_params(self) -> None:
-        super()._validate_params()
-        r = self.init_range
-        if not (
-            isinstance(r, (tuple, list))
-            and len(r) == 2
-            and all(isinstance(v, numbers.Real) and np.isfinite(v) for v in r)
-            and r[0] < r[1]
-        ):
-            raise ValueError(
-                "The 'init_range' parameter of SOM must be a pair (low, high) of finite "
-                f"floats with low < high. Got {r!r} instead."
-            )
 
     # ----------------------------------------------------------- schedules
     def _scheduled(self, start: float, final: float) -> float:

@@ -24,39 +24,17 @@ Built in:
 - the user's own scans, a CSV or NPZ file: ``files`` (``path=``, with
   ``columns``, ``label``, ``time``, and ``train_rows``, ``split`` or
   ``test_path``; see :mod:`novelty.datasets.files`).
+
+``registry`` is :data:`novelty.registry.datasets`, beside the registries of
+the other kinds of component.
 """
 
 from __future__ import annotations
 
-from ..registry import Registry
+from ..registry import datasets as registry
 from .base import Dataset
 
 __all__ = ["Dataset", "registry", "available", "load", "register"]
-
-_BUILTINS = {
-    "paper-a": "novelty.datasets.paper:paper_a",
-    "paper-a-star": "novelty.datasets.paper:paper_a_star",
-    "paper-b": "novelty.datasets.paper:paper_b",
-    "paper-c": "novelty.datasets.paper:paper_c",
-    "paper-control": "novelty.datasets.paper:paper_control",
-    "paper-a-to-a-star": "novelty.datasets.paper:paper_a_to_a_star",
-    "paper-a-to-b": "novelty.datasets.paper:paper_a_to_b",
-    "paper-a-to-c": "novelty.datasets.paper:paper_a_to_c",
-    "inspection": "novelty.datasets.inspection:inspection",
-    "inspection-easy": "novelty.datasets.inspection:inspection_easy",
-    "inspection-medium": "novelty.datasets.inspection:inspection_medium",
-    "inspection-hard": "novelty.datasets.inspection:inspection_hard",
-    "exploration-tour": "novelty.exploration.tasks:paper_tour",
-    "exploration-open-door": "novelty.exploration.tasks:open_door",
-    "exploration-patrol": "novelty.exploration.tasks:patrol",
-    "uci-wall-following": "novelty.datasets.uci:uci_wall_following",
-    "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
-    "uci-sonar": "novelty.datasets.uci:uci_sonar",
-    "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
-    "files": "novelty.datasets.files:files",
-}
-
-registry = Registry("dataset", group="novelty.datasets", builtins=_BUILTINS)
 
 
 def available() -> dict:

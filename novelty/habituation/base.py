@@ -42,6 +42,7 @@ class Synapse(Component):
         Current efficacy of each unit's synapse; the novelty a unit reports.
     """
 
+    _kind = "synapse"
     #: names of the per-unit state arrays (grown and shrunk together)
     _per_unit: tuple[str, ...] = ("efficacy_",)
 
