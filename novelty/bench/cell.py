@@ -18,7 +18,8 @@ part:
    :func:`novelty.bench.metrics.training_threshold`. Nothing of the test part
    is used to set it.
 3. Test. The test scans are scored without learning (``novelty(X)``) and the
-   metrics of :mod:`novelty.bench.metrics` computed against the labels.
+   metrics of the table :data:`novelty.bench.metrics.METRICS` computed
+   against the labels.
 4. False alarms: the alarms on a clean pass over the familiar route. That is
    the task's ``metadata["clean_test"]`` (a Dataset or an array of scans) if
    it has one, else the test runs that hold no novel scan (when others do),
@@ -55,11 +56,11 @@ from .suite import Cell
 __all__ = ["run_cell", "train_detector", "failed_row", "CellError", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
 
 #: columns that depend only on the cell: identical across backends and reruns
+#: (the task's sizes, the metrics of :data:`novelty.bench.metrics.METRICS`, the threshold and
+#: what the detector became)
 METRIC_COLUMNS = [
-    "n_train", "n_test", "n_novel", "train_passes",
-    "roc_auc", "average_precision", "tpr_at_1pct_fpr", "tpr_at_5pct_fpr",
-    "threshold", "detection_delay", "false_alarms", "false_alarm_rate", "false_alarm_source",
-    "integrated_novelty", "max_novelty", "resting_novelty", "n_units",
+    "n_train", "n_test", "n_novel", "train_passes", *(m.column for m in metrics.METRICS),
+    "threshold", "false_alarm_source", "resting_novelty", "n_units",
 ]
 #: columns measured on the machine (times, memory): they vary from run to run
 MEASURED_COLUMNS = [
@@ -190,17 +191,9 @@ def _evaluate(cell: Cell) -> tuple[dict, dict]:
     resting = _resting(det)
     row = {
         "n_train": len(train), "n_test": len(test), "n_novel": int(y.sum()), "train_passes": passes,
-        "roc_auc": metrics.roc_auc(novelty, y),
-        "average_precision": metrics.average_precision(novelty, y),
-        "tpr_at_1pct_fpr": metrics.tpr_at_fpr(novelty, y, 0.01),
-        "tpr_at_5pct_fpr": metrics.tpr_at_fpr(novelty, y, 0.05),
+        **metrics.compute(metrics.Scored(novelty, y, threshold, alarm_scores, resting)),
         "threshold": threshold,
-        "detection_delay": metrics.detection_delay(novelty, y, threshold),
-        "false_alarms": metrics.count_alarms(alarm_scores, threshold),
-        "false_alarm_rate": metrics.count_alarms(alarm_scores, threshold) / max(len(alarm_scores), 1),
         "false_alarm_source": source,
-        "integrated_novelty": metrics.integrated_novelty(novelty, resting),
-        "max_novelty": float(novelty.max()),
         "resting_novelty": resting,
         "n_units": _n_units(det),
         "train_time_s": train_time,

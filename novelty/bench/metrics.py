@@ -1,21 +1,34 @@
 """Scores of one benchmark cell, computed from novelty values and labels.
 
 Every function takes the novelty of the test scans (higher = more novel) and,
-where it needs them, the per-scan labels ``y`` (1 novel, 0 normal). They are
-plain numpy so that a reader can check them against the definitions below;
-``tests/bench/test_metrics.py`` checks them against hand-computed values.
+where it needs them, the per-scan labels ``y`` (1 novel, 0 normal). ROC AUC
+and average precision are scikit-learn's (``sklearn.metrics``); the others
+are plain numpy so that a reader can check them against the definitions
+below. ``tests/bench/test_metrics.py`` checks them against hand-computed
+values.
 
 Undefined values are ``nan``: ROC AUC, average precision and the TPRs need
 both classes in the test part; the detection delay needs a novel scan and an
 alarm at or after it.
+
+:data:`METRICS` is the table of the columns a cell reports and the benchmark
+summary shows: one :class:`Metric` a column, computed from the cell's
+:class:`Scored` test. Adding a metric is adding an entry.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from typing import Callable
+
 import numpy as np
-from scipy.stats import rankdata
+from sklearn.metrics import average_precision_score, roc_auc_score
 
 __all__ = [
+    "Scored",
+    "Metric",
+    "METRICS",
+    "compute",
     "roc_auc",
     "average_precision",
     "roc_points",
@@ -38,20 +51,19 @@ def _scores_labels(scores, y) -> tuple[np.ndarray, np.ndarray]:
 def roc_auc(scores, y) -> float:
     """Area under the ROC curve: P(novel scan scores higher than a normal one).
 
-    Computed as the Mann-Whitney statistic with ties counted one half:
-    ``(sum of the ranks of the novel scans - P(P+1)/2) / (P N)`` with average
-    ranks for ties, ``P`` novel and ``N`` normal scans. 1 is perfect, 0.5 is
-    chance.
+    The Mann-Whitney statistic with ties counted one half, ``(sum of the
+    ranks of the novel scans - P(P+1)/2) / (P N)`` with average ranks for
+    ties, ``P`` novel and ``N`` normal scans, which is the trapezoidal area
+    under the ROC curve: scikit-learn's ``roc_auc_score``. 1 is perfect, 0.5
+    is chance; ``nan`` with a single class.
 
     >>> roc_auc([0.1, 0.4, 0.35, 0.8], [0, 0, 1, 1])
     0.75
     """
     scores, y = _scores_labels(scores, y)
-    n_pos, n_neg = int(y.sum()), int((~y).sum())
-    if n_pos == 0 or n_neg == 0:
+    if y.all() or not y.any():
         return float("nan")
-    ranks = rankdata(scores)  # average ranks for ties
-    return float((ranks[y].sum() - n_pos * (n_pos + 1) / 2) / (n_pos * n_neg))
+    return float(roc_auc_score(y, scores))
 
 
 def roc_points(scores, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -79,22 +91,18 @@ def average_precision(scores, y) -> float:
     """Average precision: ``sum_k (R_k - R_{k-1}) P_k`` over the thresholds.
 
     ``P_k`` and ``R_k`` are the precision and recall when every scan scoring
-    at least the k-th highest distinct score is called novel (scikit-learn's
-    definition, no interpolation). Chance level is the fraction of novel scans.
+    at least the k-th highest distinct score is called novel, tied scores
+    together (scikit-learn's ``average_precision_score``, no interpolation).
+    Chance level is the fraction of novel scans; ``nan`` with a single class
+    (scikit-learn would say 0 without novel scans, 1 without normal ones).
 
     >>> round(average_precision([0.1, 0.4, 0.35, 0.8], [0, 0, 1, 1]), 4)
     0.8333
     """
     scores, y = _scores_labels(scores, y)
-    n_pos = int(y.sum())
-    if n_pos == 0 or n_pos == y.size:
+    if y.all() or not y.any():
         return float("nan")
-    fpr, tpr, _ = roc_points(scores, y)
-    tp = tpr[1:] * n_pos
-    fp = fpr[1:] * (y.size - n_pos)
-    precision = tp / (tp + fp)
-    recall_gain = np.diff(tpr)
-    return float(np.sum(recall_gain * precision))
+    return float(average_precision_score(y, scores))
 
 
 def tpr_at_fpr(scores, y, max_fpr: float) -> float:
@@ -177,3 +185,65 @@ def integrated_novelty(scores, resting: float = 0.0) -> float:
     """
     scores = np.asarray(scores, dtype=np.float64)
     return float(np.sum(scores - resting))
+
+
+# ------------------------------------------------------------------ the table
+@dataclass(frozen=True)
+class Scored:
+    """What a cell's metrics are computed from.
+
+    ``novelty`` and ``y``: the test scans' novelty and labels (bool);
+    ``threshold``: the alarm threshold set on the training scans;
+    ``alarm_scores``: the novelty of a clean pass over the familiar route
+    (false alarms are counted there); ``resting``: the detector's resting
+    novelty (0 without one).
+    """
+
+    novelty: np.ndarray
+    y: np.ndarray
+    threshold: float
+    alarm_scores: np.ndarray
+    resting: float = 0.0
+
+
+@dataclass(frozen=True)
+class Metric:
+    """One column of a cell's results: its name, how it is computed, how the summary shows it.
+
+    ``heading`` is the column's title in the ranking of ``novelty bench``
+    (None: in the results only) and ``digits`` the decimals shown there.
+    The summary shows a detector's mean over its successful cells.
+    """
+
+    column: str
+    compute: Callable[[Scored], float]
+    heading: str | None = None
+    digits: int = 3
+
+
+def _false_alarm_rate(s: Scored) -> float:
+    return count_alarms(s.alarm_scores, s.threshold) / max(len(s.alarm_scores), 1)
+
+
+#: the metrics of a cell, in the order of the results' columns and the ranking's
+METRICS: tuple[Metric, ...] = (
+    Metric("roc_auc", lambda s: roc_auc(s.novelty, s.y), "ROC AUC"),
+    Metric("average_precision", lambda s: average_precision(s.novelty, s.y), "AP"),
+    Metric("tpr_at_1pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.01), "TPR@1%"),
+    Metric("tpr_at_5pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.05), "TPR@5%"),
+    Metric("detection_delay", lambda s: detection_delay(s.novelty, s.y, s.threshold), "delay", 1),
+    Metric("false_alarms", lambda s: count_alarms(s.alarm_scores, s.threshold), "false alarms", 1),
+    Metric("false_alarm_rate", _false_alarm_rate),
+    Metric("integrated_novelty", lambda s: integrated_novelty(s.novelty, s.resting), "integrated", 2),
+    Metric("max_novelty", lambda s: float(np.max(s.novelty)), "max"),
+)
+
+
+def compute(scored: Scored, table: tuple[Metric, ...] | None = None) -> dict:
+    """Every metric of ``table`` (default :data:`METRICS`) on ``scored``: ``{column: value}``.
+
+    >>> s = Scored(np.array([0.1, 0.4, 0.35, 0.8]), np.array([0, 0, 1, 1], bool), 0.5, np.array([0.2, 0.6]))
+    >>> {k: v for k, v in compute(s).items() if k in ("roc_auc", "false_alarms", "max_novelty")}
+    {'roc_auc': 0.75, 'false_alarms': 1, 'max_novelty': 0.8}
+    """
+    return {m.column: m.compute(scored) for m in (METRICS if table is None else table)}

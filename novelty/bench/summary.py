@@ -22,10 +22,12 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from . import stats
+from . import metrics, stats
 
 #: the family-wise significance level of the tests in the summary
 ALPHA = 0.05
+#: the metric detectors are ranked by
+RANK_BY = "roc_auc"
 
 __all__ = ["rank_detectors", "per_task", "format_table", "summary_markdown", "ranking_text",
            "paired_text", "reference_of", "task_ranks_text", "statistics_markdown", "statistics_line", "ALPHA"]
@@ -53,8 +55,18 @@ def _sd(values: Sequence[float]) -> float:
     return float(arr.std(ddof=1)) if arr.size > 1 else float("nan")
 
 
+#: what the summary shows of the machine and the model besides the metrics
+_MACHINE = ["train_time_s", "score_scans_per_s", "peak_memory_mb", "n_units"]
+
+
 def rank_detectors(rows: Iterable[dict]) -> list[dict]:
-    """One record a detector, best first (by mean ROC AUC over seeds)."""
+    """One record a detector, best first (by mean ROC AUC over seeds).
+
+    The ROC AUC is averaged over the tasks of each seed, then over seeds
+    (with its spread over seeds, ``roc_auc_sd``); every other metric of
+    :data:`novelty.bench.metrics.METRICS` is the mean over the detector's
+    successful cells.
+    """
     by_detector: dict[str, list[dict]] = defaultdict(list)
     for row in _in_order(rows):
         by_detector[row["detector"]].append(row)
@@ -63,29 +75,16 @@ def rank_detectors(rows: Iterable[dict]) -> list[dict]:
         ok = [r for r in cells if r.get("status") == "ok"]
         per_seed: dict[int, list[float]] = defaultdict(list)
         for r in ok:
-            per_seed[r["seed"]].append(_num(r.get("roc_auc")))
+            per_seed[r["seed"]].append(_num(r.get(RANK_BY)))
         seed_scores = [_mean(v) for _, v in sorted(per_seed.items())]
-        delays = [_num(r.get("detection_delay")) for r in ok]
-        records.append({
-            "detector": detector,
-            "roc_auc": _mean(seed_scores),
-            "roc_auc_sd": _sd(seed_scores),
-            "average_precision": _mean(_num(r.get("average_precision")) for r in ok),
-            "tpr_at_1pct_fpr": _mean(_num(r.get("tpr_at_1pct_fpr")) for r in ok),
-            "tpr_at_5pct_fpr": _mean(_num(r.get("tpr_at_5pct_fpr")) for r in ok),
-            "detection_delay": _mean(delays),
-            "detected": sum(not math.isnan(d) for d in delays),
-            "false_alarms": _mean(_num(r.get("false_alarms")) for r in ok),
-            "integrated_novelty": _mean(_num(r.get("integrated_novelty")) for r in ok),
-            "max_novelty": _mean(_num(r.get("max_novelty")) for r in ok),
-            "train_time_s": _mean(_num(r.get("train_time_s")) for r in ok),
-            "score_scans_per_s": _mean(_num(r.get("score_scans_per_s")) for r in ok),
-            "peak_memory_mb": _mean(_num(r.get("peak_memory_mb")) for r in ok),
-            "n_units": _mean(_num(r.get("n_units")) for r in ok),
-            "cells": len(cells),
-            "failed": len(cells) - len(ok),
-        })
-    records.sort(key=lambda r: (math.isnan(r["roc_auc"]), -np.nan_to_num(r["roc_auc"]), r["detector"]))
+        record = {"detector": detector}
+        for column in [m.column for m in metrics.METRICS] + _MACHINE:
+            record[column] = _mean(_num(r.get(column)) for r in ok)
+        record[RANK_BY], record[f"{RANK_BY}_sd"] = _mean(seed_scores), _sd(seed_scores)
+        record["detected"] = sum(not math.isnan(_num(r.get("detection_delay"))) for r in ok)
+        record["cells"], record["failed"] = len(cells), len(cells) - len(ok)
+        records.append(record)
+    records.sort(key=lambda r: (math.isnan(r[RANK_BY]), -np.nan_to_num(r[RANK_BY]), r["detector"]))
     for i, record in enumerate(records, 1):
         record["rank"] = i
     return records
@@ -127,13 +126,15 @@ def format_table(header: Sequence[str], body: Sequence[Sequence[str]]) -> str:
 def ranking_text(rows: Sequence[dict]) -> str:
     """The ranked table printed at the end of ``novelty bench``."""
     records = rank_detectors(rows)
-    header = ["#", "detector", "ROC AUC (± sd over seeds)", "AP", "TPR@1%", "TPR@5%",
-              "delay", "false alarms", "integrated", "max", "train s", "MiB", "units", "failed"]
+    shown = [m for m in metrics.METRICS if m.heading is not None]
+    header = ["#", "detector",
+              *(m.heading + (" (± sd over seeds)" if m.column == RANK_BY else "") for m in shown),
+              "train s", "MiB", "units", "failed"]
     body = [[
-        str(r["rank"]), r["detector"], _pm(r["roc_auc"], r["roc_auc_sd"]),
-        _fmt(r["average_precision"]), _fmt(r["tpr_at_1pct_fpr"]), _fmt(r["tpr_at_5pct_fpr"]),
-        _fmt(r["detection_delay"], 1), _fmt(r["false_alarms"], 1), _fmt(r["integrated_novelty"], 2),
-        _fmt(r["max_novelty"]), _fmt(r["train_time_s"], 3), _fmt(r["peak_memory_mb"], 2),
+        str(r["rank"]), r["detector"],
+        *(_pm(r[m.column], r[f"{RANK_BY}_sd"]) if m.column == RANK_BY else _fmt(r[m.column], m.digits)
+          for m in shown),
+        _fmt(r["train_time_s"], 3), _fmt(r["peak_memory_mb"], 2),
         "-" if math.isnan(r["n_units"]) else f"{r['n_units']:.0f}",
         f"{r['failed']}/{r['cells']}" if r["failed"] else "0",
     ] for r in records]

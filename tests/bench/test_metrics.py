@@ -95,3 +95,26 @@ def test_agrees_with_scikit_learn_on_random_data():
         s = np.round(rng.random(60) + 0.3 * y, 1)  # rounded: many ties
         assert metrics.roc_auc(s, y) == pytest.approx(roc_auc_score(y, s))
         assert metrics.average_precision(s, y) == pytest.approx(average_precision_score(y, s))
+
+
+# ------------------------------------------------------------------ the table
+def test_adding_a_metric_is_one_entry_of_the_table(toy_registered, tmp_path, monkeypatch):
+    from novelty.bench import DetectorSpec, Suite, TaskSpec
+    from novelty.bench.runner import run_bench
+    from novelty.bench.summary import ranking_text
+
+    median = metrics.Metric("median_novelty", lambda s: float(np.median(s.novelty)), "median", 2)
+    monkeypatch.setattr(metrics, "METRICS", (*metrics.METRICS, median))
+    suite = Suite([DetectorSpec("hsom", {"n_rows": 3, "n_columns": 3})], [TaskSpec(toy_registered.TASK)],
+                  seeds=[0, 1], name="toy", memory=False).check()
+    report = run_bench(suite, tmp_path, quiet=True, plots=False)
+    assert report.failed == 0
+    for row in report.rows:
+        novelty = np.load(tmp_path / "cells" / f"{row['cell_id']}.npz")["novelty"]
+        assert row["median_novelty"] == float(np.median(novelty))
+    assert "median_novelty" in (tmp_path / "results.csv").read_text().splitlines()[0].split(",")
+    header, _, line = ranking_text(report.rows).splitlines()
+    heads = [h.strip() for h in header.strip("|").split("|")]
+    cells = [c.strip() for c in line.strip("|").split("|")]
+    mean = np.mean([row["median_novelty"] for row in report.rows])
+    assert heads[heads.index("max") + 1] == "median" and cells[heads.index("median")] == f"{mean:.2f}"
