@@ -1,23 +1,38 @@
 """The ``novelty`` command line.
 
+A session, each line as written, in an empty folder: simulate two runs along
+the paper's corridor A, learn them with the paper's detector, score them
+again with the saved model, plot the novelty along the route, and benchmark
+two detectors on one seed::
+
+    novelty list
+    novelty simulate paper-a --runs 2 --out corridor-a.npz
+    novelty run hsom --data corridor-a.npz --out novelty.csv --save hsom.npz
+    novelty score --model hsom.npz --data corridor-a.npz --out rescored.csv
+    novelty plot novelty.csv --out route.png
+    novelty bench --detector hsom --detector lof --task paper-a-to-b --seeds 1 --out results/first
+
+``novelty COMMAND --help`` gives the options and examples of each command.
+
 Each command is one module of this package with two functions,
 ``add_parser(subparsers)`` and ``run(args) -> int``, listed in
 :data:`COMMANDS`. Adding a command is adding a module and one line here;
-for instance ``novelty/cli/reproduce.py``::
+for instance ``novelty/cli/score.py``, shortened::
 
-    from ._common import add_command
+    from ._common import add_command, add_data_options
 
     def add_parser(subparsers):
-        parser = add_command(subparsers, "reproduce", "one-line summary", "Description.",
-                             ["novelty reproduce table1 --out results/table1"])
-        parser.add_argument("what")
+        parser = add_command(subparsers, "score", "score scans with a saved model (no learning)",
+                             DESCRIPTION, ["novelty score --model hsom.npz --data corridor-a.npz --out rescored.csv"])
+        parser.add_argument("--model", required=True, metavar="FILE", help="a saved detector (.npz)")
+        add_data_options(parser)
         return parser
 
     def run(args) -> int:
         ...            # raise UserError("...") for anything the user can fix
         return 0
 
-and ``"reproduce": "novelty.cli.reproduce"`` in :data:`COMMANDS`.
+and ``"score": "novelty.cli.score"`` in :data:`COMMANDS`.
 User errors (unknown names, bad parameters, missing or malformed files, bad
 data) are printed as one line on stderr with exit code 2, never a traceback.
 A closed output pipe (``novelty list | head``) ends the command quietly with
@@ -47,13 +62,14 @@ COMMANDS = {
     "reproduce": "novelty.cli.reproduce",
 }
 
+#: the session of the module's docstring (tests/cli/test_init.py runs it)
 _EPILOG = """examples:
   novelty list
-  novelty bench --quick --out results/quick
-  novelty run hsom --data scans.csv --out novelty.csv --save hsom.npz
-  novelty score --model hsom.npz --data new-scans.csv
-  novelty simulate paper-a --runs 3 --out corridor-a.npz
+  novelty simulate paper-a --runs 2 --out corridor-a.npz
+  novelty run hsom --data corridor-a.npz --out novelty.csv --save hsom.npz
+  novelty score --model hsom.npz --data corridor-a.npz --out rescored.csv
   novelty plot novelty.csv --out route.png
+  novelty bench --detector hsom --detector lof --task paper-a-to-b --seeds 1 --out results/first
 
 run 'novelty COMMAND --help' for the options and examples of each command."""
 

@@ -1,6 +1,8 @@
 """The novelty command line: every command through main([...]), one through a subprocess."""
 
 import json
+import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -9,7 +11,8 @@ import numpy as np
 import pytest
 
 import novelty
-from novelty.cli import COMMANDS, main
+import novelty.cli
+from novelty.cli import COMMANDS, build_parser, main
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "bench"))
 import toy  # noqa: E402
@@ -212,3 +215,30 @@ def test_cell_timeout_is_checked(tmp_path, capsys):
     argv = ["bench", "--quick", "--cell-timeout", "-1", "--out", str(tmp_path / "out")]
     assert main(argv) == 2
     assert "cell_timeout must be a positive number of seconds; got -1.0" in one_error_line(capsys)
+
+
+# ------------------------------------------------------ the module's examples
+def _session(text):
+    """The example command lines of ``text``: indented lines, and quoted strings, that start with 'novelty '."""
+    return re.findall(r"(?m)^\s+(novelty [^\n]*?)\s*$", text), re.findall(r'"(novelty [^"]*)"', text)
+
+
+def test_the_docstrings_examples_run_as_written(tmp_path, monkeypatch, capsys):
+    session, quoted = _session(novelty.cli.__doc__)
+    assert len(session) == 6 and set(quoted) <= set(session), (session, quoted)
+    monkeypatch.chdir(tmp_path)
+    for line in session:
+        argv = shlex.split(line)
+        assert main(argv[1:]) == 0, (line, capsys.readouterr().err)
+    assert {"corridor-a.npz", "novelty.csv", "hsom.npz", "rescored.csv", "route.png", "results"} <= {
+        p.name for p in tmp_path.iterdir()}
+    scans = len(np.load("corridor-a.npz")["X"])
+    assert len(Path("novelty.csv").read_text().splitlines()) == len(Path("rescored.csv").read_text().splitlines())
+    assert len(Path("rescored.csv").read_text().splitlines()) == scans + 1  # a header and a row a scan
+    assert (tmp_path / "results" / "first" / "results.csv").is_file()
+
+
+def test_novelty_help_lists_the_docstrings_session():
+    session, _ = _session(novelty.cli.__doc__)
+    assert _session(build_parser().epilog)[0] == session
+
