@@ -4,8 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from novelty.bench.suite import (Cell, DetectorSpec, Suite, SuiteError, TaskSpec, detector_from_text,
-                                 load_suite, parse_value, quick_suite_path)
+from novelty.bench.suite import Suite, SuiteError, load_suite, quick_suite_path
 
 
 def write(tmp_path, text, name="suite.toml"):
@@ -40,14 +39,6 @@ options = {{ n_test = 20 }}
     assert len(cells) == 4 * 1 * 3
     assert len({c.id for c in cells}) == 12
     assert cells[0].task.options == {"n_test": 20}
-
-
-def test_cell_ids_are_stable_and_depend_on_what_is_computed():
-    a = Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 0)
-    b = Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 0)
-    assert a.id == b.id
-    assert a.id != Cell(DetectorSpec("hsom", {"alpha": 1.3}), TaskSpec("t"), 0).id
-    assert a.id != Cell(DetectorSpec("hsom", {"alpha": 1.2}), TaskSpec("t"), 1).id
 
 
 def test_seeds_as_a_count(tmp_path, toy_registered):
@@ -119,15 +110,6 @@ name = "{toy_registered.TASK}"
 def test_a_missing_suite_file():
     with pytest.raises(SuiteError, match="Suite file not found"):
         load_suite("no/such/suite.toml")
-
-
-def test_command_line_specs():
-    spec = detector_from_text("habituating clusterer=gwr alpha=1.2 'name=a b'")
-    assert spec.name == "habituating"
-    assert spec.params == {"clusterer": "gwr", "alpha": 1.2, "name": "a b"}
-    assert parse_value("null") is None and parse_value("[1, 2]") == [1, 2] and parse_value("x=y") == "x=y"
-    with pytest.raises(SuiteError, match="name=value"):
-        detector_from_text("hsom alpha")
 
 
 def test_the_embedded_quick_suite_reads():

@@ -5,7 +5,7 @@ import pytest
 
 from novelty.datasets import load
 from novelty.datasets.base import Dataset
-from novelty.datasets.files import files, plan_columns, read_scans, smooth_by_distance
+from novelty.datasets.files import files, read_scans, smooth_by_distance
 
 ROS_HEADER = ("%time,field.header.seq,field.header.stamp,field.header.frame_id,field.angle_min,"
               "field.ranges0,field.ranges1,field.ranges2")
@@ -52,25 +52,6 @@ def test_a_text_column_is_refused_by_name_unless_columns_are_chosen(table):
     np.testing.assert_array_equal(data.X[:, 1], [0, 10, 20, 30, 40, 50])
     np.testing.assert_array_equal(data.y, [0, 0, 0, 0, 1, 1])
     np.testing.assert_array_equal(data.columns["time"], np.arange(6) * 0.5)
-
-
-@pytest.mark.parametrize("columns, expected", [
-    ("b", ["b"]), ([2, 1], ["b", "a"]), ("1,2", ["a", "b"]), ("[ab]", ["a", "b"]), (["a", "a"], ["a"]),
-])
-def test_columns_by_name_index_and_pattern(columns, expected):
-    layout = plan_columns(["t", "a", "b", "novel"], columns, label="novel", time="t")
-    assert layout.sensor_names == expected
-
-
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(columns="z"), r"columns: no column 'z'; the file has t, a, b, novel"),
-    (dict(columns=7), r"column index 7 is out of range; the file has 4 columns \(0 to 3\)"),
-    (dict(columns="a,t", time="t"), r"'t' is the label, time, distance, run or split column"),
-    (dict(label="[ab]"), r"label: '\[ab\]' names 2 columns; expected one"),
-])
-def test_bad_column_choices_say_what_is_wrong(kwargs, message):
-    with pytest.raises(ValueError, match=message):
-        plan_columns(["t", "a", "b", "novel"], **kwargs)
 
 
 def test_a_ros_export_needs_its_sensor_columns_chosen(ros):
