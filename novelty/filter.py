@@ -29,7 +29,7 @@ from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
-from .match_scale import ScaleCalibration, mismatch_novelty
+from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
 from .registry import InvalidParameterError, build, check_parameters, of_kind
 
 __all__ = ["HabituatingFilter", "learn_stream", "hsom"]
@@ -89,7 +89,7 @@ class HabituatingFilter(NoveltyDetector):
         Passes over the data in :meth:`fit` (the robot's repeated runs).
     random_state : int, numpy Generator or None, default=0
         Seed of the clusterer's initialisation.
-    novelty_rule : {"efficacy", "mismatch"}, default="efficacy"
+    novelty_rule : {"efficacy", "mismatch", "product"}, default="efficacy"
         How the winner's efficacy ``y_s`` and its match distance
         ``d = ||x - w_s||`` make the novelty. ``"efficacy"``: ``y_s`` alone
         (the paper). ``"mismatch"`` (habituation x mismatch, our extension,
@@ -97,7 +97,15 @@ class HabituatingFilter(NoveltyDetector):
 
             n(x) = 1 - (1 - y_s) * exp(-d^2 / (2 sigma^2))
 
-        low only for an input that is close to a habituated unit.
+        low for an input that is close to a habituated unit (either alone
+        keeps it high). ``"product"`` (also ours)::
+
+            n(x) = y_s * (1 - exp(-d^2 / (2 sigma^2)))
+
+        high only for an input that is both far from its winner and won by
+        an unhabituated unit (either alone makes it low): a recurring input
+        becomes familiar as its unit habituates *or* as the network comes to
+        match it.
     match_scale : float, "scott" or None, default=None
         sigma, a distance, or how to calibrate it on the first
         ``calibration_scans`` scans learned (below;
@@ -161,7 +169,7 @@ class HabituatingFilter(NoveltyDetector):
         "threshold": Interval(numbers.Real, None, None),
         "stimulus": Interval(numbers.Real, 0, None),
         "n_epochs": Interval(numbers.Integral, 1, None),
-        "novelty_rule": Options(("efficacy", "mismatch")),
+        "novelty_rule": Options(("efficacy", "mismatch", "product")),
         "match_scale": (Options(("scott",)), Interval(numbers.Real, 0, None, closed="neither", allow_none=True)),
         "match_quantile": Interval(numbers.Real, 0, 1),
         "calibration_scans": Interval(numbers.Integral, 2, None),
@@ -232,7 +240,7 @@ class HabituatingFilter(NoveltyDetector):
         synapse.initialize(clusterer.n_units_)
         self.clusterer_ = clusterer
         self.synapse_ = synapse
-        needed = self.novelty_rule == "mismatch" or clusterer.uses_match_scale
+        needed = self.novelty_rule != "efficacy" or clusterer.uses_match_scale
         calibrated = self._calibration_rule() is not None
         self.match_scale_ = None if calibrated else float(self.match_scale)
         if needed and calibrated:
@@ -280,7 +288,7 @@ class HabituatingFilter(NoveltyDetector):
     # (clusterer, synapse) pair; a kernel gives the same results as the
     # reference code after it, which runs when there is none.
     def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
-        distances = np.empty(X.shape[0]) if self.novelty_rule == "mismatch" else None
+        distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
         kernel = _kernels.learner(self.clusterer_, self.synapse_)
         if kernel is not None:
             efficacy = kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
@@ -293,7 +301,8 @@ class HabituatingFilter(NoveltyDetector):
     def _combine(self, efficacy: np.ndarray, distances: np.ndarray | None) -> np.ndarray:
         if self.novelty_rule == "efficacy":
             return efficacy
-        return mismatch_novelty(efficacy, distances, self.match_scale_)
+        rule = mismatch_novelty if self.novelty_rule == "mismatch" else product_novelty
+        return rule(efficacy, distances, self.match_scale_)
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         rows = np.empty(X.shape[0], dtype=np.int64)
@@ -326,7 +335,14 @@ class HabituatingFilter(NoveltyDetector):
 
     @property
     def resting_novelty(self) -> float:
-        """The novelty of a fully familiar input (the output neuron's resting activity)."""
+        """The novelty of a fully familiar input (the output neuron's resting activity).
+
+        A fully familiar input matches a fully habituated unit exactly
+        (``d = 0``): the resting efficacy, which the ``"product"`` rule
+        multiplies by a zero mismatch.
+        """
+        if self.novelty_rule == "product":
+            return 0.0
         synapse = self.synapse_ if hasattr(self, "synapse_") else build("synapse", self.synapse)
         return synapse.resting_efficacy
 

@@ -1,4 +1,4 @@
-"""How far an input is from what a network knows: the match scale and the mismatch novelty.
+"""How far an input is from what a network knows: the match scale and the mismatch novelties.
 
 Our extension of Marsland, Nehmzow & Shapiro (2000), not part of the paper.
 The paper's novelty is the efficacy ``y_s`` of the winning unit's synapse: it
@@ -10,7 +10,16 @@ says how often that unit has won, not how well it matches the input. The
 
 It is near its floor only when the input is both close to its winner and the
 winner is habituated; it is 1 for an input far from every unit, whatever the
-winner's efficacy; with ``sigma -> inf`` it is the paper's ``y_s``.
+winner's efficacy; with ``sigma -> inf`` it is the paper's ``y_s``. It is the
+probabilistic *or* of the efficacy and the mismatch
+``m = 1 - exp(-d^2 / (2 sigma^2))``: ``y + m - y m``. The *product* novelty is
+their *and*::
+
+    n(x) = y_s * (1 - exp(-d^2 / (2 sigma^2)))
+
+high only when the input is both far from its winner and won by an
+unhabituated unit, so that a recurring input becomes familiar either as its
+unit habituates or as the network learns to match it (0 for an exact match).
 
 The match scale ``sigma`` is calibrated from the first ``m`` inputs
 themselves, by one of two rules:
@@ -46,7 +55,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["mismatch_novelty", "nearest_distinct", "scott_scale", "ScaleCalibration", "RULES"]
+__all__ = ["mismatch_novelty", "product_novelty", "nearest_distinct", "scott_scale", "ScaleCalibration", "RULES"]
 
 #: the calibration rules of the match scale
 RULES = ("quantile", "scott")
@@ -63,6 +72,19 @@ def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | 
     if scale is None:
         return np.array(efficacy, dtype=np.float64)
     return 1.0 - (1.0 - efficacy) * np.exp(-distance / (2.0 * scale * scale))
+
+
+def product_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | None) -> np.ndarray:
+    """``y * (1 - exp(-d2 / (2 sigma^2)))`` for efficacies ``y`` and squared distances ``d2``.
+
+    ``scale`` None (no scale yet) gives the efficacies unchanged.
+
+    >>> product_novelty(np.array([0.2, 0.2, 1.0]), np.array([0.0, 2.0, 2.0]), 1.0).round(4).tolist()
+    [0.0, 0.1264, 0.6321]
+    """
+    if scale is None:
+        return np.array(efficacy, dtype=np.float64)
+    return efficacy * -np.expm1(-distance / (2.0 * scale * scale))
 
 
 def nearest_distinct(X: np.ndarray) -> np.ndarray:

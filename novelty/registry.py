@@ -298,6 +298,7 @@ detectors = Registry(
         "habituating": "novelty.filter:HabituatingFilter",
         "hsom": "novelty.filter:hsom",
         "gwr-novelty": "novelty.presets:gwr_novelty",
+        "gwr-explore": "novelty.presets:gwr_explore",
         "gng-stanley": "novelty.presets:gng_stanley",
         "som-wang-hsu": "novelty.presets:som_wang_hsu",
         "gwr-wang-hsu": "novelty.presets:gwr_wang_hsu",

@@ -380,6 +380,31 @@ def test_mismatch_rule_by_hand():
     np.testing.assert_allclose([det.score_one(x) for x in X], expected, rtol=0, atol=1e-15)
 
 
+def test_product_rule_by_hand():
+    det = mismatch(match_scale=0.5).set_params(novelty_rule="product").fit(data(10, 2))
+    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+    det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
+    X = np.array([[0.0, 0.0], [0.0, 0.25], [0.9, 1.0], [0.6, 0.0]])
+    # winners 0, 0, 3, 1; d^2 = 0, 1/16, 1/100, 4/25; sigma^2 = 1/4: y (1 - exp(-2 d^2))
+    expected = [0.0, 0.25 * (1 - np.exp(-0.125)), 0.0, 1 - np.exp(-0.32)]
+    np.testing.assert_allclose(det.novelty(X), expected, rtol=0, atol=1e-15)
+    np.testing.assert_allclose([det.score_one(x) for x in X], expected, rtol=0, atol=1e-15)
+    assert det.resting_novelty == 0.0  # an exact match: no mismatch
+
+
+def test_product_rule_while_learning_a_repeated_scan():
+    """Learning on: the efficacy before the scan is learned times the mismatch to the winner then."""
+    det = mismatch(match_scale=0.5, radius=0).set_params(novelty_rule="product").fit(data(10, 2))
+    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+    det.synapse_.efficacy_[:] = 1.0
+    x = np.array([0.0, 0.5])
+    out = [det.score_learn_one(x) for _ in range(3)]
+    # unit 0 wins each time and moves a quarter of the way: d = 0.5, 0.375, 0.28125
+    d = [0.5, 0.375, 0.28125]
+    expected = [euler(k) * (1 - np.exp(-2 * d[k] ** 2)) for k in range(3)]
+    np.testing.assert_allclose(out, expected, rtol=0, atol=1e-15)
+
+
 def test_efficacy_rule_is_the_default_and_keeps_no_calibration():
     det = small().fit(data())
     assert det.novelty_rule == "efficacy" and det.match_scale_ is None
@@ -407,6 +432,7 @@ def test_a_given_match_scale_is_used_as_is():
     ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 30}),
     ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
                      "firing_condition": False, "new_unit_wins": True, "calibration_scans": 30}),
+    ("gwr-explore", {"calibration_scans": 30}),
 ])
 def test_mismatch_streaming_scan_by_scan_equals_batches(name, params):
     X = data(80)
@@ -436,6 +462,7 @@ def test_before_two_distinct_scans_the_novelty_is_the_efficacy():
     ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
                      "firing_condition": False, "new_unit_wins": True}),
     ("gng-stanley", {"novelty_rule": "mismatch", "insertion_interval": 5}),
+    ("gwr-explore", {}),
 ])
 def test_frozen_novelty_is_what_learning_the_scan_would_report(name, params):
     X, probe = data(60), data(15, seed=2) * 1.5

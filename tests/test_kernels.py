@@ -303,6 +303,7 @@ def test_growing_networks_equal_reference(det, data, split):
     ("gwr-novelty", {"activity_threshold": "auto", "firing_condition": False, "new_unit_wins": True,
                      "novelty_rule": "mismatch"}),
     ("gng-stanley", {"insertion_interval": 10, "novelty_rule": "mismatch"}),
+    ("gwr-explore", {}),
 ])
 def test_growing_corridor_equals_reference(name, params):
     X = corridor(3000)

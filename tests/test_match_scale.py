@@ -6,7 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from novelty.match_scale import ScaleCalibration, mismatch_novelty, nearest_distinct, scott_scale
+from novelty.match_scale import (ScaleCalibration, mismatch_novelty, nearest_distinct, product_novelty,
+                                  scott_scale)
 
 
 def test_mismatch_novelty_by_hand():
@@ -25,6 +26,25 @@ def test_mismatch_novelty_lies_between_the_efficacy_and_one(y, d2, scale):
     n = mismatch_novelty(y, d2, scale)
     assert np.all(n >= y - 1e-12) and np.all(n <= 1.0)
     np.testing.assert_allclose(mismatch_novelty(y, np.zeros(5), scale), y, atol=1e-15)
+
+
+def test_product_novelty_by_hand():
+    y = np.array([0.5, 0.5, 0.0, 1.0])
+    d2 = np.array([0.0, 2.0, 8.0, 3.0])  # sigma = 1: exp(-d2 / 2)
+    expected = [0.0, 0.5 * (1 - np.exp(-1.0)), 0.0, 1 - np.exp(-1.5)]
+    np.testing.assert_allclose(product_novelty(y, d2, 1.0), expected, rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(product_novelty(y, d2, None), y)  # no scale: the efficacy
+
+
+@settings(max_examples=50, deadline=None)
+@given(y=hnp.arrays(np.float64, 5, elements=st.floats(0, 1)),
+       d2=hnp.arrays(np.float64, 5, elements=st.floats(0, 100)),
+       scale=st.floats(0.01, 10))
+def test_product_and_mismatch_are_the_and_and_the_or_of_efficacy_and_mismatch(y, d2, scale):
+    m = 1.0 - np.exp(-d2 / (2.0 * scale * scale))
+    product, either = product_novelty(y, d2, scale), mismatch_novelty(y, d2, scale)
+    assert np.all(product >= 0.0) and np.all(product <= np.minimum(y, m) + 1e-12)
+    np.testing.assert_allclose(product + either, y + m, rtol=0, atol=1e-12)  # y m + (y + m - y m)
 
 
 def test_nearest_distinct_ignores_repeats():

@@ -496,6 +496,7 @@ def test_bad_feature_names_in_a_file_are_refused(tmp_path, names, message):
                      "firing_condition": False, "new_unit_wins": True, "calibration_scans": 20}),
     ("hsom", {"novelty_rule": "mismatch", "match_scale": "scott", "calibration_scans": 20}),
     ("kmeans-stanley", {"calibration_scans": 20, "n_clusters": 25}),  # units still being placed at 12
+    ("gwr-explore", {"calibration_scans": 20}),
 ])
 def test_match_scale_and_calibration_round_trip(tmp_path, name, params, n_scans):
     rng = np.random.default_rng(0)
@@ -508,6 +509,10 @@ def test_match_scale_and_calibration_round_trip(tmp_path, name, params, n_scans)
     assert det.novelty(Y).tobytes() == loaded.novelty(Y).tobytes()
     assert det.stream(Y).tobytes() == loaded.stream(Y).tobytes()  # calibration goes on alike
     assert loaded.match_scale_ == det.match_scale_ is not None
+    def flat(model):  # the rule and the GWR's radius among them (the components compare by identity)
+        return {k: v for k, v in model.get_params().items() if k not in ("clusterer", "synapse")}
+
+    assert flat(loaded) == flat(det)
 
 
 def test_contamination_threshold_and_labels_round_trip(tmp_path):

@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import novelty
 from novelty.datasets import load
@@ -17,7 +19,11 @@ PRESETS = {
     "gng-wang-hsu": ("gng", WangHsuSynapse),
     "hsom-mismatch": ("som", StanleySynapse),
     "kmeans-stanley": ("online-kmeans", StanleySynapse),
+    "gwr-explore": ("gwr", StanleySynapse),
 }
+
+#: synapse parameters a preset sets (documented in its docstring)
+SYNAPSE_CHANGES = {"gwr-explore": {"tau_winner": 2.0}}
 
 
 CASES = list(PRESETS)
@@ -36,7 +42,8 @@ def test_preset_builds_its_clusterer_and_synapse(name):
     assert isinstance(det, HabituatingFilter)
     assert clusterers.name_of(det.clusterer) == cname
     assert type(det.synapse) is synapse_class
-    assert det.synapse.get_params() == synapse_class().get_params(), "the synapse's own defaults"
+    expected = synapse_class(**SYNAPSE_CHANGES.get(name, {})).get_params()
+    assert det.synapse.get_params() == expected, "the synapse's own defaults but those the preset sets"
     if cname in ("gng", "gwr"):
         assert det.clusterer.init == "uniform"
 
@@ -53,7 +60,7 @@ def test_preset_routes_parameters_and_streams(name):
     assert out[40:].mean() < 1.0
 
 
-@pytest.mark.parametrize("name", ["gwr-novelty", "gng-stanley"])
+@pytest.mark.parametrize("name", ["gwr-novelty", "gwr-explore", "gng-stanley"])
 def test_growing_presets_keep_a_user_init(name):
     assert novelty.make(name, init="sample").clusterer.init == "sample"
     assert novelty.make(name, clusterer__init="sample").clusterer.init == "sample"
@@ -121,3 +128,36 @@ def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, o
     assert door[0] > door[1] > door[2], door
     assert all(r < d for r, d in zip(rest, door)), (rest, door)
     assert rest[2] <= rest[0], rest
+
+
+def test_gwr_explore_is_gwr_novelty_with_a_wider_radius_the_product_rule_and_faster_synapses():
+    explore, novel = novelty.make("gwr-explore").get_params(), novelty.make("gwr-novelty").get_params()
+    changed = {k for k in explore if not k.endswith(("clusterer", "synapse")) and explore[k] != novel[k]}
+    assert changed == {"novelty_rule", "clusterer__insertion_radius", "synapse__tau_winner"}
+    assert (explore["novelty_rule"], explore["clusterer__insertion_radius"],
+            explore["synapse__tau_winner"]) == ("product", 1.5, 2.0)
+
+
+@settings(max_examples=25, deadline=None)
+@given(seed=st.integers(0, 2**16), d=st.sampled_from([2, 5, 16]))
+def test_gwr_explore_flags_a_new_feature_then_habituates_to_it(seed, d):
+    """Familiar scans around one place; a feature 0.5 away met three times, learning as it goes."""
+    rng = np.random.default_rng(seed)
+    base = rng.uniform(0.2, 0.8, size=d)
+    direction = rng.normal(size=d)
+    feature = base + 0.5 * direction / np.linalg.norm(direction) + rng.normal(0, 0.03, size=(10, d))
+
+    def familiar(n):
+        return base + rng.normal(0, 0.03, size=(n, d))
+
+    det = novelty.make("gwr-explore", random_state=seed)
+    for _ in range(3):
+        det.stream(familiar(30))
+    at_feature, elsewhere = [], []
+    for _ in range(3):
+        out = det.stream(np.vstack([familiar(15), feature, familiar(15)]))
+        at_feature.append(out[15:25].mean())
+        elsewhere.append(np.r_[out[:15], out[25:]].mean())
+        det.stream(familiar(30))
+    assert at_feature[0] > elsewhere[0], "flagged at first sight"
+    assert at_feature[2] < at_feature[0], "less novel at the third exposure"

@@ -102,11 +102,19 @@ class GrowWhenRequired(Clusterer):
         means an input farther than -ln(0.85) = 0.16 from every unit is new,
         about 4 % of the diameter of the unit cube of 16 sonar readings.
         ``"auto"`` (ours) calibrates it from the data as
-        ``a_T = exp(-d_T)`` with the insertion radius ``d_T`` a match scale
+        ``a_T = exp(-d_T)`` with the insertion radius
+        ``d_T = insertion_radius * sigma``, sigma a match scale
         (:mod:`novelty.match_scale`): in a habituating filter, the filter's
         (see :meth:`calibrate`); alone, the 0.9 quantile of the
         nearest-distinct distances within the first batch's first 200 scans
         (no growth while that is unknown).
+    insertion_radius : float, default=1.0
+        Ours, used with ``activity_threshold="auto"`` only: the insertion
+        radius d_T in units of the match scale sigma, so that it does not
+        depend on the scale of the inputs. An input farther than
+        ``insertion_radius * sigma`` from its winner is new (step 7); a
+        larger radius grows fewer units, so that a recurring input is
+        matched by the unit its first occurrence made.
     habituation_threshold : float, default=0.1
         h_T: ... and the winner's firing counter is below it, that is the
         winner has fired often (step 7). The paper: 0.1.
@@ -176,6 +184,7 @@ class GrowWhenRequired(Clusterer):
 
     _parameter_rules = {
         "activity_threshold": (Interval(numbers.Real, 0, 1), Options(("auto",))),
+        "insertion_radius": Interval(numbers.Real, 0, None, closed="neither"),
         "habituation_threshold": Interval(numbers.Real, 0, None),
         "firing_condition": Options((True, False)),
         "new_unit_wins": Options((True, False)),
@@ -201,8 +210,10 @@ class GrowWhenRequired(Clusterer):
         init_range=(0.0, 1.0),
         firing_condition=True,
         new_unit_wins=False,
+        insertion_radius=1.0,
     ):
         self.activity_threshold = activity_threshold
+        self.insertion_radius = insertion_radius
         self.habituation_threshold = habituation_threshold
         self.firing_condition = firing_condition
         self.new_unit_wins = new_unit_wins
@@ -239,9 +250,9 @@ class GrowWhenRequired(Clusterer):
         return self.activity_threshold == "auto"
 
     def calibrate(self, scale: float | None) -> None:
-        """Set a_T = exp(-scale) when ``activity_threshold="auto"`` (None: 0, no growth)."""
+        """Set a_T = exp(-insertion_radius * scale) when ``activity_threshold="auto"`` (None: 0, no growth)."""
         if self.activity_threshold == "auto":
-            self.activity_threshold_ = 0.0 if scale is None else float(np.exp(-scale))
+            self.activity_threshold_ = 0.0 if scale is None else float(np.exp(-self.insertion_radius * scale))
 
     def grows_for(self, rows: np.ndarray, distances: np.ndarray) -> np.ndarray | None:
         """With ``new_unit_wins``: the inputs step 7 would give a new unit (else None)."""

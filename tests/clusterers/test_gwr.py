@@ -41,7 +41,8 @@ def gwr_by_hand(weights, edges=(), counters=None, unit_ids=None, **params):
         firing.efficacy_[:] = counters
     net._import_state(
         {"weights_": weights, "edge_ages_": ages, "unit_ids_": ids.astype(np.int64)},
-        {"next_unit_id_": int(ids.max()) + 1},
+        {"next_unit_id_": int(ids.max()) + 1,
+         **({"activity_threshold_": 0.0} if net.activity_threshold == "auto" else {})},
         {"firing_": firing},
     )
     return net
@@ -310,3 +311,58 @@ def test_gwr_with_a_configured_counter_round_trips(tmp_path, corridor):
     back = novelty.load(tmp_path / "m.npz")
     assert back.clusterer.firing.tau_winner == 2.0 and back.clusterer_.firing_.others == "forget"
     np.testing.assert_array_equal(back.stream(X[::-1]), det.stream(X[::-1]))
+
+
+def test_insertion_radius_is_a_multiple_of_the_calibrated_scale():
+    gwr = GrowWhenRequired(activity_threshold="auto", insertion_radius=2.0)
+    gwr.initialize(np.zeros((2, 2)), random_state=0)
+    gwr.calibrate(0.25)
+    assert gwr.activity_threshold_ == np.exp(-0.5)
+    fixed = GrowWhenRequired(activity_threshold=0.7, insertion_radius=2.0).initialize(np.zeros((2, 2)))
+    fixed.calibrate(0.25)
+    assert fixed.activity_threshold_ == 0.7  # a given a_T is used as is
+
+
+@pytest.mark.parametrize("radius,added", [(1.0, [1, 1]), (2.0, [0, 1])])
+def test_a_scan_beyond_the_insertion_radius_gets_a_unit(radius, added):
+    # sigma = 0.25: radius 1 inserts beyond 0.25, radius 2 beyond 0.5
+    got = []
+    for x in ([0.6, 0.0], [0.0, 0.6]):  # 0.4 from unit 1; 0.6 from unit 0
+        net = gwr_by_hand([[0.0, 0.0], [1.0, 0.0]], activity_threshold="auto", insertion_radius=radius,
+                          firing_condition=False)
+        net.calibrate(0.25)
+        match, growth = net.learn_one(np.array(x))
+        got.append(growth.added)
+        if growth.added:
+            np.testing.assert_array_equal(net.weights_[-1], 0.5 * (net.weights_[match.winner] + x))
+    assert got == added
+
+
+def test_frozen_scoring_gives_a_scan_beyond_the_radius_the_fresh_units_novelty():
+    from novelty.filter import HabituatingFilter
+
+    gwr = GrowWhenRequired(activity_threshold="auto", insertion_radius=2.0, firing_condition=False,
+                           new_unit_wins=True, epsilon_n=0.0)
+    det = HabituatingFilter(clusterer=gwr, novelty_rule="product", match_scale=0.25)
+    det.fit(np.array([[0.0, 0.0], [1.0, 0.0]]))  # the two units sit on the two scans
+    np.testing.assert_array_equal(np.sort(det.clusterer_.weights_, axis=0), [[0.0, 0.0], [1.0, 0.0]])
+    far, near = np.array([0.0, 0.6]), np.array([0.6, 0.0])  # 0.6 and 0.4 from their winners
+    expected_far = 1.0 * (1 - np.exp(-0.36 / (2 * 0.0625)))  # a fresh synapse (y0 = 1)
+    near_winner = det.clusterer_.match(near).winner
+    expected_near = det.synapse_.efficacy_[near_winner] * (1 - np.exp(-0.16 / (2 * 0.0625)))
+    assert expected_near < 0.7 < expected_far
+    np.testing.assert_allclose(det.novelty(np.array([far, near])), [expected_far, expected_near],
+                               rtol=0, atol=1e-15)
+    assert det.score_learn_one(near) == pytest.approx(expected_near, abs=1e-15)
+    assert det.clusterer_.n_units_ == 2  # within the radius: the winner adapts
+    assert det.score_learn_one(far) == pytest.approx(expected_far, abs=1e-15)
+    assert det.clusterer_.n_units_ == 3
+
+
+def test_insertion_radius_must_be_positive():
+    for value in (0, -1.0, "1.5", None):
+        net = GrowWhenRequired(activity_threshold="auto", insertion_radius=value)
+        with pytest.raises(ValueError, match=r"The 'insertion_radius' parameter of GrowWhenRequired must be "
+                                             r"a float in \(0, inf\)\. Got .* instead\."):
+            net.initialize(np.zeros((2, 2)))
+        assert not hasattr(net, "weights_")
