@@ -98,6 +98,7 @@ def available(kind: str | None = None) -> dict:
 
 def load(path):
     """Read a detector saved with ``detector.save(path)`` (safe: no pickle)."""
+    # deferred: persistence imports numpy; ``import novelty`` stays light
     from .persistence import load as _load
 
     return _load(path)

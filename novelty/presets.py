@@ -28,6 +28,7 @@ says which name is missing.
 from __future__ import annotations
 
 from .filter import HabituatingFilter
+from .registry import clusterers
 
 __all__ = ["gwr_novelty", "gwr_explore", "gng_stanley", "som_wang_hsu", "gwr_wang_hsu",
            "gng_wang_hsu", "hsom_mismatch", "kmeans_stanley"]
@@ -63,8 +64,6 @@ _GNG_NOVELTY = {**_GROWING, **_MISMATCH, "insertion_interval": 10}
 
 
 def _compose(clusterer: str, synapse: str, params: dict, defaults: dict | None = None) -> HabituatingFilter:
-    from .registry import clusterers
-
     if clusterer not in clusterers and not params:
         return HabituatingFilter(clusterer=clusterer, synapse=synapse)
     return HabituatingFilter.from_params(clusterer=clusterer, synapse=synapse, **{**(defaults or {}), **params})

@@ -22,3 +22,18 @@ def test_subpackages_are_reachable_after_import_novelty_alone_and_not_imported_b
 def test_an_unknown_attribute_is_an_attribute_error():
     with pytest.raises(AttributeError, match="module 'novelty' has no attribute 'dataset'"):
         novelty.dataset
+
+
+HEAVY = ("numpy", "scipy", "sklearn", "numba", "matplotlib", "dask", "pyod", "river")
+
+
+@pytest.mark.parametrize("code, allowed", [
+    ("import novelty", ()),
+    ("import novelty.cli; novelty.cli.build_parser()", ("numpy",)),  # the command line's start
+])
+def test_imports_stay_light(code, allowed):
+    probe = f"{code}; import sys; print(' '.join(sorted({{m.split('.')[0] for m in sys.modules}})))"
+    loaded = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120,
+                            env={"PYTHONPATH": ROOT, "PATH": ""}, check=True).stdout.split()
+    assert "novelty" in loaded
+    assert [m for m in HEAVY if m in loaded and m not in allowed] == []

@@ -3,11 +3,13 @@
 - No tracker numbers ("issue 7", "#12") in code, tests, docs or benchmarks: a
   reader of the code cannot follow them.
 - No import cycle among novelty's modules, counting the imports inside
-  functions too, and none among its subpackages.
+  functions too (an import moved into a function hides a cycle from Python,
+  not from a reader), and none among its subpackages.
 """
 
 import ast
 import re
+from collections import defaultdict
 from pathlib import Path
 
 import pytest
@@ -48,3 +50,121 @@ def test_no_tracker_numbers():
             for i, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1)
             if TRACKER.search(line) and path != Path(__file__).resolve()]  # this file shows examples
     assert not hits, "tracker numbers mean nothing to a reader of the code:\n" + "\n".join(hits)
+
+
+# ------------------------------------------------------------------ imports
+def _modules() -> dict[str, Path]:
+    """Every module of the package by dotted name (a package by its own name)."""
+    out = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(ROOT).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts.pop()
+        out[".".join(parts)] = path
+    return out
+
+
+def _imported(name: str, path: Path, modules) -> set[str]:
+    """The novelty modules ``name`` imports anywhere in its file, in functions too.
+
+    ``from package import submodule`` imports the submodule; ``from module
+    import name`` the module; imports under ``if TYPE_CHECKING:`` are not
+    run and do not count.
+    """
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+
+    def nearest(target):
+        while target not in modules and "." in target:
+            target = target.rpartition(".")[0]
+        return target if target in modules and target != name else None
+
+    def visit(node):
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
+                continue
+            if isinstance(child, ast.Import):
+                found.update(nearest(a.name) for a in child.names if a.name.split(".")[0] == "novelty")
+            elif isinstance(child, ast.ImportFrom):
+                if child.level:
+                    base = package.split(".")[: len(package.split(".")) - child.level + 1]
+                    source = ".".join(base + ([child.module] if child.module else []))
+                else:
+                    source = child.module or ""
+                if source.split(".")[0] == "novelty":
+                    for alias in child.names:
+                        sub = f"{source}.{alias.name}"
+                        found.add(nearest(sub if sub in modules else source))
+            visit(child)
+
+    visit(ast.parse(path.read_text(encoding="utf-8")))
+    return found - {None}
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The strongly connected components of more than one node (Tarjan's algorithm)."""
+    index, low, stack, on_stack, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph.get(v, ())):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                out.append(sorted(component))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def _graph() -> dict[str, set[str]]:
+    modules = _modules()
+    return {name: _imported(name, path, modules) for name, path in modules.items()}
+
+
+def test_the_cycle_finder():
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": set()}) == []
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def test_the_import_graph_sees_imports_in_functions():
+    graph = _graph()
+    assert "novelty.registry" in graph["novelty.filter"]  # at the top of the module
+    assert "novelty.persistence" in graph["novelty"]       # inside novelty.load()
+
+
+#: cycles being taken apart elsewhere: the filter and its compiled kernels (the kernels are to
+#: take their steps from the components); the entry goes when the cycle does
+UNDER_WAY = [["novelty._kernels", "novelty.filter"]]
+
+
+def test_no_import_cycle_among_modules():
+    cycles = [c for c in _cycles(_graph()) if c not in UNDER_WAY]
+    assert not cycles, f"modules that import each other (directly or around a loop): {cycles}"
+
+
+def test_no_import_cycle_among_subpackages():
+    def top(module):
+        return ".".join(module.split(".")[:2])
+
+    edges: dict[str, set[str]] = defaultdict(set)
+    for module, imported in _graph().items():
+        edges[top(module)].update(top(m) for m in imported if top(m) not in (top(module), "novelty"))
+    cycles = [c for c in _cycles(edges) if c not in UNDER_WAY]
+    assert not cycles, f"subpackages that import each other: {cycles}"
+

@@ -35,11 +35,13 @@ classification. Proc. IJCAI-95, 518-523.
 from __future__ import annotations
 
 import numbers
+import warnings
 
 import numpy as np
+from sklearn.exceptions import ConvergenceWarning
 
 from .._component import StateError, check_array_state
-from .._validation import Instance, Interval, Options
+from .._validation import Instance, Interval, Options, check_batch
 from ._calibration import CalibratedDetector
 
 __all__ = ["AutoencoderFilter"]
@@ -138,9 +140,7 @@ class AutoencoderFilter(CalibratedDetector):
             )
 
     def _fit_model(self, X: np.ndarray) -> None:
-        import warnings
-
-        from sklearn.exceptions import ConvergenceWarning
+        # deferred: sklearn.neural_network takes 0.07 s to import, needed only to fit
         from sklearn.neural_network import MLPRegressor
 
         hidden = self.hidden_layer_sizes
@@ -174,8 +174,6 @@ class AutoencoderFilter(CalibratedDetector):
 
     def reconstruct(self, X) -> np.ndarray:
         """The network's reconstruction x_hat of each row (equation 1)."""
-        from .._validation import check_batch
-
         self._check_fitted()
         return self._reconstruct(check_batch(X, self, self.n_features_in_))
 

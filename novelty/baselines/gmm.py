@@ -38,13 +38,15 @@ incomplete data via the EM algorithm. JRSS B, 39(1), 1-38.
 from __future__ import annotations
 
 import numbers
+import warnings
 
 import numpy as np
 from scipy.linalg import solve_triangular
 from scipy.special import logsumexp
+from sklearn.exceptions import ConvergenceWarning
 
 from .._component import StateError, check_array_state, check_int_state
-from .._validation import Interval, Options
+from .._validation import Interval, Options, check_batch
 from ._calibration import CalibratedDetector
 
 __all__ = ["GaussianMixtureDetector"]
@@ -131,16 +133,13 @@ class GaussianMixtureDetector(CalibratedDetector):
         self.contamination = contamination
 
     def _mixture(self, k: int):
+        # deferred: sklearn.mixture takes 0.4 s to import, needed only to fit
         from sklearn.mixture import GaussianMixture
 
         return GaussianMixture(n_components=k, covariance_type=self.covariance_type, reg_covar=self.reg_covar,
                                max_iter=self.max_iter, n_init=self.n_init, random_state=self.random_state)
 
     def _fit_model(self, X: np.ndarray) -> None:
-        import warnings
-
-        from sklearn.exceptions import ConvergenceWarning
-
         if self.n_components is not None:
             candidates = [int(self.n_components)]
         else:
@@ -172,8 +171,6 @@ class GaussianMixtureDetector(CalibratedDetector):
 
     def log_likelihood(self, X) -> np.ndarray:
         """log p(x) of each row under the mixture (equations 1 and 3)."""
-        from .._validation import check_batch
-
         self._check_fitted()
         return self._log_p(check_batch(X, self, self.n_features_in_))
 

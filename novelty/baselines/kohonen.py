@@ -64,7 +64,7 @@ import numbers
 import numpy as np
 
 from .._component import StateError, check_array_state, check_int_state
-from .._validation import Interval, Options
+from .._validation import Interval, Options, check_batch
 from ._calibration import CalibratedDetector
 
 __all__ = ["KohonenNoveltyFilter"]
@@ -188,8 +188,6 @@ class KohonenNoveltyFilter(CalibratedDetector):
 
     def novelty_component(self, X) -> np.ndarray:
         """The novelty vectors x_tilde = Phi x of each row (Kohonen's filter output)."""
-        from .._validation import check_batch
-
         self._check_fitted()
         X = check_batch(X, self, self.n_features_in_)
         if self.method == "pca":

@@ -50,7 +50,7 @@ import numpy as np
 from scipy.special import logsumexp
 
 from .._component import StateError, check_array_state
-from .._validation import Interval, Options
+from .._validation import Interval, Options, check_batch
 from ._calibration import CalibratedDetector
 
 __all__ = ["ParzenDetector"]
@@ -129,8 +129,6 @@ class ParzenDetector(CalibratedDetector):
 
     def log_density(self, X) -> np.ndarray:
         """log p(x) of each row (equation 1)."""
-        from .._validation import check_batch
-
         self._check_fitted()
         return self._log_density(check_batch(X, self, self.n_features_in_))
 

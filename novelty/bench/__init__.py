@@ -29,10 +29,12 @@ __all__ = [
 
 def __getattr__(name):
     if name == "run_bench":
+        # deferred: the runner imports the backends, results and plots; the specs need none of them
         from .runner import run_bench
 
         return run_bench
     if name == "run_cell":
+        # deferred: a cell imports every detector's machinery
         from .cell import run_cell
 
         return run_cell

@@ -46,8 +46,10 @@ import warnings
 from typing import Any
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from .._validation import pass_timestamps
+from ..datasets import load, registry
 from ..registry import detectors, of_kind
 from . import metrics, river
 from .prequential import evaluate_exploration
@@ -84,8 +86,6 @@ def _ensure_registered(components) -> None:
 
 @functools.lru_cache(maxsize=16)  # a suite cycles through its seeds task by task
 def _load_task_cached(name: str, options_json: str, seed: int):
-    from ..datasets import load, registry
-
     options = json.loads(options_json)
     valid = registry.parameters(name)
     if "seed" not in options and (valid is None or "seed" in valid):
@@ -268,8 +268,6 @@ def run_cell(cell: Cell) -> tuple[dict, dict]:
     ``status = "error"`` and ``error`` (the exception, one line), and the
     arrays are empty. A cell whose scores include NaN or infinity fails.
     """
-    from threadpoolctl import threadpool_limits
-
     row: dict[str, Any] = cell_header(cell)
     arrays: dict = {}
     with warnings.catch_warnings(record=True) as caught:

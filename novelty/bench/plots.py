@@ -34,6 +34,7 @@ def matplotlib_missing() -> str | None:
 
 
 def _pyplot():
+    # optional dependency, imported only to draw
     import matplotlib
 
     matplotlib.use("Agg", force=False)

@@ -57,6 +57,7 @@ class Progress:
         self.start = time.perf_counter()
         self._bar = None
         if not quiet and (use_bar(self.stream) if bar is None else bar):
+            # optional dependency, imported only to show a progress bar
             from tqdm import tqdm
 
             sized = _columns(self.stream) > 0  # a pseudo-terminal may report 0 columns

@@ -158,6 +158,7 @@ class ResultsStore:
     def lock(self):
         """Hold the folder for this run; :class:`OutputBusyError` if another run holds it."""
         try:
+            # POSIX only: elsewhere the folder is not locked
             import fcntl
         except ImportError:  # not POSIX: no lock
             yield

@@ -7,9 +7,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
+from ..exploration.plots import plot_exploration
 from ..exploration.summary import exploration_markdown, exploration_text
 from .._atomic import write_atomically
 from .backends import execute
+from .plots import matplotlib_missing, plot_run
 from .progress import Progress
 from .results import ResultsStore, provenance
 from .suite import Suite
@@ -96,9 +98,6 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     write_atomically(summary, lambda fh: fh.write(text), text=True)
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
-        from ..exploration.plots import plot_exploration
-        from .plots import matplotlib_missing, plot_run
-
         missing = matplotlib_missing()
         if missing:
             report.notes.append(missing)

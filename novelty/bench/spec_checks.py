@@ -5,6 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from ..datasets import registry
+from ..registry import RegistryError, check_parameters, detectors
+from . import river
 from .specs import _FILE_OPTIONS, FILES_TASK, DetectorSpec, SuiteError, TaskSpec
 
 __all__ = ["check_detector", "check_task"]
@@ -20,9 +23,6 @@ def _check_threshold(rule: Any) -> None:
 
 def check_detector(spec: DetectorSpec):
     """Build the detector once: the registry refuses unknown names and parameters."""
-    from ..registry import RegistryError, detectors
-    from . import river
-
     try:
         make = river.make if river.is_river(spec.name) else detectors.make
         det = make(spec.name, **spec.params)
@@ -70,9 +70,6 @@ def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
 
 def check_task(spec: TaskSpec) -> None:
     """Check a task's name and option names without loading any data."""
-    from ..datasets import registry
-    from ..registry import RegistryError, check_parameters
-
     try:
         valid = registry.parameters(spec.name)
         if valid is not None:

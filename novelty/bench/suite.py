@@ -52,13 +52,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..datasets import registry as datasets
+from ..registry import detectors as detector_registry, of_kind
 from .spec_checks import _check_threshold, _with_policy, check_detector, check_task  # noqa: F401
 from .specs import (FILES_TASK, HARNESS_VERSION, PROTOCOLS, Cell, DetectorSpec, SuiteError,  # noqa: F401
                     TaskSpec, _resolved, detector_from_text, parse_assignments, parse_value, task_from_text)
 from .suite_file import (_available, _entries, _expand_detector, _files_task, _known_keys, _label,
                          _read_toml, _table)
-
-from ..registry import of_kind
 
 __all__ = [
     "SuiteError",
@@ -159,9 +159,6 @@ def _resolve_components(suite: Suite) -> tuple:
 
 def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None) -> Suite:
     """Build and check a :class:`Suite` from parsed TOML (file paths relative to ``base``)."""
-    from ..datasets import registry as datasets
-    from ..registry import detectors as detector_registry
-
     _known_keys(data, {"suite", "detectors", "tasks"}, source)
     head = _table(data.get("suite"), f"{source}: [suite]")
     _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference",

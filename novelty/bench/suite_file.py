@@ -11,11 +11,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from . import river
 from .specs import FILES_TASK, DetectorSpec, SuiteError, TaskSpec, _format_value, _resolved
 
 
 def _read_toml(path: Path) -> dict:
     if sys.version_info >= (3, 11):
+        # the standard library reads TOML from Python 3.11; tomli before
         import tomllib
     else:  # pragma: no cover - Python 3.10
         try:
@@ -92,8 +94,6 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
 
 
 def _available(name: str, detector_registry) -> bool:
-    from . import river
-
     return river.installed() if river.is_river(name) else name in detector_registry
 
 

@@ -11,6 +11,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from ..datasets.files import PREPROCESSING
+from ..registry import RegistryError
 
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
            "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell"]
@@ -28,10 +29,10 @@ def one_line(exc: BaseException) -> str:
 
 def user_errors() -> tuple[type[BaseException], ...]:
     """Exceptions that mean the input was wrong, not the program."""
+    # deferred: the benchmark and the model files import scikit-learn (2-3 s); `novelty --help` does not
     from ..bench.backends import BackendError
     from ..bench.suite import SuiteError
     from ..persistence import ModelFileError
-    from ..registry import RegistryError
 
     return (UserError, SuiteError, RegistryError, ModelFileError, BackendError, OSError, ValueError)
 
@@ -55,6 +56,7 @@ def add_command(subparsers, name: str, summary: str, description: str, examples:
 
 def parse_params(items: Sequence[str] | None) -> dict[str, Any]:
     """``["k=v", ...]`` to a dict with JSON-ish values (``5``, ``1.2``, ``true``, ``som``)."""
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench.suite import SuiteError, parse_assignments
 
     try:
@@ -93,6 +95,7 @@ def data_options(args) -> dict:
 
 def read_scans(args):
     """The scans of ``--data`` as a :class:`~novelty.datasets.Dataset` (see :mod:`novelty.datasets.files`)."""
+    # deferred: reading scans is not needed to start the command line
     from ..datasets.files import read_scans as read
 
     try:

@@ -99,6 +99,7 @@ def _seeds(text: str) -> list[int]:
 
 def build_suite(args):
     """The suite the options describe (file, --quick, and command-line overrides)."""
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench.suite import (Suite, detector_from_text, load_suite, parse_value, quick_suite_path,
                                task_from_text)
 
@@ -130,6 +131,7 @@ def build_suite(args):
 
 
 def run(args) -> int:
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench.runner import run_bench
     from ..bench.summary import statistics_line
 

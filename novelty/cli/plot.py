@@ -36,6 +36,7 @@ def add_parser(subparsers):
 
 
 def _pyplot():
+    # deferred: the plots import scikit-learn and matplotlib; `novelty --help` does not
     from ..bench.plots import _pyplot, matplotlib_missing
 
     missing = matplotlib_missing()
@@ -76,6 +77,7 @@ def _read_run_output(path: Path) -> dict:
 
 
 def _plot_bench(folder: Path, args, plt):
+    # deferred: plotting imports matplotlib; `novelty --help` does not
     from ..bench.plots import plot_route
     from ..bench.results import ResultsStore
 

@@ -87,6 +87,7 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
+    # deferred: the experiments import the simulator and scikit-learn; `novelty --help` does not
     from .. import reproduce
 
     for name in ("seed", "a_pairs", "max_a_pairs", "control_runs", "n_seeds", "jobs"):
@@ -142,6 +143,7 @@ def _check_matplotlib() -> None:
 
 
 def _experiments(args) -> int:
+    # deferred: the experiments import the simulator and scikit-learn; `novelty --help` does not
     from .. import experiments
     from ..experiments import report
 

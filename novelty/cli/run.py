@@ -58,6 +58,7 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench.suite import DetectorSpec, check_detector
 
     if args.passes < 1:
@@ -147,6 +148,7 @@ class StreamReader:
         self.preprocess, self.threshold = preprocess, threshold
 
     def __iter__(self):
+        # deferred: `novelty --help` does not read files
         from ..datasets.files import header_of, plan_columns, sensors_to_scans
 
         rows = csv.reader(iter(self.lines.readline, ""))

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
-from ._common import add_command, add_data_options, alarms, read_scans, write_novelty
+from .. import load
+from ._common import UserError, add_command, add_data_options, alarms, read_scans, write_novelty
 
 DESCRIPTION = """Score scans with a saved model, without learning anything.
 
@@ -29,11 +31,6 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from pathlib import Path
-
-    from .. import load
-    from ._common import UserError
-
     if not Path(args.model).is_file():
         raise UserError(f"Model file not found: {args.model}")
     det = load(args.model)

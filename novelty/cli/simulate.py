@@ -6,6 +6,7 @@ import importlib
 import sys
 from pathlib import Path
 
+from .. import datasets
 from ._common import UserError, add_command
 
 DESCRIPTION = """Simulate a robot's sonar scans along a corridor and write them to a file.
@@ -47,8 +48,6 @@ def _simulator():
 
 def _task(args):
     """A registered task of that name, built with the seed, or None."""
-    from .. import datasets
-
     if args.environment not in datasets.registry:
         return None
     accepted = datasets.registry.parameters(args.environment)

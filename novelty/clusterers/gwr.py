@@ -76,6 +76,7 @@ import numbers
 
 import numpy as np
 
+from ..habituation.stanley import StanleySynapse
 from .._component import StateError
 from .._validation import Bounds, Instance, Interval, Options
 from ..habituation.base import Synapse
@@ -227,8 +228,6 @@ class GrowWhenRequired(Clusterer):
 
     def _new_firing_counters(self) -> Synapse:
         if self.firing is None:
-            from ..habituation.stanley import StanleySynapse
-
             return StanleySynapse(method="exact")
         return build("synapse", self.firing)
 

@@ -31,8 +31,8 @@ the other kinds of component.
 
 from __future__ import annotations
 
+from ..dataset import Dataset
 from ..registry import datasets as registry
-from .base import Dataset
 
 __all__ = ["Dataset", "registry", "available", "load", "register"]
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
+
 __all__ = ["DATA_DIR_ENV", "resolve_data_file", "read_rows"]
 
 #: Environment variable naming a folder that holds the dataset folders
@@ -47,8 +49,6 @@ def read_rows(file: Path, n_values: int, labels, value_range=None):
     naming the file and the line number. Blank lines are skipped; CRLF and
     LF line endings are both accepted.
     """
-    import numpy as np
-
     values, names = [], []
     with open(file, "r", encoding="utf-8", newline=None) as fh:
         for number, line in enumerate(fh, start=1):

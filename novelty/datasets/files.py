@@ -42,8 +42,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dataset import Dataset
 from ._files import _is_float
-from .base import Dataset
 from .columns import (LABEL_COLUMNS, ROUTE_COLUMNS, TEXT_COLUMNS, TIME_COLUMNS, Layout,  # noqa: F401
                       is_ros_export, plan_columns)
 from .tables import Table, header_of, read_table  # noqa: F401

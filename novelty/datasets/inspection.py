@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ..sonar.inspection import inspection_task
+
 __all__ = ["inspection", "inspection_easy", "inspection_medium", "inspection_hard"]
 
 
@@ -27,8 +29,6 @@ def inspection(seed: int = 0, difficulty: str = "easy", n_novelties: int = 2, tr
     length : float, default=15.0
         Route length (m); 10 scans per metre.
     """
-    from ..sonar.inspection import inspection_task
-
     return inspection_task(seed, difficulty, n_novelties, train_runs, test_runs, length)
 
 

@@ -12,13 +12,14 @@ The tasks follow the paper's experiments: learn A, then meet a change.
 
 from __future__ import annotations
 
+from ..sonar.simulate import simulate
+from ..sonar.tasks import make_task
+
 __all__ = ["paper_a", "paper_a_star", "paper_b", "paper_c", "paper_control",
            "paper_a_to_a_star", "paper_a_to_b", "paper_a_to_c"]
 
 
 def _runs(environment: str, run: int, seed: int, runs: int):
-    from ..sonar.simulate import simulate
-
     return simulate(environment, runs=runs, seed=seed, first_run=run)
 
 
@@ -64,8 +65,6 @@ def paper_a_to_a_star(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     ``y = 1`` where the opened doorway, the office seen through it or its
     leaf shaped a reading (its frame is unchanged and not counted).
     """
-    from ..sonar.tasks import make_task
-
     return make_task("paper-a-to-a-star", "a", "a-star", ["door-r1-open"], seed=seed,
                      train_runs=train_runs, test_runs=test_runs,
                      description="Learn corridor A, patrol A* (door on the right at 3 m opened).")
@@ -79,8 +78,6 @@ def paper_a_to_b(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     those in the first corridor". Only door G is labelled; the rest of B is
     built like A.
     """
-    from ..sonar.tasks import make_task
-
     return make_task("paper-a-to-b", "a", "b", ["door-g"], seed=seed, train_runs=train_runs,
                      test_runs=test_runs,
                      description="Learn corridor A, patrol corridor B (door G inset deeper).")
@@ -94,8 +91,6 @@ def paper_a_to_c(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     so unlabelled scans of C are not all "normal" in the sense of A: read
     scores on this task with that in mind.
     """
-    from ..sonar.tasks import make_task
-
     return make_task("paper-a-to-c", "a", "c", ["door-c1", "board-1", "board-2"], seed=seed,
                      train_runs=train_runs, test_runs=test_runs,
                      description="Learn corridor A, patrol corridor C (deep doorway, boards).")

@@ -12,7 +12,7 @@ from typing import Sequence
 
 import numpy as np
 
-from ..datasets.base import Dataset
+from ..dataset import Dataset
 from ..sonar.environments import Environment, get_environment
 from ..sonar.simulate import concatenate, simulate_run
 

@@ -16,6 +16,7 @@ _ROUTE = (0.0, 10.0)
 
 def _pyplot():
     try:
+        # optional dependency, imported only to draw
         import matplotlib
 
         matplotlib.use("Agg", force=False)

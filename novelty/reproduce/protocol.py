@@ -12,8 +12,11 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+import novelty
 import numpy as np
 
+from .. import datasets
+from ..sonar import simulate
 from .trial import Trial, is_resting
 
 __all__ = ["run_protocol", "ENVIRONMENTS"]
@@ -28,10 +31,7 @@ ENVIRONMENTS = {"A": "paper-a", "A*": "paper-a-star", "B": "paper-b", "C": "pape
 def _traversal(name: str, seed: int, run: int, options: tuple):
     """One simulated run (cached: a protocol run twice, or with another detector, reuses it)."""
     if options:
-        from ..sonar import simulate
-
         return simulate(name, seed=seed, first_run=run, **dict(options))
-    from .. import datasets
 
     return datasets.load(ENVIRONMENTS[name], run=run, seed=seed)
 
@@ -40,8 +40,6 @@ class _Runner:
     """Keeps the detector, the model files and the run counters of one protocol."""
 
     def __init__(self, detector: str, seed: int, params: dict, model_dir: Path, load_kwargs: dict):
-        import novelty
-
         self.novelty = novelty
         self.detector = detector
         self.seed = seed

@@ -44,6 +44,7 @@ __all__ = [
 
 def __getattr__(name: str):
     if name == "SonarPreprocessor":  # imported on first use: scikit-learn is slow to import
+        # deferred: the transformer imports scikit-learn; the simulator does not
         from .preprocessor import SonarPreprocessor
 
         return SonarPreprocessor
@@ -57,6 +58,7 @@ def feature_table(environment) -> list[dict]:
 
 def plot_map(*args, **kwargs):
     """Draw a map with the route and one scan's sonar returns (see :func:`novelty.sonar.plotting.plot_map`)."""
+    # optional dependency (matplotlib), imported only to draw
     from .plotting import plot_map as _plot_map
 
     return _plot_map(*args, **kwargs)
@@ -64,6 +66,7 @@ def plot_map(*args, **kwargs):
 
 def plot_scans(*args, **kwargs):
     """Draw a run's scan sequence as an image (see :func:`novelty.sonar.plotting.plot_scans`)."""
+    # optional dependency (matplotlib), imported only to draw
     from .plotting import plot_scans as _plot_scans
 
     return _plot_scans(*args, **kwargs)

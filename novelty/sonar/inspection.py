@@ -32,6 +32,7 @@ import numpy as np
 
 from .environments import Environment, corridor_environment
 from .layout import Board, Crack, Door, Opening, Person, Protrusion
+from .tasks import make_task
 
 __all__ = ["CorridorPlan", "generate_corridor", "insert_novelties", "inspection_task",
            "DIFFICULTIES"]
@@ -218,8 +219,6 @@ def inspection_task(seed: int = 0, difficulty: str = "easy", n_novelties: int = 
         ``metadata["novelties"]`` describing what was inserted and where
         (``position``: metres along the route).
     """
-    from .tasks import make_task
-
     plan = generate_corridor(seed, length)
     test_plan, ids = insert_novelties(plan, seed, difficulty, n_novelties)
     clean, changed = plan.build(), test_plan.build()

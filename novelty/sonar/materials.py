@@ -54,6 +54,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 __all__ = ["Material", "MATERIALS", "get_material"]
 
 
@@ -90,8 +92,6 @@ class Material:
 
     def strength(self, psi):
         """Equation (1): echo strength at angle ``psi`` (radians) from the mirror direction."""
-        import numpy as np
-
         lobe = math.radians(self.lobe)
         return self.reflectivity * np.exp(-0.5 * (np.asarray(psi) / lobe) ** 2)
 

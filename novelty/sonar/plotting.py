@@ -57,6 +57,7 @@ def plot_map(environment, dataset=None, scan: int | None = None, ax=None, *,
     matplotlib Axes
     """
     plt = _pyplot()
+    # optional dependency, imported only to draw
     from matplotlib.collections import LineCollection
     from matplotlib.patches import Circle, Wedge
 

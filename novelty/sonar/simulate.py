@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..dataset import Dataset
 from .controller import RunVariation
 from .environments import get_environment
 from .preprocessing import PAPER_BIN_LENGTH, PAPER_THRESHOLD, bin_by_distance, preprocess
@@ -99,8 +100,6 @@ def simulate_run(environment, seed: int = 0, run: int = 0, *,
     ``salient_range`` in any ring of scan ``k`` (see
     :meth:`~novelty.sonar.ranger.PolaroidRanger.cast`).
     """
-    from ..datasets.base import Dataset
-
     env = get_environment(environment)
     log = simulate_rings(env, seed, run, ranger=ranger, robot=robot, variation=variation,
                          salient_range=min(salient_range, threshold))
@@ -181,8 +180,6 @@ def simulate(environment, runs: int = 1, seed: int = 0, first_run: int = 0, **op
 
 def concatenate(parts, name: str | None = None, **metadata):
     """Join datasets scan-wise (same sensors); metadata from the first, runs listed."""
-    from ..datasets.base import Dataset
-
     first = parts[0]
     if len(parts) == 1 and name is None and not metadata:
         return first

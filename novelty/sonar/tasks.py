@@ -16,6 +16,8 @@ with a training one.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from .environments import get_environment
@@ -91,6 +93,4 @@ def make_task(name: str, train_env, test_env, novel_ids, *, seed: int = 0, train
 
 
 def _with(ds, **changes):
-    from dataclasses import replace
-
     return replace(ds, **changes)

@@ -6,6 +6,7 @@ import numpy as np
 from sklearn.base import clone
 
 from ..clusterers.base import Clusterer, Growth, Match
+from ..filter import HabituatingFilter
 from ._helpers import _assert_same_state, _check, _data, _state_arrays
 
 def _new_clusterer(c: Clusterer, X: np.ndarray, seed: int = 0) -> Clusterer:
@@ -140,8 +141,6 @@ def _roundtrip_child(child):
 
 @_check
 def check_clusterer_in_filter(c: Clusterer) -> None:
-    from ..filter import HabituatingFilter
-
     X = _data()
     det = HabituatingFilter(clusterer=clone(c)).fit(X)
     assert det.synapse_.n_units_ == det.clusterer_.n_units_, "the synapse bank must follow the units"

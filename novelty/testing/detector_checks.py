@@ -10,6 +10,7 @@ import numpy as np
 from sklearn.base import clone
 
 from ..detector import NoveltyDetector
+from ..persistence import load
 from ..registry import detectors
 from ._helpers import _assert_same_state, _check, _data, _state_arrays
 
@@ -88,8 +89,6 @@ def check_detector_online(d: NoveltyDetector) -> None:
 
 @_check
 def check_detector_save_load(d: NoveltyDetector) -> None:
-    from ..persistence import load
-
     X = _data()
     det = clone(d).fit(X[:80])
     with tempfile.TemporaryDirectory() as tmp:

@@ -1,5 +1,9 @@
 """The one dataset type every source of scans returns.
 
+Its own module, below both :mod:`novelty.datasets` (which builds datasets
+and tasks by name) and :mod:`novelty.sonar` (whose simulator returns them),
+so that neither of those imports the other to reach it.
+
 A :class:`Dataset` is a sequence of scans in the order they were perceived,
 with whatever ground truth the source knows. A novelty *task* is a dataset
 whose scans are split into a ``"train"`` part (familiar: the detector learns
@@ -9,6 +13,8 @@ it, ``train_passes`` times, as a robot repeats a route) and a ``"test"`` part
 
 from __future__ import annotations
 
+import csv
+import json
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -131,8 +137,6 @@ class Dataset:
         and string columns as unicode arrays, so ``numpy.load`` reads the file
         with ``allow_pickle=False``.
         """
-        import json
-
         arrays: dict[str, np.ndarray] = {"X": self.X}
         for name in ("y", "distance", "poses", "run"):
             if getattr(self, name) is not None:
@@ -154,8 +158,6 @@ class Dataset:
         ``run``, ``split``, the extra columns, and ``features`` (feature ids
         joined by ``;``).
         """
-        import csv
-
         header = [f"s{i}" for i in range(self.n_sensors)]
         extra: list[tuple[str, Any]] = []
         for name in ("y", "distance", "run", "split"):
