@@ -37,7 +37,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..exploration import metrics as xm
+from . import exploration_metrics as xm
 from .specs import SuiteError
 
 __all__ = ["POLICIES", "parse_policy", "default_policy", "prequential", "evaluate_exploration",
@@ -164,7 +164,7 @@ def evaluate_exploration(cell, data, make: Callable, resting: Callable,
 
 def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: dict,
                         resting: float = 0.0, threshold_rule="max") -> dict:
-    """Every metric of :mod:`novelty.exploration.metrics` for one exploration, as a row."""
+    """Every metric of :mod:`novelty.bench.exploration_metrics` for one exploration, as a row."""
     curves = xm.exposure_curves(novelty, run, feature, exposure, warmup)
     recurring = xm._recurring(curves)
     to_habituate = [xm.exposures_to_habituate(curves[f]["excess"]) for f in recurring]

@@ -7,10 +7,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TextIO
 
-from ..exploration.plots import plot_exploration
-from ..exploration.summary import exploration_markdown, exploration_text
 from .._atomic import write_atomically
 from .backends import execute
+from .exploration_plots import plot_exploration
+from .exploration_summary import exploration_markdown, exploration_text
 from .plots import matplotlib_missing, plot_run
 from .progress import Progress
 from .results import ResultsStore, provenance

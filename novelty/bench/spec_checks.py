@@ -8,6 +8,7 @@ from typing import Any
 from ..datasets import registry
 from ..registry import RegistryError, check_parameters, detectors
 from . import river
+from .prequential import check_policy, default_policy
 from .specs import _FILE_OPTIONS, FILES_TASK, DetectorSpec, SuiteError, TaskSpec
 
 __all__ = ["check_detector", "check_task"]
@@ -55,10 +56,6 @@ def _validate_tree(component) -> None:
 
 def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
     """The spec with its policy checked; a batch-only detector's default shown in its label."""
-    # imported here: the exploration harness pulls in the sonar simulator, which
-    # the hold-out protocol never needs
-    from .prequential import check_policy, default_policy
-
     if spec.policy:
         check_policy(spec.policy, det)
         return spec

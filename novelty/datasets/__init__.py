@@ -31,7 +31,7 @@ the other kinds of component.
 
 from __future__ import annotations
 
-from ..dataset import Dataset
+from ..data import Dataset
 from ..registry import datasets as registry
 
 __all__ = ["Dataset", "registry", "available", "load", "register"]

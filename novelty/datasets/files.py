@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..dataset import Dataset
+from ..data import Dataset
 from ._files import _is_float
 from .columns import (LABEL_COLUMNS, ROUTE_COLUMNS, TEXT_COLUMNS, TIME_COLUMNS, Layout,  # noqa: F401
                       is_ros_export, plan_columns)

@@ -12,14 +12,11 @@ from typing import Sequence
 
 import numpy as np
 
-from ..dataset import Dataset
+from ..data import FAMILIAR, Dataset
 from ..sonar.environments import Environment, get_environment
 from ..sonar.simulate import concatenate, simulate_run
 
 __all__ = ["Leg", "simulate_exploration", "from_runs", "exposures", "FAMILIAR"]
-
-#: The tracked-feature label of a familiar scan.
-FAMILIAR = ""
 
 
 @dataclass(frozen=True)

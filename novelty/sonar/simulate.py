@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..dataset import Dataset
+from ..data import Dataset
 from .controller import RunVariation
 from .environments import get_environment
 from .preprocessing import PAPER_BIN_LENGTH, PAPER_THRESHOLD, bin_by_distance, preprocess

@@ -9,7 +9,7 @@ from novelty.bench.cell import run_cell
 from novelty.bench.prequential import EXPLORATION_COLUMNS, parse_policy, prequential
 from novelty.bench.runner import run_bench
 from novelty.bench.suite import suite_from_dict
-from novelty.exploration.metrics import first_encounter_auc
+from novelty.bench.exploration_metrics import first_encounter_auc
 
 RNG = np.random.default_rng(0)
 X = RNG.random((40, 3))

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from novelty.datasets import load
-from novelty.dataset import Dataset
+from novelty.data import Dataset
 from novelty.datasets.files import files, read_scans, smooth_by_distance
 
 ROS_HEADER = ("%time,field.header.seq,field.header.stamp,field.header.frame_id,field.angle_min,"

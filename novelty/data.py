@@ -20,7 +20,11 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Dataset"]
+__all__ = ["Dataset", "FAMILIAR"]
+
+#: The tracked-feature label (an exploration task's ``feature`` column) of a scan that
+#: perceives no tracked feature: a familiar scan.
+FAMILIAR = ""
 
 
 @dataclass(frozen=True, eq=False)

@@ -7,7 +7,7 @@ at a recurring feature's 1st, 2nd and 3rd exposure (means), their ratio
 (mean over the features that did; the share that did in brackets), the
 false-alarm rate, re-detection ROC AUC. A detector *flags* first encounters
 when its mean AUC is at least 0.85, and *habituates* when the ratio is at
-most 0.25 (:mod:`novelty.exploration.metrics`).
+most 0.25 (:mod:`novelty.bench.exploration_metrics`).
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from typing import Sequence
 
 import numpy as np
 
-from ..bench.summary import _mean, _num, _sd, format_table
-from .metrics import FLAGS_FIRST, HABITUATED
+from .exploration_metrics import FLAGS_FIRST, HABITUATED
+from .summary import _mean, _num, _sd, format_table
 
 __all__ = ["exploration_records", "exploration_text", "exploration_markdown"]
 

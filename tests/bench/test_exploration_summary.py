@@ -2,7 +2,7 @@
 
 import pytest
 
-from novelty.exploration.summary import exploration_markdown, exploration_records, exploration_text
+from novelty.bench.exploration_summary import exploration_markdown, exploration_records, exploration_text
 
 
 def row(detector, seed, auc, e1, e3, **extra):

@@ -23,7 +23,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..bench.plots import _grid, _pyplot, _slug
+from .plots import _grid, _pyplot, _slug
 
 __all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves"]
 

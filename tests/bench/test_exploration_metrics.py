@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from novelty.bench.prequential import exploration_metrics
-from novelty.exploration import metrics as xm
+from novelty.bench import exploration_metrics as xm
 
 # run 0 warm-up; runs 1-3 each: 2 familiar scans, 1 scan of the door "d" (exposures 0, 1, 2);
 # run 2 also meets a box "b" for the first time

@@ -39,8 +39,8 @@ import math
 
 import numpy as np
 
-from ..bench import metrics as bench_metrics
-from .runs import FAMILIAR
+from ..data import FAMILIAR
+from . import metrics as bench_metrics
 
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
