@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from novelty.datasets import load
 from novelty.data import Dataset
+from novelty.datasets import load
 from novelty.datasets.files import files, read_scans, smooth_by_distance
 
 ROS_HEADER = ("%time,field.header.seq,field.header.stamp,field.header.frame_id,field.angle_min,"
