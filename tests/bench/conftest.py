@@ -7,6 +7,14 @@ sys.path.insert(0, str(Path(__file__).parent))  # workers import 'toy' by this p
 
 import toy  # noqa: E402
 
+from .hand_rows import AUC, rows_of  # noqa: E402
+
+
+@pytest.fixture
+def rows():
+    """The hand-made results table of :mod:`tests.bench.hand_rows`."""
+    return rows_of(AUC)
+
 
 @pytest.fixture
 def toy_registered():

@@ -8,6 +8,8 @@ from scipy import stats as sps
 
 from novelty.bench import stats
 
+from .hand_rows import rows_of
+
 #: Demsar (2006), table 2 and 6: AUC of C4.5, C4.5+m, C4.5+cf, C4.5+m+cf on 14 data sets
 DEMSAR = np.array([
     [0.763, 0.768, 0.771, 0.798], [0.599, 0.591, 0.590, 0.569], [0.954, 0.971, 0.968, 0.967],
@@ -124,3 +126,41 @@ def test_cliques_of_a_constructed_example():
     # order comes from the ranks, not from the indices; nothing significant: one group
     assert stats.cliques([3.0, 1.0, 2.0], np.zeros((3, 3), bool)) == [[1, 2, 0]]
     assert stats.cliques([1.0, 2.0], np.ones((2, 2), bool)) == []
+
+
+# On the hand-made results table (tests.bench.hand_rows, the fixture rows)
+
+def test_the_cell_table_holds_nan_for_a_failed_cell(rows):
+    table = stats.cell_table(rows)
+    assert table.detectors == ["ref", "a", "b"]
+    assert table.cells == [("t1", 0), ("t1", 1), ("t2", 0), ("t2", 1)]
+    assert table.row("b").tolist() == [0.85, 0.75, 0.70, 0.95]
+    assert math.isnan(table.row("a")[3])
+    assert table.complete().cells == [("t1", 0), ("t1", 1), ("t2", 0)]
+
+
+def test_paired_differences_by_hand(rows):
+    records = {r["detector"]: r for r in stats.paired_comparison(stats.cell_table(rows), "ref")}
+    # a - ref on the three shared cells: +0.10, 0.00, -0.10 -> mean 0, sd 0.1, se 0.1 / sqrt(3)
+    a = records["a"]
+    assert a["n"] == 3 and (a["wins"], a["ties"], a["losses"]) == (1, 1, 1)
+    assert a["mean_diff"] == pytest.approx(0.0, abs=1e-12)
+    assert a["se"] == pytest.approx(0.1 / math.sqrt(3))
+    # b - ref: +0.05, +0.05, +0.10, +0.05 -> mean 0.0625, sd 0.025, se 0.0125
+    b = records["b"]
+    assert b["n"] == 4 and (b["wins"], b["ties"], b["losses"]) == (4, 0, 0)
+    assert b["mean_diff"] == pytest.approx(0.0625)
+    assert b["se"] == pytest.approx(0.0125)
+    ref = records["ref"]
+    assert (ref["n"], ref["mean_diff"], ref["ties"]) == (4, 0.0, 4)
+
+
+def test_a_single_shared_cell_has_no_standard_error():
+    rows = rows_of({"ref": {("t", 0): 0.5}, "a": {("t", 0): 0.75}})
+    (_, a) = stats.paired_comparison(stats.cell_table(rows), "ref")
+    assert a["mean_diff"] == 0.25 and math.isnan(a["se"]) and a["wins"] == 1
+
+
+def test_an_unknown_reference_names_the_detectors(rows):
+    with pytest.raises(ValueError, match="'parzen' is not in this run; expected one of ref, a, b"):
+        stats.paired_comparison(stats.cell_table(rows), "parzen")
