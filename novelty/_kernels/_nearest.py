@@ -12,10 +12,12 @@ bit, at a fraction of the cost:
    the least value ``s_a`` (unit ``a``) and the second least ``s_b``.
 2. **Decision**: if the gap ``s_b - s_a`` exceeds the bound ``T`` below, unit
    ``a`` is the reference's winner, and its distance is computed once, in
-   float64 in numpy's order (:func:`row_distance`). Otherwise (ties, near
+   float64 in numpy's order (:func:`_winner_distances`, vectorised over the
+   scans). Otherwise (ties, near
    ties) every unit ``j`` with ``s_j <= s_a + T`` is a candidate (the others
    are farther than ``a``), the candidates' distances are computed in
-   numpy's order and the first of the least wins, as in the reference.
+   numpy's order (:func:`row_distance`) and the first of the least wins, as
+   in the reference.
    Scans beyond float32's range (below) take the exact path: all distances
    in numpy's order (:func:`._distances.distances_cols`), the first of the
    least.
@@ -183,10 +185,11 @@ def _prefilter(Wf, wn, XT, S, acc, s1, s2, arg):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan, acc8, stack, one,
-             winners, novelty, distances):
+def _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, near, w_max, plan, acc8, stack,
+             one, winners, novelty, distances):
     """Winners of the scans ``start, ..., start + m - 1`` from the pre-filter's values
-    (``lanes``: it ran; else, or beyond its range, the exact path). Returns how many
+    (``lanes``: it ran, and ``near[b]`` is the distance to ``arg[b]``; else, or beyond its
+    range, the exact path). Returns how many
     scans were re-checked (more than one candidate) or took the exact path."""
     n_units, n = W.shape
     g32 = (n + 4) * U32 / (1.0 - (n + 4) * U32)
@@ -203,7 +206,7 @@ def _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan, ac
             e = g32 * r * r + 3.0 * TINY32 * (root_n * r + 2.0 * n + 2.0)
             bound = 2.0 * (2.0 * e + 2.0 * g64 * r * r)
             a = arg[b]
-            best = row_distance(W, a, X, i, plan, one)
+            best = near[b]
             least = np.float64(s1[b])
             if np.float64(s2[b]) - least <= bound:
                 # candidates: every unit within the bound of the least; the others are
@@ -220,6 +223,21 @@ def _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan, ac
         novelty[i] = y[a]
         distances[i] = best
     return n_checked
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _winner_distances(W, XT64, arg, D, zero, plan, acc, stack):
+    """Each lane's exact squared distance to its pre-filter winner, into ``stack[0]``.
+
+    The differences ``W[arg[b], k] - x_b[k]`` (as ``match`` forms them), then
+    :func:`._distances.distances_cols` with the lanes as its units and
+    ``x = 0``: ``(d - 0.0)**2 == d * d`` exactly, so the sums are numpy's,
+    vectorised over the lanes.
+    """
+    for k in range(W.shape[1]):
+        for b in range(LANES):
+            D[k, b] = W[arg[b], k] - XT64[k, b]
+    distances_cols(D, zero, plan, acc, stack, LANES)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -264,6 +282,11 @@ def nearest(W, y, X, winners, novelty, distances, plan):
     one = np.empty(plan.shape[0])
     # the pre-filter's lanes
     XT = np.zeros((n, LANES), dtype=np.float32)
+    XT64 = np.zeros((n, LANES))
+    D = np.empty((n, LANES))
+    zero = np.zeros(n)
+    acc_lanes = np.empty((8, LANES))
+    near = np.empty((plan.shape[0], LANES))
     norm = np.zeros(LANES)
     S = np.empty((n_units, LANES), dtype=np.float32)
     acc = np.empty(LANES, dtype=np.float32)
@@ -282,12 +305,15 @@ def nearest(W, y, X, winners, novelty, distances, plan):
                 for k in range(n):
                     v = X[start + b, k]
                     XT[k, b] = np.float32(v)
+                    XT64[k, b] = v
                     s += v * v
                 norm[b] = math.sqrt(s)
             for b in range(m, LANES):  # a short last block: lanes of zeros, ignored
                 for k in range(n):
                     XT[k, b] = 0.0
+                    XT64[k, b] = 0.0
             _prefilter(Wf, wn, XT, S, acc, s1, s2, arg)
-        n_exact += _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, w_max, plan,
-                            acc8, stack, one, winners, novelty, distances)
+            _winner_distances(W, XT64, arg, D, zero, plan, acc_lanes, near)
+        n_exact += _resolve(W, WT, y, X, start, m, lanes, norm, S, s1, s2, arg, near[0], w_max,
+                            plan, acc8, stack, one, winners, novelty, distances)
     return n_exact
