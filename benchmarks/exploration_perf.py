@@ -30,7 +30,7 @@ from novelty import _kernels
 from novelty.bench.prequential import exploration_metrics, prequential
 from novelty.exploration import open_door
 
-DETECTORS = ("hsom", "som-wang-hsu", "gwr-novelty", "gng-stanley")
+DETECTORS = ("hsom", "som-wang-hsu", "gwr-novelty", "gwr-explore", "gng-stanley")
 
 
 def scans(n: int):
