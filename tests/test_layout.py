@@ -2,6 +2,9 @@
 
 - No tracker numbers ("issue 7", "#12") in code, tests, docs or benchmarks: a
   reader of the code cannot follow them.
+- Tests mirror the package: ``tests/<subpackage>/test_<module>.py`` tests
+  ``novelty/<subpackage>/<module>.py``; the few that test across modules are
+  named in :data:`ACROSS`.
 - No import cycle among novelty's modules, counting the imports inside
   functions too (an import moved into a function hides a cycle from Python,
   not from a reader), and none among its subpackages.
@@ -167,4 +170,36 @@ def test_no_import_cycle_among_subpackages():
         edges[top(module)].update(top(m) for m in imported if top(m) not in (top(module), "novelty"))
     cycles = [c for c in _cycles(edges) if c not in UNDER_WAY]
     assert not cycles, f"subpackages that import each other: {cycles}"
+
+
+# --------------------------------------------------------------- test files
+#: test files that test across modules, not one module each
+ACROSS = {
+    "test_docs.py": "the documentation pages' examples",
+    "test_readme.py": "the README's examples",
+    "test_layout.py": "this file: the layout of the repository",
+    "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",
+    "test_plugin.py": "a third-party plugin package, listed and benchmarked",
+    "test_kernels.py": "the compiled kernels against the reference (being reorganised)",
+    "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
+    "fuzz/test_detectors.py": "every registered detector against hostile input",
+}
+
+
+def test_every_test_file_is_named_after_the_module_it_tests():
+    modules = set(_modules())
+    tests = ROOT / "tests"
+    stray = []
+    for path in sorted(tests.rglob("test_*.py")):
+        rel = path.relative_to(tests)
+        if rel.as_posix() in ACROSS:
+            continue
+        package = ".".join(("novelty", *rel.parts[:-1]))
+        stem = rel.stem[len("test_"):]
+        candidates = {f"{package}.{stem}", f"{package}._{stem}", f"{package}.{stem}_"}
+        if stem == "init":
+            candidates.add(package)
+        if not candidates & modules:
+            stray.append(rel.as_posix())
+    assert not stray, f"test files not named after a module of the package (or listed in ACROSS): {stray}"
 

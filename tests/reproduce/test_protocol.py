@@ -10,16 +10,13 @@ form are not tested (see the README, "Reproducing the paper").
 
 from __future__ import annotations
 
-import csv
 import functools
 
 import numpy as np
 import pytest
 
 import novelty
-from novelty.cli import main
-from novelty.reproduce import (PAPER_TABLE1, TABLE1_COLUMNS, Trial, is_resting, run_protocol,
-                               table1_markdown, table1_rows, write_table1_csv)
+from novelty.reproduce import PAPER_TABLE1, Trial, is_resting, run_protocol
 
 SEEDS = (0, 1, 2, 3, 4)
 RESTING = 0.0476
@@ -63,15 +60,6 @@ def test_protocol_follows_table1():
     assert trials[0].distance[0] == pytest.approx(0.1) and trials[0].distance[-1] == pytest.approx(10.0)
 
 
-def test_integrated_and_maximum_are_the_papers_measures():
-    t = Trial("A", "1", "L", np.array([1.0, 0.5, RESTING]), np.array([0.1, 0.2, 0.3]), RESTING, 0)
-    assert t.integrated == pytest.approx(1.0 + 0.5 + RESTING - 3 * RESTING)
-    assert t.maximum == 1.0 and t.label == "1 (L)"
-    assert is_resting(Trial("A", "6", "NL", np.full(100, RESTING + 0.003), np.arange(100), RESTING, 0))
-    one_peak = np.r_[0.42, np.full(99, RESTING)]
-    assert not is_resting(Trial("A", "6", "NL", one_peak, np.arange(100), RESTING, 0))
-
-
 def test_a_model_file_links_each_run_to_the_next(tmp_path):
     trials = run_protocol(seed=0, experiments=("A",), model_dir=tmp_path)
     assert sorted(p.name for p in tmp_path.glob("*.npz")) == ["A-1.npz", "A-3.npz", "A-5.npz"]
@@ -79,26 +67,6 @@ def test_a_model_file_links_each_run_to_the_next(tmp_path):
     det = novelty.load(tmp_path / "A-5.npz")
     X = novelty.datasets.load("paper-a", run=trials[-1].run, seed=0).X
     np.testing.assert_allclose(det.novelty(X), trials[-1].novelty)
-
-
-def test_table1_rows_csv_and_markdown(tmp_path):
-    rows = table1_rows(list(protocol(0).values()))
-    assert rows[0]["paper_integrated"] == 9.17 and rows[16]["trial"] == "Control"
-    write_table1_csv(rows, tmp_path / "table1.csv")
-    with open(tmp_path / "table1.csv", newline="") as fh:
-        read = list(csv.DictReader(fh))
-    assert tuple(read[0]) == TABLE1_COLUMNS and len(read) == 23
-    assert read[0]["mode"] == "L" and float(read[0]["integrated"]) == rows[0]["integrated"]
-    md = table1_markdown(rows)
-    assert md.count("\n") == 24 and "| A* | 1 (NL) |" in md and "| C | Control |" in md
-
-
-def test_rows_beyond_the_papers_have_no_paper_values():
-    trials = run_protocol(seed=0, a_pairs=4, experiments=("A",))
-    rows = table1_rows(trials)
-    assert [r["trial"] for r in rows] == [str(k) for k in range(1, 9)]
-    assert np.isnan(rows[-1]["paper_integrated"]) and "| A | 8 (NL) | " in table1_markdown(rows)
-    assert "—" in table1_markdown(rows).splitlines()[-1]
 
 
 def test_any_registered_detector_runs_the_protocol():
@@ -270,56 +238,3 @@ def test_first_runs_of_an_untrained_filter_peak_at_one(seed):
     for key in (("A", "1"), ("B", "Control"), ("C", "Control")):
         assert p[key].maximum == pytest.approx(1.0), key
     assert p[("A", "1")].novelty[0] == pytest.approx(1.0)
-
-
-# ----------------------------------------------------------- the command line
-def test_reproduce_command_writes_table_and_figures(tmp_path, capsys):
-    pytest.importorskip("matplotlib")
-    import matplotlib.pyplot as plt
-
-    expected = table1_markdown(table1_rows(list(protocol(0).values())))  # also caches the traversals
-    assert main(["reproduce", "--seed", "0", "--out", str(tmp_path)]) == 0
-    out = capsys.readouterr().out
-    assert expected in out and "| A | 1 (L) |" in out and "| 9.17 | 1.00 |" in out
-    names = sorted(p.name for p in tmp_path.iterdir())
-    assert names == ["figure4-experiment1.png", "figure5-experiments2-3.png", "table1.csv", "table1.md"]
-    for name in names[:2]:
-        data = (tmp_path / name).read_bytes()
-        assert data[:4] == b"\x89PNG" and len(data) > 10_000
-    assert expected in (tmp_path / "table1.md").read_text()
-    assert not plt.get_fignums()  # every figure closed
-
-
-def test_reproduce_experiment_writes_its_table_figure_and_report_block(tmp_path, capsys):
-    pytest.importorskip("matplotlib")
-    report = tmp_path / "report.md"
-    report.write_text("Intro\n<!-- BEGIN generated: maxima -->\nstale\n<!-- END generated: maxima -->\nEnd\n")
-    argv = ["reproduce", "--experiment", "maxima", "--out", str(tmp_path / "out"), "--report", str(report)]
-    assert main(argv) == 0
-    assert "| 0.42 | A 4, A 5, B 2, B 3, C 4 |" in capsys.readouterr().out
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["maxima.csv", "maxima.md", "maxima.png"]
-    text = report.read_text()
-    assert text.startswith("Intro\n") and text.endswith("End\n") and "stale" not in text
-    assert "| 0.42 | A 4, A 5, B 2, B 3, C 4 | none | none | 3 winner (0.4174) |" in text
-
-
-@pytest.mark.parametrize("argv, message", [
-    (["--detector", "no-such-detector"], "Unknown detector"),
-    (["--param", "bogus=1"], "bogus"),
-    (["--a-pairs", "0"], "--a-pairs"),
-    (["--experiment", "no-such"], "known: table1, synthetic"),
-    (["--report", "r.md"], "--experiment"),
-])
-def test_reproduce_command_user_errors_are_one_line(argv, message, tmp_path, capsys):
-    assert main(["reproduce", "--no-figures", "--out", str(tmp_path), *argv]) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "Traceback" not in err and message in err
-
-
-def test_readme_shows_the_table_the_command_prints():
-    from pathlib import Path
-
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    section = readme.split("## Reproducing the paper", 1)[1].split("\n## ", 1)[0]
-    assert "novelty reproduce" in section
-    assert table1_markdown(table1_rows(list(protocol(0).values()))) in section
