@@ -1,0 +1,149 @@
+"""Checks of scans: a batch, or one scan, of finite real numbers within the norm bound.
+
+Scans are finite real numbers whose Euclidean norm is at most
+:data:`MAX_SCAN_NORM` (1e100). The detectors' distances are squared: two
+scans of norm up to 1e154 already give a squared distance that overflows to
+infinity and turns the learned state into NaN. With the bound, a squared
+distance between scans or prototypes (convex combinations of scans) is at
+most 4e200, which leaves room for sums of many of them (a network's
+accumulated errors, a mixture's covariances) below the float64 limit of
+1.8e308. Complex numbers and dates are refused rather than converted.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .names import _dict_values
+
+__all__ = ["check_batch", "check_one", "MAX_SCAN_NORM"]
+
+#: the largest Euclidean norm of a scan any detector accepts (see the module docstring)
+MAX_SCAN_NORM = 1e100
+_MAX_SQUARED_NORM = MAX_SCAN_NORM**2
+
+# dtype kinds that numpy would convert to float64 by dropping information:
+# complex (the imaginary part) and datetime / timedelta (the unit)
+_NOT_REAL = {"c": "complex numbers", "M": "dates (datetime64)", "m": "time spans (timedelta64)"}
+
+
+def check_batch(X: Any, owner: Any, n_features: int | None = None) -> np.ndarray:
+    """Validate a batch of scans: a finite, numeric, non-empty 2-D array.
+
+    Returns a C-contiguous float64 array (a copy only when needed; the caller's
+    array is never written to).
+    """
+    from sklearn.utils import check_array  # deferred: keeps ``import novelty`` light
+
+    _refuse_not_real(_dtype_kinds(X), f"{type(owner).__name__} expects X as real numbers")
+    try:
+        X = check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
+                        ensure_all_finite=False)
+    except (TypeError, ValueError) as exc:
+        # numpy's own conversion errors name neither the model nor what it expects
+        if not str(exc).startswith(("could not convert", "setting an array element", "float() argument")):
+            raise
+        # the same type as numpy's (scikit-learn's checks expect a TypeError for objects)
+        raise type(exc)(
+            f"{type(owner).__name__} expects X as a 2-D array of numbers of shape "
+            f"(n_samples, n_features); got values that are not numeric ({exc})."
+        ) from None
+    # One pass gives every row's squared norm; NaN, infinity and too large
+    # values all fail the comparison.
+    squared = np.einsum("ij,ij->i", X, X)
+    if X.shape[0] and not squared.max() <= _MAX_SQUARED_NORM:
+        if not np.all(np.isfinite(X)):
+            bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
+            raise ValueError(
+                f"Input X contains NaN or infinity (first in row {bad}); "
+                f"{type(owner).__name__} expects finite numbers."
+            )
+        bad = int(np.flatnonzero(~(squared <= _MAX_SQUARED_NORM))[0])
+        raise ValueError(_too_large("X", owner, f" (first in row {bad})"))
+    if n_features is not None and X.shape[1] != n_features:
+        raise ValueError(
+            f"X has {X.shape[1]} features, but {type(owner).__name__} is expecting "
+            f"{n_features} features as input."
+        )
+    return X
+
+
+def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | None = None) -> np.ndarray:
+    """Validate one scan cheaply (the robot's hot path): a finite 1-D vector.
+
+    A dict scan is read by key: in the order of ``names`` (the feature names
+    the model learned), or, before anything is learned, of its sorted keys.
+    """
+    if type(x) is np.ndarray and x.dtype == np.float64 and x.ndim == 1:
+        arr = x
+    else:
+        if isinstance(x, dict):
+            x = _dict_values(x, owner, n_features, names)
+        try:
+            arr = np.asarray(x)
+            _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
+            arr = arr.astype(np.float64, copy=False)
+        except (TypeError, ValueError) as exc:
+            if isinstance(exc, _NotReal):
+                raise
+
+            raise ValueError(
+                f"{type(owner).__name__} expects one scan as a 1-D sequence of numbers; "
+                f"got values that are not numeric ({exc})."
+            ) from None
+        if arr.ndim != 1:
+            raise ValueError(
+                f"{type(owner).__name__} expects one scan as a 1-D array of shape "
+                f"(n_features,); got an array of shape {arr.shape}. "
+                "Use the batch methods for 2-D input."
+            )
+    if arr.shape[0] == 0:
+        raise ValueError(f"{type(owner).__name__} got an empty scan; expected at least one feature.")
+    if n_features is not None and arr.shape[0] != n_features:
+        raise ValueError(
+            f"x has {arr.shape[0]} features, but {type(owner).__name__} is expecting "
+            f"{n_features} features as input."
+        )
+    # One reduction (the squared norm: NaN, infinity and too large values all fail
+    # the comparison); the elementwise mask only to say which.
+    if not np.dot(arr, arr) <= _MAX_SQUARED_NORM:
+        if not np.isfinite(arr).all():
+            raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
+        raise ValueError(_too_large("x", owner, ""))
+    return arr
+
+
+class _NotReal(ValueError):
+    """Input of a kind that converting to float64 would silently damage."""
+
+
+def _dtype_kinds(X: Any) -> str:
+    """The numpy dtype kinds of ``X`` (its columns' for a data frame) without converting it."""
+    dtypes = getattr(X, "dtypes", None)
+    if dtypes is not None and not isinstance(X, np.ndarray):
+        return "".join(getattr(d, "kind", "O") for d in np.atleast_1d(dtypes))
+    dtype = getattr(X, "dtype", None)
+    if dtype is None and isinstance(X, (list, tuple)):
+        try:
+            dtype = np.asarray(X).dtype
+        except (TypeError, ValueError):  # ragged: check_array says so
+            return ""
+    return getattr(dtype, "kind", "")
+
+
+def _refuse_not_real(kinds: str, expected: str) -> None:
+    for kind, what in _NOT_REAL.items():
+        if kind in kinds:
+            # scikit-learn's wording for complex input, which its estimator checks look for
+            prefix = "Complex data not supported: " if kind == "c" else ""
+            raise _NotReal(f"{prefix}{expected}; got {what}. Convert them to real numbers first.")
+
+
+def _too_large(name: str, owner: Any, where: str) -> str:
+    return (
+        f"Input {name} for {type(owner).__name__} has a scan of Euclidean norm above "
+        f"{MAX_SCAN_NORM:g}{where}, the largest the detectors accept (their squared "
+        "distances would overflow); rescale the data."
+    )

@@ -1,0 +1,159 @@
+"""Bad scans and batches: a clear ValueError, and the model exactly as it was."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from sklearn.exceptions import NotFittedError
+
+import novelty
+
+from .model_state import N_FEATURES, assert_equal_deep, fitted, snapshot
+
+
+def row(value):
+    x = [0.5] * N_FEATURES
+    x[1] = value
+    return x
+
+
+BAD_BATCHES = {
+    "wrong n_features": (np.zeros((3, N_FEATURES + 1)), r"X has 5 features, but HabituatingFilter is expecting 4 features"),
+    "too few features": (np.zeros((3, N_FEATURES - 1)), r"X has 3 features, but HabituatingFilter is expecting 4"),
+    "NaN": ([row(0.1), row(np.nan)], r"NaN or infinity \(first in row 1\).*expects finite numbers"),
+    "inf": ([row(np.inf)], r"NaN or infinity"),
+    "-inf": ([row(-np.inf), row(0.2)], r"NaN or infinity"),
+    "empty": (np.zeros((0, N_FEATURES)), r"0 sample\(s\).*minimum of 1 is required"),
+    "strings": ([["a", "b", "c", "d"]], r"expects X as a 2-D array of numbers.*not numeric"),
+    "ragged": ([[1, 2, 3, 4], [1, 2]], r"expects X as a 2-D array of numbers"),
+    "3-D": (np.zeros((2, 2, N_FEATURES)), r"dim 3.*dim <= 2"),
+    "1-D": (np.zeros(N_FEATURES), r"Expected 2D array, got 1D array"),
+    "norm above the bound": ([row(0.1), row(1e155)], r"norm above 1e\+100 \(first in row 1\).*rescale"),
+    "finite but overflowing": ([row(1e308)], r"norm above 1e\+100"),
+    "complex": (np.full((2, N_FEATURES), 1 + 1j), r"Complex data not supported.*real numbers"),
+    "datetime64": (np.zeros((2, N_FEATURES), dtype="datetime64[s]"), r"real numbers; got dates"),
+    "timedelta64 list": ([[np.timedelta64(1, "s")] * N_FEATURES], r"real numbers; got time spans"),
+}
+
+BAD_SCANS = {
+    "wrong n_features": (np.zeros(N_FEATURES + 1), r"x has 5 features, but HabituatingFilter is expecting 4"),
+    "NaN": (row(np.nan), r"contains NaN or infinity"),
+    "inf": (np.array(row(np.inf)), r"contains NaN or infinity"),
+    "empty": (np.zeros(0), r"empty scan"),
+    "strings": (["a", "b", "c", "d"], r"1-D sequence of numbers; got values that are not numeric"),
+    "2-D": (np.zeros((1, N_FEATURES)), r"1-D array of shape \(n_features,\).*shape \(1, 4\)"),
+    "3-D": (np.zeros((1, 1, N_FEATURES)), r"1-D array of shape \(n_features,\)"),
+    "scalar": (0.5, r"1-D array of shape \(n_features,\); got an array of shape \(\)"),
+    "norm above the bound": (row(1e155), r"norm above 1e\+100.*rescale"),
+    "complex": (np.array(row(0.5)) + 1j, r"Complex data not supported.*real numbers"),
+    "complex list": ([0.5, 0.5, 0.5, 0.5j], r"Complex data not supported"),
+    "datetime64": (np.zeros(N_FEATURES, dtype="datetime64[s]"), r"real numbers; got dates"),
+}
+
+BATCH_METHODS = ["partial_fit", "fit", "stream", "stream_nolearn", "novelty", "score_samples",
+                 "decision_function", "predict", "winners", "fit_predict"]
+ONE_METHODS = ["score_one", "learn_one", "score_learn_one"]
+
+
+def call(det, method, X):
+    if method == "stream_nolearn":
+        return det.stream(X, learn=False)
+    return getattr(det, method)(X)
+
+
+@pytest.mark.parametrize(
+    "method, case",
+    [(m, c) for m in BATCH_METHODS for c in BAD_BATCHES
+     # fit starts afresh: any number of features is valid there
+     if not (m in ("fit", "fit_predict") and "features" in c)],
+)
+def test_bad_batch_is_refused_and_changes_nothing(method, case):
+    X, message = BAD_BATCHES[case]
+    det = fitted()
+    before = snapshot(det)
+    with pytest.raises(ValueError, match=message):
+        call(det, method, X)
+    assert_equal_deep(before, snapshot(det))
+
+
+@pytest.mark.parametrize("method", ONE_METHODS)
+@pytest.mark.parametrize("case", list(BAD_SCANS))
+def test_bad_scan_is_refused_and_changes_nothing(method, case):
+    x, message = BAD_SCANS[case]
+    det = fitted()
+    before = snapshot(det)
+    with pytest.raises(ValueError, match=message):
+        getattr(det, method)(x)
+    assert_equal_deep(before, snapshot(det))
+
+
+def test_the_callers_array_is_never_written_to():
+    det = fitted()
+    X = np.random.default_rng(1).uniform(size=(10, N_FEATURES))
+    copy_ = X.copy()
+    det.partial_fit(X)
+    det.score_learn_one(X[0])
+    np.testing.assert_array_equal(X, copy_)
+
+
+# -------------------------------------------------- the first batch of a life
+@pytest.mark.parametrize("method", ["fit", "partial_fit", "stream", "fit_predict"])
+@pytest.mark.parametrize("case", [c for c in BAD_BATCHES if "features" not in c])
+def test_bad_first_batch_leaves_the_model_unfitted(method, case):
+    det = novelty.make("hsom", n_rows=2, n_columns=2)
+    before = snapshot(det)
+    with pytest.raises(ValueError, match=BAD_BATCHES[case][1]):
+        call(det, method, BAD_BATCHES[case][0])
+    assert not hasattr(det, "n_features_in_")
+    assert not hasattr(det, "clusterer_") and not hasattr(det, "synapse_")
+    assert_equal_deep(before, snapshot(det))
+    with pytest.raises(NotFittedError):
+        det.novelty(np.zeros((1, N_FEATURES)))
+
+
+@pytest.mark.parametrize("method", ["learn_one", "score_learn_one"])
+@pytest.mark.parametrize("case", [c for c in BAD_SCANS if "features" not in c])
+def test_bad_first_scan_leaves_the_model_unfitted(method, case):
+    det = novelty.make("hsom", n_rows=2, n_columns=2)
+    with pytest.raises(ValueError, match=BAD_SCANS[case][1]):
+        getattr(det, method)(BAD_SCANS[case][0])
+    assert not hasattr(det, "n_features_in_") and not hasattr(det, "clusterer_")
+
+
+@pytest.mark.parametrize("method", ["novelty", "score_samples", "decision_function", "predict", "winners"])
+def test_unfitted_scoring_raises_not_fitted(method):
+    det = novelty.make("hsom")
+    with pytest.raises(NotFittedError, match="not fitted yet"):
+        getattr(det, method)(np.zeros((1, 3)))
+    with pytest.raises(NotFittedError):
+        det.stream(np.zeros((1, 3)), learn=False)
+
+
+# ----------------------------------------------------------- property
+bad_value = st.sampled_from([np.nan, np.inf, -np.inf])
+
+
+@st.composite
+def bad_batches(draw):
+    n = draw(st.integers(1, 6))
+    d = draw(st.sampled_from([N_FEATURES, N_FEATURES, 1, N_FEATURES + 2]))
+    X = np.random.default_rng(draw(st.integers(0, 99))).uniform(size=(n, d))
+    if d == N_FEATURES:  # right shape: poison one entry
+        X[draw(st.integers(0, n - 1)), draw(st.integers(0, d - 1))] = draw(bad_value)
+    return X
+
+
+@settings(max_examples=40, deadline=None)
+@given(bad_batches(), st.sampled_from(["partial_fit", "stream", "novelty", "predict"]),
+       st.booleans())
+def test_rejected_input_leaves_state_unchanged(X, method, one_at_a_time):
+    det = fitted()
+    before = snapshot(det)
+    with pytest.raises(ValueError):
+        if one_at_a_time:
+            for x in X:  # the first bad or misshapen scan is refused
+                det.score_learn_one(x) if method in ("partial_fit", "stream") else det.score_one(x)
+                before = snapshot(det)  # a good scan may be learned before the bad one
+        else:
+            call(det, method, X)
+    assert_equal_deep(before, snapshot(det))
