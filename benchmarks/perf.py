@@ -431,7 +431,10 @@ import novelty._kernels._som_stanley
 t2 = time.perf_counter()
 import novelty._kernels._growing
 t3 = time.perf_counter()
-print(json.dumps({"import_numba": t1 - t0, "compile_or_load": t2 - t1, "growing": t3 - t2}))
+import novelty._kernels._nearest
+t4 = time.perf_counter()
+print(json.dumps({"import_numba": t1 - t0, "compile_or_load": t2 - t1, "growing": t3 - t2,
+                  "scoring": t4 - t3}))
 """
 
 
@@ -610,6 +613,10 @@ def report(rows: list[Row], startup: dict, memory: dict, env: dict, checks: dict
          startup["fresh_compile"]["growing"], None),
         ("  loading them, later process",
          statistics.median(r["growing"] for r in startup["later_load"]), None),
+        ("compiling the batch-scoring kernel (on its first use), empty cache",
+         startup["fresh_compile"]["scoring"], None),
+        ("  loading it, later process",
+         statistics.median(r["scoring"] for r in startup["later_load"]), None),
     ]
     lines += ["", "| one-off cost | seconds | target | holds |", "| --- | ---: | --- | --- |"]
     for label, value, limit in one_off:
