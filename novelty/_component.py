@@ -10,16 +10,58 @@ JSON values, which is what model files hold (never pickle).
 from __future__ import annotations
 
 import numbers
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from sklearn.base import BaseEstimator
 
 from ._validation import validate_parameters
 
-__all__ = ["Component", "StateError"]
+__all__ = ["Component", "KernelSpec", "StateError"]
 
 _JSON_SCALARS = (str, bool, int, float, type(None))
+
+
+class KernelSpec(NamedTuple):
+    """How a component runs inside the filter's compiled loop (:mod:`novelty._kernels`).
+
+    A component class that sets ``_kernel = KernelSpec(...)`` in its own body
+    (a subclass does not inherit it: it may change the arithmetic) provides
+    numba-compilable step functions in the module ``steps``, and says how its
+    state and parameters reach them:
+
+    ``params``
+        attributes packed, in this order, into the float64 parameter vector
+        the steps read: numbers as they are, booleans as 0/1, None as NaN, a
+        string as its index among the ``Options`` of its parameter rule, a
+        nested component as its own vector (appended).
+    ``arrays``
+        per-unit state arrays, in the order of the tuple the steps receive
+        (a dotted name reaches into a nested component).
+    ``square``
+        those of ``arrays`` that are unit x unit (grown in both dimensions).
+    ``counters``
+        integer attributes the steps read and update (an int64 vector).
+    ``ignores``
+        parameters that do not change what is learned (initialisation):
+        every parameter is in ``params`` or here (a test checks it).
+    ``nested``
+        ``(attribute, steps)`` pairs: a nested component (named in
+        ``params``) that the steps drive with the step functions of module
+        ``steps``, so it must declare those (else the reference runs).
+
+    A synapse's ``steps`` module defines ``step``, ``fire`` and ``fresh``; a
+    clusterer's ``match``, ``room`` and ``adapt`` (signatures in
+    :mod:`novelty._kernels.drivers`).
+    """
+
+    steps: str
+    params: tuple = ()
+    arrays: tuple = ()
+    square: tuple = ()
+    counters: tuple = ()
+    ignores: tuple = ()
+    nested: tuple = ()
 
 
 class StateError(ValueError):

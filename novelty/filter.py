@@ -289,7 +289,7 @@ class HabituatingFilter(NoveltyDetector):
     # reference code after it, which runs when there is none.
     def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
-        kernel = _kernels.learner(self.clusterer_, self.synapse_)
+        kernel = _kernels.learner(self.clusterer_, self.synapse_, learn_stream)
         if kernel is not None:
             efficacy = kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
                               distances=distances)
@@ -322,6 +322,17 @@ class HabituatingFilter(NoveltyDetector):
 
     def _novelty_one(self, x: np.ndarray) -> float:
         return float(self._novelty(x[None, :])[0])
+
+    @property
+    def compiled_(self) -> str:
+        """Which loop learns: ``"compiled"``, or ``"reference (<why>)"``.
+
+        Every registered clusterer and synapse declares compiled steps; a
+        plugin that does not (or a subclass that does not declare them again)
+        learns by :func:`learn_stream`, with the same results, more slowly.
+        """
+        self._check_fitted()
+        return _kernels.path(self.clusterer_, self.synapse_)
 
     def winners(self, X) -> np.ndarray:
         """Stable ids of the winning units of ``X``, without learning."""

@@ -11,9 +11,20 @@ README = Path(__file__).resolve().parents[1] / "README.md"
 BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), flags=re.S)
 
 
+#: blocks that are files (a first line ``# name.py``): written out, importable by the others
+FILES = {m.group(1): b for b in BLOCKS if (m := re.match(r"# (\w+)\.py\n", b))}
+
+
+def write_files(folder, monkeypatch) -> None:
+    for name, block in FILES.items():
+        (folder / f"{name}.py").write_text(block, encoding="utf-8")
+    monkeypatch.syspath_prepend(str(folder))
+
+
 @pytest.mark.parametrize("index", range(len(BLOCKS)))
 def test_readme_python_block_runs(index, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)  # the examples write model files
+    write_files(tmp_path, monkeypatch)
     names_before = set(novelty.registry.clusterers.names())
     try:
         exec(compile(BLOCKS[index], f"README.md[python block {index}]", "exec"), {})

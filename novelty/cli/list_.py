@@ -47,6 +47,17 @@ def _describe(registry, name: str) -> str:
         return f"(cannot be loaded: {type(exc).__name__}: {' '.join(str(exc).split())})"
 
 
+def _loop(kind: str, registry, name: str) -> str:
+    """For a clusterer or synapse: whether it learns compiled inside a habituating filter."""
+    if kind not in ("clusterers", "synapses"):
+        return ""
+    try:
+        declared = "_kernel" in vars(registry.get(name))
+    except Exception:  # noqa: BLE001 - described as broken above
+        return ""
+    return " [compiled]" if declared else " [reference loop: declares no compiled steps]"
+
+
 def run(args) -> int:
     kinds = [args.kind] if args.kind else list(KINDS)
     for i, kind in enumerate(kinds):
@@ -58,7 +69,7 @@ def run(args) -> int:
         print(f"{title.capitalize()} ({len(names)}):")
         width = max((len(n) for n in names), default=0)
         for name in names:
-            print(f"  {name.ljust(width)}  {_describe(registry, name)}")
+            print(f"  {name.ljust(width)}  {_describe(registry, name)}{_loop(kind, registry, name)}")
         if not names:
             print("  (none registered)")
     return 0

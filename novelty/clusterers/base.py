@@ -21,13 +21,22 @@ import numpy as np
 
 from .._component import Component, StateError, check_array_state, check_int_state
 
-__all__ = ["Clusterer", "Match", "Growth", "NO_UNITS"]
+__all__ = ["Clusterer", "Match", "Growth", "NO_UNITS", "move_towards"]
 
 NO_UNITS = np.empty(0, dtype=np.intp)
 NO_UNITS.setflags(write=False)
 
 #: rows per block in vectorised winner search (bounds memory to ~ rows x units)
 _CHUNK_ROWS = 8192
+
+
+def move_towards(w, x, rate):
+    """A prototype ``w`` moved towards the input ``x`` by ``rate``: ``w + rate * (x - w)``.
+
+    The learning step of every clusterer here, for arrays (the reference) and
+    for single values (compiled by the kernels, element by element).
+    """
+    return w + rate * (x - w)
 
 
 class Match(NamedTuple):

@@ -52,10 +52,10 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError, check_array_state, check_int_state
+from .._component import KernelSpec, StateError, check_array_state, check_int_state
 from .._validation import Bounds, Interval, Options
 from . import _graph
-from .base import Clusterer, Growth, Match
+from .base import Clusterer, Growth, Match, move_towards
 
 __all__ = ["GrowingNeuralGas"]
 
@@ -133,6 +133,16 @@ class GrowingNeuralGas(Clusterer):
         "init_range": Bounds(),
     }
 
+    _kernel = KernelSpec(
+        steps="novelty.clusterers._gng_steps",
+        params=("epsilon_b", "epsilon_n", "insertion_interval", "insertion_error_decay",
+                "error_decay", "max_age", "max_units"),
+        arrays=("errors_", "edge_ages_", "unit_ids_"),
+        square=("edge_ages_",),
+        counters=("n_inputs_", "next_unit_id_"),
+        ignores=("init", "init_range"),
+    )
+
     def __init__(
         self,
         epsilon_b=0.2,
@@ -180,8 +190,8 @@ class GrowingNeuralGas(Clusterer):
         nb = _graph.neighbours(A, s1)
         _graph.age_edges(A, s1)                                          # step 3
         self.errors_[s1] += float(((x - W[s1]) ** 2).sum())              # step 4
-        W[s1] += self.epsilon_b * (x - W[s1])                            # step 5
-        W[nb] += self.epsilon_n * (x - W[nb])
+        W[s1] = move_towards(W[s1], x, self.epsilon_b)                   # step 5
+        W[nb] = move_towards(W[nb], x, self.epsilon_n)
         _graph.connect(A, s1, s2)                                        # step 6
         removed = _graph.prune(A, s1, self.max_age)                      # step 7
         if removed.size:

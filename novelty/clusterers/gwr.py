@@ -76,14 +76,14 @@ import numbers
 
 import numpy as np
 
+from .._component import KernelSpec, StateError
 from ..habituation.stanley import StanleySynapse
-from .._component import StateError
 from .._validation import Bounds, Instance, Interval, Options
 from ..habituation.base import Synapse
 from ..match_scale import ScaleCalibration
 from ..registry import build
 from . import _graph
-from .base import Clusterer, Growth, Match
+from .base import Clusterer, Growth, Match, move_towards
 
 __all__ = ["GrowWhenRequired"]
 
@@ -198,6 +198,19 @@ class GrowWhenRequired(Clusterer):
         "init_range": Bounds(),
     }
 
+    _kernel = KernelSpec(
+        steps="novelty.clusterers._gwr_steps",
+        params=("activity_threshold_", "habituation_threshold", "epsilon_b", "epsilon_n",
+                "max_age", "max_units", "firing_condition", "new_unit_wins", "firing_"),
+        arrays=("firing_.efficacy_", "edge_ages_", "unit_ids_"),
+        square=("edge_ages_",),
+        counters=("next_unit_id_",),
+        # activity_threshold, insertion_radius and firing act through activity_threshold_
+        # and firing_
+        ignores=("activity_threshold", "insertion_radius", "firing", "init", "init_range"),
+        nested=(("firing_", "novelty.habituation._stanley_steps"),),
+    )
+
     def __init__(
         self,
         activity_threshold=0.85,
@@ -297,8 +310,8 @@ class GrowWhenRequired(Clusterer):
         else:
             W = self.weights_                                            # step 8
             nb = _graph.neighbours(self.edge_ages_, s)
-            W[s] += self.epsilon_b * h[s] * (x - W[s])
-            W[nb] += self.epsilon_n * h[nb, None] * (x - W[nb])
+            W[s] = move_towards(W[s], x, self.epsilon_b * h[s])
+            W[nb] = move_towards(W[nb], x, self.epsilon_n * h[nb, None])
         _graph.age_edges(self.edge_ages_, s)                             # step 9
         self.firing_.step(s, _graph.neighbours(self.edge_ages_, s))      # step 10
         if added and self.new_unit_wins:

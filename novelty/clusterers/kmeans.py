@@ -43,10 +43,10 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError, check_array_state
+from .._component import KernelSpec, StateError, check_array_state
 from .._validation import Bounds, Interval, Options
 from . import _graph
-from .base import NO_GROWTH, NO_UNITS, Clusterer, Growth, Match
+from .base import NO_GROWTH, NO_UNITS, Clusterer, Growth, Match, move_towards
 
 __all__ = ["OnlineKMeans"]
 
@@ -99,6 +99,13 @@ class OnlineKMeans(Clusterer):
         "init_range": Bounds(),
     }
 
+    _kernel = KernelSpec(
+        steps="novelty.clusterers._kmeans_steps",
+        params=("learning_rate",),  # "count" packs as 0, which no constant rate is
+        arrays=("counts_",),
+        ignores=("n_clusters", "init", "init_range"),
+    )
+
     def __init__(self, n_clusters=10, learning_rate="count", init="sample", init_range=(0.0, 1.0)):
         self.n_clusters = n_clusters
         self.learning_rate = learning_rate
@@ -130,7 +137,7 @@ class OnlineKMeans(Clusterer):
         s = match.winner
         self.counts_[s] += 1
         rate = 1.0 / self.counts_[s] if self.learning_rate == "count" else self.learning_rate
-        self.weights_[s] += rate * (x - self.weights_[s])
+        self.weights_[s] = move_towards(self.weights_[s], x, rate)
         return NO_GROWTH
 
     def _check_state(self) -> None:

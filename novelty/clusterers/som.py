@@ -37,11 +37,24 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError, check_int_state
+from .._component import KernelSpec, StateError, check_int_state
 from .._validation import Bounds, Interval, Options
-from .base import NO_GROWTH, Clusterer, Growth, Match
+from .base import NO_GROWTH, Clusterer, Growth, Match, move_towards
 
-__all__ = ["SOM"]
+__all__ = ["SOM", "scheduled"]
+
+
+def scheduled(decay, start, final, t, steps):
+    """A parameter after ``t`` updates under the schedule ``decay`` (0 constant, 1 linear,
+    2 asymptotic: the order of the ``decay`` options), as in the module docstring.
+
+    Run by the reference and compiled by the kernels.
+    """
+    if decay == 0:
+        return start
+    if decay == 1:
+        return start + (final - start) * min(t / steps, 1.0)
+    return final + (start - final) / (1.0 + 2.0 * t / steps)
 
 
 class SOM(Clusterer):
@@ -112,6 +125,14 @@ class SOM(Clusterer):
         "init_range": Bounds(),
     }
 
+    _kernel = KernelSpec(
+        steps="novelty.clusterers._som_steps",
+        params=("n_rows", "n_columns", "learning_rate", "neighbour_learning_rate", "radius",
+                "decay", "decay_steps", "learning_rate_final", "radius_final"),
+        counters=("n_updates_", "_table_radius"),
+        ignores=("init", "init_range"),
+    )
+
     def __init__(
         self,
         n_rows=10,
@@ -140,12 +161,8 @@ class SOM(Clusterer):
 
     # ----------------------------------------------------------- schedules
     def _scheduled(self, start: float, final: float) -> float:
-        if self.decay == "constant":
-            return float(start)
-        t = self.n_updates_
-        if self.decay == "linear":
-            return float(start + (final - start) * min(t / self.decay_steps, 1.0))
-        return float(final + (start - final) / (1.0 + 2.0 * t / self.decay_steps))
+        code = self._parameter_rules["decay"].values.index(self.decay)
+        return float(scheduled(code, start, final, self.n_updates_, self.decay_steps))
 
     def current_learning_rate(self) -> float:
         """eta(t) for the next update."""
@@ -196,10 +213,10 @@ class SOM(Clusterer):
         W = self.weights_
         if self.neighbour_learning_rate is None:
             rows = np.append(match.neighbours, match.winner)
-            W[rows] += self.current_learning_rate() * (x - W[rows])
+            W[rows] = move_towards(W[rows], x, self.current_learning_rate())
         else:
-            W[match.winner] += self.current_learning_rate() * (x - W[match.winner])
-            W[match.neighbours] += self.neighbour_learning_rate * (x - W[match.neighbours])
+            W[match.winner] = move_towards(W[match.winner], x, self.current_learning_rate())
+            W[match.neighbours] = move_towards(W[match.neighbours], x, self.neighbour_learning_rate)
         self.n_updates_ += 1
         if self.decay != "constant" and self.current_radius() != self._table_radius:
             self._rebuild_scratch()

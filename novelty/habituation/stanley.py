@@ -56,10 +56,11 @@ import numbers
 
 import numpy as np
 
+from .._component import KernelSpec
 from .._validation import Interval, Options
 from .base import Synapse
 
-__all__ = ["StanleySynapse", "euler_steps"]
+__all__ = ["StanleySynapse", "euler_steps", "exact_step"]
 
 #: sub-steps :func:`euler_steps` iterates one by one; beyond, equation (4)
 MAX_EULER_SUBSTEPS = 1024
@@ -85,6 +86,15 @@ def euler_steps(y, stimulus, tau, dt, alpha, y0):
     h = dt / n
     y_inf = y0 - stimulus / alpha
     return y_inf + (y - y_inf) * (1.0 - (h / tau) * alpha) ** n
+
+
+def exact_step(y, stimulus, tau, dt, alpha, y0):
+    """Efficacy ``y`` (a float or an array) after ``dt`` under equation (2), exactly.
+
+    Like :func:`euler_steps`, run by the reference and compiled by the kernels.
+    """
+    y_inf = y0 - stimulus / alpha
+    return y_inf + (y - y_inf) * math.exp(-alpha * dt / tau)
 
 
 class StanleySynapse(Synapse):
@@ -135,6 +145,12 @@ class StanleySynapse(Synapse):
         "method": Options(("euler", "exact")),
     }
 
+    _kernel = KernelSpec(
+        steps="novelty.habituation._stanley_steps",
+        params=("tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0", "others", "method"),
+        arrays=("efficacy_",),
+    )
+
     def __init__(
         self,
         tau_winner=3.33,
@@ -183,8 +199,7 @@ class StanleySynapse(Synapse):
     def _advance(self, rows: np.ndarray, stimulus: float, tau: float, dt: float) -> None:
         y = self.efficacy_[rows]
         if self.method == "exact":
-            y_inf = self.y0 - stimulus / self.alpha
-            y = y_inf + (y - y_inf) * math.exp(-self.alpha * dt / tau)
+            y = exact_step(y, stimulus, tau, dt, self.alpha, self.y0)
         else:
             y = euler_steps(y, stimulus, tau, dt, self.alpha, self.y0)
         self.efficacy_[rows] = y

@@ -136,11 +136,11 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError
+from .._component import KernelSpec, StateError
 from .._validation import Interval, Options
 from .base import Synapse
 
-__all__ = ["WangHsuSynapse"]
+__all__ = ["WangHsuSynapse", "euler_advance", "exact_advance"]
 
 #: Below this k = gamma l S h, a recovery step changes nothing in double
 #: precision (relative changes of order k < 1e-17).
@@ -161,6 +161,97 @@ _MAX_SUBSTEPS = 1024
 def _n_substeps(span: float) -> float:
     """ceil(span), at least 1, as a float (exact: from 2**52 up every float is an integer)."""
     return max(1.0, float(math.ceil(span))) if span < 4503599627370496.0 else span
+
+
+# The model's equations, as functions of a group of synapses (arrays ``y``, ``z``)
+# under one stimulus: the reference runs them with numpy, the kernels compile
+# them (novelty.habituation._wang_hsu_steps), so that the two cannot drift apart.
+def euler_advance(y, z, s, tau, dt, alpha, beta, gamma, y0, l):  # noqa: E741
+    """``(y, z)`` after ``dt`` of equation (6) in ceil(dt) sub-steps (a long gap: "Long gaps")."""
+    n_sub = _n_substeps(dt)
+    h = dt / n_sub
+    long_gap = n_sub > _MAX_SUBSTEPS
+    done = 0
+    while done < n_sub:
+        y_next = y + (h / tau) * (alpha * z * (y0 - y) - beta * y * s)
+        # z > 0 always (z = 0 is no state a model file may hold): at the
+        # smallest normal float it stops, as in the exact solution
+        z_next = np.maximum(z + h * gamma * z * (z - l) * s, _Z_FLOOR)
+        done += 1
+        if long_gap and settled(z, z_next, s, alpha, beta):
+            rest = n_sub - done
+            c = h / tau
+            rate = c * (alpha * z_next + beta * s)
+            y_inf = level(c * alpha * z_next * y0, rate, y_next)
+            y_end = y_inf + (y_next - y_inf) * (1.0 - rate) ** rest
+            if not np.array_equal(z, z_next):
+                z_next = np.maximum(z_next * (1.0 - h * gamma * l * s) ** rest, _Z_FLOOR)
+            return y_end, z_next
+        y, z = y_next, z_next
+    return y, z
+
+
+def settled(z, z_next, s, alpha, beta):
+    """Whether the rest of a long gap may be done in closed form (module docstring)."""
+    if np.array_equal(z, z_next):
+        return True
+    return beta * s > 0 and bool(np.all(alpha * z_next <= 2.0**-53 * beta * s))
+
+
+def level(recovery, total, y):
+    """y_inf = recovery / total; where total vanishes nothing moves, so y itself."""
+    return np.where(total > 0, recovery / np.where(total > 0, total, 1.0), y)
+
+
+def exact_advance(y, z, s, tau, dt, alpha, beta, gamma, y0, l):  # noqa: E741
+    """``(y, z)`` after ``dt`` by equations (3)-(7) (a long gap: "Long gaps").
+
+    At ``q = 1`` it takes ``log(0) = -inf`` (numpy warns of it; the reference
+    silences that).
+    """
+    if dt <= 0:
+        return y, z
+    coupled = s > 0 and beta > 0
+    n_sub = _n_substeps(dt / _EXACT_SUBSTEP - 1e-9) if coupled else 1.0
+    h = dt / n_sub
+    b = beta * s * h / tau
+    long_gap = n_sub > _MAX_SUBSTEPS
+    done = 0
+    while done < n_sub:
+        z_next, z_integral = recovery_step(z, s, h, gamma, l)
+        a = (alpha / tau) * z_integral
+        total = a + b
+        # total > 0 but for z and b both vanishing, when nothing moves
+        y_inf = level(y0 * a, total, y)
+        y = y_inf + (y - y_inf) * np.exp(-total)
+        done += 1
+        if long_gap and settled(z, z_next, s, alpha, beta):
+            rest = n_sub - done
+            y = y_inf + (y - y_inf) * np.exp(-total * rest)
+            if not np.array_equal(z, z_next):
+                z_next = recovery_step(z_next, s, h * rest, gamma, l)[0]
+            return y, z_next
+        z = z_next
+    return y, z
+
+
+def recovery_step(z, s, h, gamma, l):  # noqa: E741
+    """z after ``h`` under stimulus ``s`` and its integral over the step (equations 3-4)."""
+    k = gamma * l * s * h
+    if k < _NEGLIGIBLE_RATE:
+        # z moves by a relative O(k) and its integral is z h (1 - O(k)): both
+        # are exact in double precision here, and D / (gamma S) below would
+        # divide by a product that underflows for a subnormal stimulus.
+        return z, z * h
+    q = np.minimum(z / l, 1.0)
+    # D = k - ln(r) = -ln((1 - q) + q e^-k) >= 0, so that the integral is D / (gamma S)
+    # and z(t + h) = z e^(D - k); log1p where D is small (weak stimulus, small z),
+    # log-add-exp where it is large (q near 1, long steps).
+    x = -q * np.expm1(-k)
+    d = np.where(x < 0.5, -np.log1p(-np.minimum(x, 0.5)),
+                 -np.logaddexp(np.log1p(-q), np.log(q) - k))
+    z_next = np.maximum(z * np.exp(d - k), _Z_FLOOR)
+    return z_next, d / (gamma * s)
 
 
 class WangHsuSynapse(Synapse):
@@ -215,6 +306,13 @@ class WangHsuSynapse(Synapse):
     """
 
     _per_unit = ("efficacy_", "recovery_")
+
+    _kernel = KernelSpec(
+        steps="novelty.habituation._wang_hsu_steps",
+        params=("tau_winner", "tau_neighbour", "tau_forget", "alpha", "beta", "gamma", "y0", "z0",
+                "l", "others", "method"),
+        arrays=("efficacy_", "recovery_"),
+    )
 
     _parameter_rules = {
         **Synapse._common_rules,
@@ -298,93 +396,14 @@ class WangHsuSynapse(Synapse):
     def _advance(self, rows: np.ndarray, stimulus: float, tau: float, dt: float) -> None:
         y = self.efficacy_[rows]
         z = self.recovery_[rows]
+        args = (stimulus, tau, dt, self.alpha, self.beta, self.gamma, self.y0, self.l)
         if self.method == "euler":
-            y, z = self._euler(y, z, stimulus, tau, dt)
+            y, z = euler_advance(y, z, *args)
         else:
-            y, z = self._exact(y, z, stimulus, tau, dt)
+            with np.errstate(divide="ignore"):  # log(1 - q) = -inf at q = 1 is meant
+                y, z = exact_advance(y, z, *args)
         self.efficacy_[rows] = y
         self.recovery_[rows] = z
-
-    def _euler(self, y, z, s, tau, dt):
-        n_sub = _n_substeps(dt)
-        h = dt / n_sub
-        long_gap = n_sub > _MAX_SUBSTEPS
-        done = 0
-        while done < n_sub:
-            y_next, z_next = (
-                y + (h / tau) * (self.alpha * z * (self.y0 - y) - self.beta * y * s),
-                # z > 0 always (z = 0 is no state a model file may hold): at the
-                # smallest normal float it stops, as in the exact solution
-                np.maximum(z + h * self.gamma * z * (z - self.l) * s, _Z_FLOOR),
-            )
-            done += 1
-            if long_gap and self._settled(z, z_next, s):
-                rest = n_sub - done
-                c = h / tau
-                rate = c * (self.alpha * z_next + self.beta * s)
-                y_inf = self._level(c * self.alpha * z_next * self.y0, rate, y_next)
-                y_end = y_inf + (y_next - y_inf) * (1.0 - rate) ** rest
-                if not np.array_equal(z, z_next):
-                    z_next = np.maximum(z_next * (1.0 - h * self.gamma * self.l * s) ** rest, _Z_FLOOR)
-                return y_end, z_next
-            y, z = y_next, z_next
-        return y, z
-
-    def _settled(self, z, z_next, s) -> bool:
-        """Whether the rest of a long gap may be done in closed form (module docstring)."""
-        if np.array_equal(z, z_next):
-            return True
-        return self.beta * s > 0 and bool(np.all(self.alpha * z_next <= 2.0**-53 * self.beta * s))
-
-    @staticmethod
-    def _level(recovery, total, y):
-        """y_inf = recovery / total; where total vanishes nothing moves, so y itself."""
-        return np.where(total > 0, recovery / np.where(total > 0, total, 1.0), y)
-
-    def _exact(self, y, z, s, tau, dt):
-        if dt <= 0:
-            return y, z
-        coupled = s > 0 and self.beta > 0
-        n_sub = _n_substeps(dt / _EXACT_SUBSTEP - 1e-9) if coupled else 1.0
-        h = dt / n_sub
-        b = self.beta * s * h / tau
-        long_gap = n_sub > _MAX_SUBSTEPS
-        done = 0
-        while done < n_sub:
-            z_next, z_integral = self._recovery_step(z, s, h)
-            a = (self.alpha / tau) * z_integral
-            total = a + b
-            # total > 0 but for z and b both vanishing, when nothing moves
-            y_inf = self._level(self.y0 * a, total, y)
-            y = y_inf + (y - y_inf) * np.exp(-total)
-            done += 1
-            if long_gap and self._settled(z, z_next, s):
-                rest = n_sub - done
-                y = y_inf + (y - y_inf) * np.exp(-total * rest)
-                if not np.array_equal(z, z_next):
-                    z_next = self._recovery_step(z_next, s, h * rest)[0]
-                return y, z_next
-            z = z_next
-        return y, z
-
-    def _recovery_step(self, z: np.ndarray, s: float, h: float) -> tuple[np.ndarray, np.ndarray]:
-        """z after ``h`` under stimulus ``s`` and its integral over the step (equations 3-4)."""
-        k = self.gamma * self.l * s * h
-        if k < _NEGLIGIBLE_RATE:
-            # z moves by a relative O(k) and its integral is z h (1 - O(k)): both
-            # are exact in double precision here, and D / (gamma S) below would
-            # divide by a product that underflows for a subnormal stimulus.
-            return z, z * h
-        q = np.minimum(z / self.l, 1.0)
-        # D = k - ln(r) = -ln((1 - q) + q e^-k) >= 0, so that the integral is D / (gamma S)
-        # and z(t + h) = z e^(D - k); log1p where D is small (weak stimulus, small z),
-        # log-add-exp where it is large (q near 1, long steps).
-        x = -q * np.expm1(-k)
-        with np.errstate(divide="ignore"):  # log(1 - q) = -inf at q = 1 is meant
-            d = np.where(x < 0.5, -np.log1p(-np.minimum(x, 0.5)),
-                         -np.logaddexp(np.log1p(-q), np.log(q) - k))
-        z_next = np.maximum(z * np.exp(d - k), _Z_FLOOR)
-        return z_next, d / (self.gamma * s)
 
     def efficacy_range(self, stimulus: float = 1.0) -> tuple[float, float]:
         """``[0, y0]``: ``y`` relaxes towards ``y0 A / (A + B)``, which lies in it. The

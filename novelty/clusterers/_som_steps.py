@@ -1,0 +1,74 @@
+"""The SOM in the filter's compiled loop (see :mod:`novelty._kernels.drivers`).
+
+:func:`~novelty.clusterers.som.scheduled` and
+:func:`~novelty.clusterers.base.move_towards` compiled as they are; ``match``
+and ``adapt`` do what ``SOM.match`` and ``SOM.adapt`` do. ``p`` is the
+vector of ``SOM._kernel.params``; ``counters`` holds ``n_updates_`` and the
+grid radius in use.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import compiled, step
+from ._graph_steps import nearest
+from .base import move_towards
+from .som import SOM, scheduled
+
+_P = SOM._kernel.params
+N_ROWS, N_COLUMNS, LR, NLR, RADIUS, DECAY, DECAY_STEPS, LR_FINAL, RADIUS_FINAL = (
+    _P.index(name) for name in ("n_rows", "n_columns", "learning_rate", "neighbour_learning_rate",
+                                "radius", "decay", "decay_steps", "learning_rate_final",
+                                "radius_final"))
+T, TABLE_RADIUS = (SOM._kernel.counters.index(name) for name in ("n_updates_", "_table_radius"))
+
+_scheduled = compiled(scheduled)
+_move = compiled(move_towards)
+
+
+@step
+def match(d, n, state, counters, p, nb):
+    """The winner and its square grid neighbourhood, ascending, into ``nb`` (SOM.match)."""
+    winner = nearest(d, n)
+    n_columns = int(p[N_COLUMNS])
+    n_rows = int(p[N_ROWS])
+    radius = counters[TABLE_RADIUS]
+    wr = winner // n_columns
+    wc = winner - wr * n_columns
+    k = 0
+    for r in range(max(0, wr - radius), min(n_rows - 1, wr + radius) + 1):
+        for c in range(max(0, wc - radius), min(n_columns - 1, wc + radius) + 1):
+            j = r * n_columns + c
+            if j != winner:
+                nb[k] = j
+                k += 1
+    return winner, -1, k
+
+
+@step
+def room(d, winner, n, state, counters, p):
+    """A map never grows."""
+    return 0
+
+
+@step
+def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
+    """SOM.adapt: the winner and ``nb[:k]`` move towards ``x``; the schedules advance."""
+    decay = int(p[DECAY])
+    t = counters[T]
+    lr = _scheduled(decay, p[LR], p[LR_FINAL], t, p[DECAY_STEPS])
+    lr_n = lr if math.isnan(p[NLR]) else p[NLR]
+    for m in range(k):
+        j = nb[m]
+        for f in range(WT.shape[0]):
+            WT[f, j] = _move(WT[f, j], x[f], lr_n)
+    for f in range(WT.shape[0]):
+        WT[f, winner] = _move(WT[f, winner], x[f], lr)
+    counters[T] = t + 1
+    if decay != 0:
+        r = _scheduled(decay, p[RADIUS], p[RADIUS_FINAL], t + 1, p[DECAY_STEPS])
+        counters[TABLE_RADIUS] = int(math.floor(r + 0.5))
+    return n, 0, 0, False
+
+

@@ -1,0 +1,207 @@
+"""The kernels' machinery: compiling in a child process, readiness, hand-over, fallbacks.
+
+No timing is asserted (``benchmarks/perf.py`` measures speed).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+import novelty
+from novelty import _kernels
+from novelty._kernels import compiling, drivers, handover, learning
+from novelty.filter import learn_stream
+
+from .kernel_helpers import assert_same_filter, corridor, reference_only
+
+pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
+
+
+def test_missing_numba_falls_back_with_one_warning(monkeypatch):
+    monkeypatch.setattr(compiling, "_all", [])
+    monkeypatch.setattr(drivers, "_drivers", {})
+    monkeypatch.setattr(_kernels, "_NEAREST", compiling.Compiled("novelty._kernels._nearest"))
+    for name in [n for n in sys.modules if n.startswith("novelty_driver_")]:
+        monkeypatch.delitem(sys.modules, name)
+    monkeypatch.delitem(sys.modules, "novelty._kernels._nearest")
+    monkeypatch.delattr(_kernels, "_nearest", raising=False)
+    monkeypatch.setitem(sys.modules, "numba", None)  # makes "import numba" fail
+    X = corridor(50)
+    det = novelty.make("hsom")
+    with pytest.warns(RuntimeWarning, match="reference numpy loops"):
+        det.fit(X[:1])
+        assert _kernels.wait(det.clusterer_, det.synapse_) is None
+        assert _kernels.wait() is None
+    assert det.compiled_.startswith("reference (kernels unavailable")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = np.concatenate([det.stream(X), [det.score_learn_one(X[0])], det.novelty(X)])
+    with reference_only():
+        ref = novelty.make("hsom").fit(X[:1])
+        expected = np.concatenate([ref.stream(X), [ref.score_learn_one(X[0])], ref.novelty(X)])
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
+    """While the kernel compiles, the reference learns; the kernel takes over when ready."""
+    monkeypatch.setattr(handover, "BLOCK", 100)
+    X = corridor(1000)
+    det = novelty.make("hsom").fit(X[:1])
+    compiled = learning.compiled_for(det.clusterer_, det.synapse_)
+    module = compiled.wait()
+    calls = []
+
+    def reference_blocks(som, syn, X, dt, stimulus, distances=None):
+        calls.append(len(X))
+        if len(calls) == 3:
+            monkeypatch.setattr(compiled, "module", module)  # "compiled" after 3 blocks
+        return learn_stream(som, syn, X, dt, stimulus, distances=distances)
+
+    monkeypatch.setattr(compiled, "module", None)  # "compiling"
+    monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)
+    kernel = _kernels.learner(det.clusterer_, det.synapse_, reference_blocks)
+    assert kernel is not None and kernel is not learning.run
+    got = det.stream(X)
+    assert calls == [100, 100, 100]
+    monkeypatch.undo()
+    with reference_only():
+        ref = novelty.make("hsom").fit(X[:1])
+        expected = ref.stream(X)
+    np.testing.assert_array_equal(got, expected)
+    assert_same_filter(det, ref)
+
+
+def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
+    """A second process finds the pair's driver file and its machine code: no compiling."""
+    code = ("import sys, time, numpy as np, novelty\n"
+            "from novelty import _kernels\n"
+            "det = novelty.make('hsom', n_rows=3, n_columns=3).fit(np.zeros((2, 5)))\n"
+            "compiled = _kernels.learning.compiled_for(det.clusterer_, det.synapse_)\n"
+            "cached = compiled._cached()\n"
+            "assert compiled.wait(timeout=600) is not None, compiled.error\n"
+            "print(compiled.file, cached, compiled.thread is None)\n")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
+    runs = [subprocess.run([sys.executable, "-c", code], env=env, check=True, timeout=900,
+                           capture_output=True, text=True).stdout.split() for _ in range(2)]
+    assert runs[0][0] == runs[1][0] and runs[0][0].startswith(str(tmp_path / "cache"))
+    assert runs[0][1:] == ["False", "False"]  # cold: compiled by a child, in the background
+    assert runs[1][1:] == ["True", "True"]  # warm: loaded at once
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork()")
+def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
+    monkeypatch.setattr(_kernels, "_NEAREST", compiling.Compiled("novelty._kernels._nearest"))
+    blocker = threading.Event()
+    _kernels._NEAREST.started = True  # "compiling" in the parent
+    _kernels._NEAREST.thread = threading.Thread(target=blocker.wait)
+    _kernels._NEAREST.thread.start()
+    try:
+        pid = os.fork()
+        if pid == 0:  # the child: its compiler thread is gone; it must start one and get the kernel
+            ok = _kernels._NEAREST.wait(timeout=60) is not None
+            os._exit(0 if ok else 1)
+        _, status = os.waitpid(pid, 0)
+        assert os.waitstatus_to_exitcode(status) == 0
+    finally:
+        blocker.set()
+
+
+def test_read_only_and_strided_inputs():
+    X = corridor(300)
+    det, ref = novelty.make("hsom"), novelty.make("hsom")
+    frozen = X.copy()
+    frozen.setflags(write=False)
+    with reference_only():
+        expected = np.concatenate([ref.stream(X), ref.novelty(X), [ref.score_one(X[:, 0][:16])]])
+    got = np.concatenate([det.stream(frozen), det.novelty(frozen),
+                          [det.score_one(np.asfortranarray(X)[:, 0][:16])]])
+    np.testing.assert_array_equal(got, expected)
+
+
+def test_import_novelty_does_not_import_numba():
+    code = ("import sys, numpy as np, novelty\n"
+            "det = novelty.make('hsom')\n"
+            "assert 'numba' not in sys.modules\n"
+            "det.fit(np.zeros((2, 3)))\n"
+            "novelty._kernels.wait()\n"
+            "assert 'numba' in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def _plant_numba(folder):
+    """A ``numba.py`` in ``folder`` that leaves a mark when imported, then fails the import."""
+    mark = folder / "planted-numba-ran"
+    (folder / "numba.py").write_text(f"open({str(mark)!r}, 'w').close()\nraise ImportError('planted')\n")
+    return mark
+
+
+def _script(tmp_path, code: str):
+    """``code`` as a script file outside the working directory: its folder, not the cwd, leads sys.path."""
+    folder = tmp_path / "script"
+    folder.mkdir()
+    path = folder / "main.py"
+    path.write_text(code)
+    return path
+
+
+def test_the_background_compiler_ignores_the_working_directory(tmp_path):
+    cwd, cache = tmp_path / "cwd", tmp_path / "cold-cache"
+    cwd.mkdir()
+    mark = _plant_numba(cwd)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    # The plant works: a plain child started in that folder runs it.
+    subprocess.run([sys.executable, "-c", "import numba"], cwd=cwd, env=env, capture_output=True)
+    assert mark.exists()
+    mark.unlink()
+    # The library's compiler child does not (a module that imports numba, compiles nothing).
+    script = _script(tmp_path, "from novelty import _kernels\n"
+                               "compiled = _kernels.compiling.Compiled('novelty._kernels._distances')\n"
+                               "assert compiled.wait(timeout=120) is not None, compiled.error\n")
+    subprocess.run([sys.executable, str(script)], cwd=cwd, env=env, check=True, timeout=180)
+    assert not mark.exists()
+
+
+def test_ctrl_c_while_waiting_at_exit_for_the_compiler_exits_130_quietly(tmp_path):
+    script = _script(tmp_path, "import sys\n"
+                               "from novelty import _kernels\n"
+                               "assert _kernels.compiling.Compiled('novelty._kernels._nearest').get() is None\n"
+                               "print('compiling', flush=True)\n")  # then exit: waits for the compiler
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cold-cache"))
+    proc = subprocess.Popen([sys.executable, str(script)], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            # a run in the background ignores SIGINT, and children inherit that
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    try:
+        assert proc.stdout.readline() == "compiling\n"
+        time.sleep(1.0)  # at exit, in the wait; a cold compile takes several seconds
+        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
+        _, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    assert proc.returncode == 130
+    assert "Traceback" not in err and "Exception ignored" not in err
+
+
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
+def test_hot_path_bounds_scans_and_rejects_nan():
+    det = novelty.make("hsom").fit(np.zeros((2, 4)))
+    large = np.full(4, 4.9e99)  # norm 9.8e99, just within the bound
+    assert det.score_one(large) == det.novelty(large[None, :])[0]
+    with pytest.raises(ValueError, match=r"norm above 1e\+100"):
+        det.score_one(np.full(4, 1e308))  # finite, but squared distances overflow
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        det.score_one(np.array([0.0, np.nan, 0.0, 0.0]))
+    with pytest.raises(ValueError, match="NaN or infinity"):
+        det.learn_one(np.array([0.0, np.inf, 0.0, 0.0]))
+
+

@@ -1,0 +1,347 @@
+"""The compiled kernels (novelty._kernels) against the readable reference.
+
+The reference is ``learn_stream`` with ``SOM.match`` / ``SOM.adapt`` and
+``StanleySynapse.step`` (learning) and ``Clusterer.winners`` (scoring). The
+kernels repeat numpy's floating-point operations in numpy's order, so every
+comparison here is exact equality, not a tolerance. No timing is asserted
+(``benchmarks/perf.py`` measures speed).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from sklearn.base import clone
+
+import novelty
+from novelty import _kernels, registry
+from novelty.clusterers.gwr import GrowWhenRequired
+from novelty.filter import HabituatingFilter, learn_stream
+
+from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
+                            kernel_learn, reference_learn, reference_only, rules, streams)
+
+pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
+
+
+def assert_same_som(det_a, det_b):
+    assert_same_filter(det_a, det_b)
+
+
+som_params = st.fixed_dictionaries({
+    "n_rows": st.integers(1, 6),
+    "n_columns": st.integers(1, 6),
+    "learning_rate": st.floats(0, 1, **finite),
+    "radius": st.one_of(st.integers(0, 4), st.floats(0, 4.5, **finite)),
+    "decay": st.sampled_from(["constant", "linear", "asymptotic"]),
+    "decay_steps": st.integers(1, 40),
+    "learning_rate_final": st.floats(0, 1, **finite),
+    "radius_final": st.floats(0, 3, **finite),
+    "init": st.sampled_from(["uniform", "sample"]),
+    "neighbour_learning_rate": st.one_of(st.none(), st.floats(0, 1, **finite)),
+})
+
+
+@st.composite
+def stanley_params(draw):
+    alpha = draw(st.floats(0.2, 3, **finite))
+    method = draw(st.sampled_from(["euler", "exact"]))
+    low = alpha if method == "euler" else 0.05  # Euler needs tau >= alpha
+    tau = st.floats(low, 40, **finite)
+    return {
+        "alpha": alpha,
+        "method": method,
+        "tau_winner": draw(tau),
+        "tau_neighbour": draw(tau),
+        "y0": draw(st.floats(0.1, 3, **finite)),
+        "others": draw(st.sampled_from(["hold", "forget"])),
+        "tau_forget": draw(st.one_of(st.none(), tau)),
+    }
+
+
+def build(som, stanley, stimulus=1.0, seed=0, **rule):
+    return HabituatingFilter.from_params("som", "stanley", stimulus=stimulus, random_state=seed,
+                                         **som, **{f"synapse__{k}": v for k, v in stanley.items()},
+                                         **rule)
+
+
+# ------------------------------------------------------------------ learning
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(som=som_params, stanley=stanley_params(), data=streams(),
+       stimulus=st.floats(0, 2, **finite))
+def test_learning_equals_reference(som, stanley, data, stimulus):
+    X, timestamps = data
+    det = build(som, stanley, stimulus)
+    det._validate_params()
+    det._begin(X)
+    dt = det._elapsed(X.shape[0], timestamps)
+    ref_c, ref_s = copy.deepcopy(det.clusterer_), copy.deepcopy(det.synapse_)
+
+    expected, expected_winners = reference_learn(ref_c, ref_s, X, dt, float(stimulus))
+    got, winners = kernel_learn(det.clusterer_, det.synapse_, X, dt, float(stimulus))
+
+    np.testing.assert_array_equal(winners, expected_winners)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(det.clusterer_.weights_, ref_c.weights_)
+    np.testing.assert_array_equal(det.synapse_.efficacy_, ref_s.efficacy_)
+    assert det.clusterer_.n_updates_ == ref_c.n_updates_
+    assert det.clusterer_._table_radius == ref_c._table_radius
+
+
+@settings(max_examples=40, deadline=None)
+@given(som=som_params, stanley=stanley_params(), data=streams(), split=st.integers(0, 60),
+       rule=rules)
+def test_detector_api_equals_reference(som, stanley, data, split, rule):
+    """fit / partial_fit / score_learn_one / novelty / score_one, kernel vs reference, every rule."""
+    X, _ = data
+    fast, slow = build(som, stanley, **rule), build(som, stanley, **rule)
+    head, tail = X[:split], X[split:]
+    results = []
+    for det, context in ((fast, contextlib.nullcontext()), (slow, reference_only())):
+        with context:
+            out = [det.stream(head)] if len(head) else []
+            out.append(np.array([det.score_learn_one(x) for x in tail[:5]]))
+            if len(tail) > 5:
+                out.append(det.stream(tail[5:]))
+            out.append(det.novelty(X))
+            out.append(np.array([det.score_one(x) for x in X]))
+            results.append(np.concatenate(out))
+    np.testing.assert_array_equal(results[0], results[1])
+    assert_same_som(fast, slow)
+
+
+@pytest.mark.parametrize("synapse", [
+    {},  # the paper's configuration
+    {"synapse__others": "forget", "synapse__tau_forget": 60.0},
+    {"synapse__method": "exact", "synapse__others": "forget"},
+])
+@pytest.mark.parametrize("som", [{}, {"decay": "linear", "radius": 3, "decay_steps": 1500}])
+def test_corridor_stream_equals_reference(som, synapse):
+    X = corridor(3000)
+    fast, slow = novelty.make("hsom", **som, **synapse), novelty.make("hsom", **som, **synapse)
+    got = np.concatenate([fast.stream(X[:10]), fast.stream(X[10:])])
+    with reference_only():
+        expected = np.concatenate([slow.stream(X[:10]), slow.stream(X[10:])])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_som(fast, slow)
+    # the learned map scores the corridor (and new scans) the same way
+    probe = np.concatenate([X[::7], corridor(500, seed=1)])
+    with reference_only():
+        expected_scores = slow.novelty(probe)
+    np.testing.assert_array_equal(fast.novelty(probe), expected_scores)
+
+
+# ---------------------------------------------------------- growing networks
+assert_same_network = assert_same_filter
+
+
+gng_params = st.fixed_dictionaries({
+    "epsilon_b": st.floats(0, 1, **finite),
+    "epsilon_n": st.floats(0, 1, **finite),
+    "insertion_interval": st.integers(1, 20),
+    "insertion_error_decay": st.floats(0, 1, **finite),
+    "error_decay": st.floats(0, 1, **finite),
+    "max_age": st.integers(1, 8),
+    "max_units": st.integers(2, 12),
+    "init": st.sampled_from(["sample", "uniform"]),
+})
+
+gwr_params = st.fixed_dictionaries({
+    "activity_threshold": st.one_of(st.floats(0, 1, **finite), st.just("auto")),
+    "firing_condition": st.booleans(),
+    "new_unit_wins": st.booleans(),
+    "habituation_threshold": st.floats(0, 1.2, **finite),
+    "epsilon_b": st.floats(0, 1, **finite),
+    "epsilon_n": st.floats(0, 1, **finite),
+    "max_age": st.integers(1, 8),
+    "max_units": st.one_of(st.none(), st.integers(2, 12)),
+    "init": st.sampled_from(["sample", "uniform"]),
+})
+
+
+@st.composite
+def growing_filters(draw):
+    kind = draw(st.sampled_from(["gng", "gwr"]))
+    params = draw(gng_params if kind == "gng" else gwr_params)
+    if kind == "gwr":
+        firing = draw(stanley_params())
+        params["firing"] = novelty.StanleySynapse(**firing)
+    synapse = novelty.StanleySynapse(**draw(stanley_params()))
+    clusterer = novelty.registry.clusterers.make(kind, **params)
+    return HabituatingFilter(clusterer=clusterer, synapse=synapse,
+                             stimulus=draw(st.floats(0, 2, **finite)),
+                             random_state=draw(st.integers(0, 100)), **draw(rules))
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(det=growing_filters(), data=streams(), split=st.integers(0, 60))
+def test_growing_networks_equal_reference(det, data, split):
+    X, timestamps = data
+    fast, slow = clone(det), clone(det)
+    results = []
+    for model, context in ((fast, contextlib.nullcontext()), (slow, reference_only())):
+        with context:
+            t = None if timestamps is None else timestamps[:split]
+            out = [model.stream(X[:split], timestamps=t)] if split else []
+            if split < len(X):
+                t = None if timestamps is None else timestamps[split:]
+                out.append(model.stream(X[split:], timestamps=t))
+            out.append(np.array([model.score_learn_one(x) for x in X[:3]]))
+            out.append(model.novelty(X))
+            results.append(np.concatenate(out))
+    np.testing.assert_array_equal(results[0], results[1])
+    assert_same_network(fast, slow)
+
+
+@pytest.mark.parametrize("name,params", [
+    ("gng-stanley", {}),
+    ("gng-stanley", {"insertion_interval": 10, "max_age": 4, "synapse__others": "forget"}),
+    ("gwr-novelty", {}),
+    ("gwr-novelty", {"activity_threshold": 0.95, "max_age": 3, "synapse__method": "exact"}),
+    ("gwr-novelty", {"activity_threshold": "auto", "firing_condition": False, "new_unit_wins": True,
+                     "novelty_rule": "mismatch"}),
+    ("gng-stanley", {"insertion_interval": 10, "novelty_rule": "mismatch"}),
+    ("gwr-explore", {}),
+])
+def test_growing_corridor_equals_reference(name, params):
+    X = corridor(3000)
+    fast, slow = novelty.make(name, **params), novelty.make(name, **params)
+    got = np.concatenate([fast.stream(X[:10]), fast.stream(X[10:])])
+    with reference_only():
+        expected = np.concatenate([slow.stream(X[:10]), slow.stream(X[10:])])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_network(fast, slow)
+    assert fast.clusterer_.next_unit_id_ > 2  # units were added (and, with max_age 3, deleted)
+
+
+# ------------------------------------------------- long gaps, extreme scans
+#: elapsed times from one scan to the next: ordinary, just beyond the sub-steps
+#: iterated one by one, a time column in nanoseconds, and far beyond an int64
+GAPS = [1.0, 1.0, 3.5, 1024.0, 1025.0, 1.0, 1e10, 1.0, 1e19, 2.0, 1e300, 1.0]
+
+
+@pytest.mark.parametrize("name", ["hsom", "gng-stanley", "gwr-novelty", "som-wang-hsu"])
+@pytest.mark.parametrize("params", [{}, {"synapse__others": "forget"}])
+def test_long_gaps_kernel_equals_reference_and_efficacy_stays_in_range(name, params):
+    X = np.random.default_rng(5).uniform(size=(len(GAPS), 4))
+    timestamps = np.cumsum(GAPS)
+    fast, slow = novelty.make(name, **params), novelty.make(name, **params)
+    got = fast.stream(X, timestamps=timestamps)
+    with reference_only():
+        expected = slow.stream(X, timestamps=timestamps)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(fast.synapse_.efficacy_, slow.synapse_.efficacy_)
+    y = fast.synapse_.efficacy_
+    assert np.all((y >= fast.resting_novelty) & (y <= 1.0))
+
+
+@pytest.mark.parametrize("name", ["gwr-novelty", "gng-stanley", "hsom"])
+def test_scans_at_the_norm_bound_kernel_equals_reference(name):
+    X = np.random.default_rng(6).normal(size=(60, 4))
+    X *= 0.99e100 / np.linalg.norm(X, axis=1, keepdims=True)  # as far apart as allowed
+    fast, slow = novelty.make(name), novelty.make(name)
+    got = fast.stream(X)
+    with reference_only():
+        expected = slow.stream(X)
+    np.testing.assert_array_equal(got, expected)
+    np.testing.assert_array_equal(fast.clusterer_.weights_, slow.clusterer_.weights_)
+    assert np.all(np.isfinite(fast.clusterer_.weights_))
+    if name != "hsom":
+        assert_same_network(fast, slow)
+
+
+# ------------------------------------------------------- every registered pair
+@st.composite
+def synapse_options(draw, name):
+    """Options of a registered synapse that change its arithmetic (Euler needs slow taus)."""
+    method = draw(st.sampled_from(["euler", "exact"]))
+    options = {"method": method, "others": draw(st.sampled_from(["hold", "forget"])),
+               "tau_forget": draw(st.one_of(st.none(), st.floats(6.0, 40, **finite)))}
+    if name == "wang-hsu":
+        options["beta"] = draw(st.floats(0, 2, **finite))
+        options["gamma"] = draw(st.floats(0, 0.5, **finite))
+        options["tau_winner"] = draw(st.floats(3.1 if method == "euler" else 0.5, 30, **finite))
+    else:
+        options["tau_winner"] = draw(st.floats(1.05 if method == "euler" else 0.1, 30, **finite))
+    return options
+
+
+CLUSTERERS = registry.clusterers.names()
+SYNAPSES = registry.synapses.names()
+
+
+@pytest.mark.parametrize("synapse_name", SYNAPSES)
+@pytest.mark.parametrize("clusterer_name", CLUSTERERS)
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data(), stream=streams(max_features=20), stimulus=st.floats(0, 1, **finite))
+def test_every_registered_pair_equals_reference(clusterer_name, synapse_name, data, stream,
+                                                stimulus):
+    """States, winners, distances and novelty after a stream (growth and removal included)."""
+    X, timestamps = stream
+    options = data.draw(synapse_options(synapse_name))
+    clusterer = registry.clusterers.make(clusterer_name)
+    if clusterer_name in ("gng", "gwr"):
+        clusterer.set_params(max_age=data.draw(st.integers(1, 6)))
+    if clusterer_name == "gng":
+        clusterer.set_params(insertion_interval=data.draw(st.integers(1, 10)))
+    if clusterer_name == "gwr":
+        clusterer.set_params(activity_threshold=data.draw(st.floats(0, 1, **finite)),
+                             new_unit_wins=data.draw(st.booleans()),
+                             firing_condition=data.draw(st.booleans()))
+    synapse = registry.synapses.make(synapse_name, **options)
+    clusterer.initialize(X, data.draw(st.integers(0, 10)))
+    synapse.initialize(clusterer.n_units_)
+    dt = np.ones(len(X)) if timestamps is None else np.diff(timestamps, prepend=timestamps[0])
+    (fast_c, fast_s), (slow_c, slow_s) = both(clusterer, synapse)
+    d_fast, d_slow = np.empty(len(X)), np.empty(len(X))
+    expected, expected_winners = reference_learn(slow_c, slow_s, X, dt, stimulus, d_slow)
+    got, winners = kernel_learn(fast_c, fast_s, X, dt, stimulus, d_fast)
+    np.testing.assert_array_equal(winners, expected_winners)
+    np.testing.assert_array_equal(d_fast, d_slow)
+    np.testing.assert_array_equal(got, expected)
+    assert_same_state(fast_c, slow_c)
+    assert_same_state(fast_s, slow_s)
+
+
+def test_every_registered_component_declares_its_kernel_fully():
+    """Every parameter reaches the steps or is declared not to change what is learned."""
+    for registry_ in (registry.clusterers, registry.synapses):
+        for name in registry_.names():
+            component = registry_.make(name)
+            spec = type(component).__dict__["_kernel"]
+            params = {p.split(".")[0].rstrip("_") for p in spec.params}
+            assert set(component.get_params()) <= params | set(spec.ignores), name
+            assert not set(spec.ignores) & set(spec.params), name
+
+
+def test_path_says_which_loop_runs(monkeypatch):
+    root = Path(__file__).resolve().parents[2]
+    monkeypatch.syspath_prepend(str(root / "examples" / "novelty-plugin-example" / "src"))
+    from novelty_plugin_example import LeaderClusterer  # declares no compiled steps
+
+    class MySOM(novelty.SOM):  # may change the arithmetic: not compiled unless it says so
+        pass
+
+    X = corridor(50)
+    assert novelty.make("hsom").fit(X).compiled_ == "compiled"
+    for clusterer in (MySOM(n_rows=2, n_columns=2), LeaderClusterer()):
+        det = HabituatingFilter(clusterer=clusterer).fit(X)
+        assert det.compiled_.startswith("reference (") and type(clusterer).__name__ in det.compiled_
+        assert _kernels.learner(det.clusterer_, det.synapse_, learn_stream) is None
+    gwr = HabituatingFilter(clusterer=GrowWhenRequired(firing="wang-hsu")).fit(X)
+    assert gwr.compiled_.startswith("reference (")
+    with reference_only():
+        assert novelty.make("hsom").fit(X).compiled_ == "reference (NOVELTY_NO_KERNELS)"
+    hsom = novelty.make("hsom").fit(X)
+    hsom.clusterer_.weights_ = np.asfortranarray(hsom.clusterer_.weights_)
+    got = hsom.stream(X)  # a layout the driver does not take is copied in and out
+    ref = novelty.make("hsom").fit(X)
+    with reference_only():
+        np.testing.assert_array_equal(got, ref.stream(X))
+    assert_same_filter(hsom, ref)
