@@ -187,10 +187,12 @@ def driver_for(c_steps: str, s_steps: str, c_class: type, s_class: type, W, c_ar
                s_arrays) -> Compiled:
     """The compiled driver of a pair for arrays of these types (one object per pair and
     signature, per process)."""
-    sig = signature(W, c_arrays, s_arrays)
-    key = (c_steps, s_steps, sig)
+    key = (c_steps, s_steps, W.dtype.char, W.ndim,
+           *[(a.dtype.char, a.ndim) for a in c_arrays], None,
+           *[(a.dtype.char, a.ndim) for a in s_arrays])
     compiled = _drivers.get(key)
     if compiled is None:
+        sig = signature(W, c_arrays, s_arrays)
         label = f"{c_class.__name__} x {s_class.__name__}"
         source = _source(c_steps, s_steps, label, sig, len(s_arrays))
         h = hashlib.sha256(source.encode() + _package_digest().encode())

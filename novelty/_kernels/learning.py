@@ -15,6 +15,7 @@ again.
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Callable
 
 import numpy as np
@@ -98,13 +99,17 @@ def _set(component, names, arrays) -> None:
 
 def run(clusterer, synapse, X: np.ndarray, dt: np.ndarray, stimulus: float,
         distances: np.ndarray | None = None, winners: np.ndarray | None = None,
-        state: tuple | None = None) -> np.ndarray:
+        state: tuple | None = None, compiled=None) -> np.ndarray:
     """Learn the rows of ``X`` compiled; return their novelty (the winners' efficacies).
 
     ``distances`` and ``winners`` (int64), if given, receive each row's squared
     distance to its winner and the winner's row (at the time of the row).
+    ``state`` and ``compiled``: what :func:`ready` and :func:`compiled_for` answer
+    for the pair now, if known.
     """
-    c_spec, s_spec, W, c_arrays, s_arrays, counters = state or ready(clusterer, synapse)
+    state = state or ready(clusterer, synapse)
+    c_spec, s_spec, W, c_arrays, s_arrays, counters = state
+    drive = (compiled or compiled_for(clusterer, synapse, state)).module.drive
     X, dt = _c(X), _c(dt)
     m = X.shape[0]
     novelty = np.empty(m)
@@ -116,22 +121,21 @@ def run(clusterer, synapse, X: np.ndarray, dt: np.ndarray, stimulus: float,
     cp, sp = pack(clusterer), pack(synapse)
     n = W.shape[0]
     start = 0
+    stopped = False  # the driver stopped for want of room
     while True:
         plain = _plain(W) and all(_plain(a) for a in c_arrays + s_arrays)
-        cap = W.shape[0]
-        if not plain or (start and n == cap):  # copies, with room for what stopped the driver
-            cap = n + max(1, min(m - start, max(n, 16))) if start else n
+        if not plain or stopped:  # copies, with room for what stopped the driver
+            cap = n + max(1, min(m - start, max(n, 16))) if stopped else n
             (W,) = _roomy([W], [False], n, cap)
             c_arrays = _roomy(c_arrays, c_square, n, cap)
             s_arrays = _roomy(s_arrays, s_square, n, cap)
-        driver = driver_for(c_spec.steps, s_spec.steps, type(clusterer), type(synapse), W,
-                            c_arrays, s_arrays).module
-        done, n = driver.drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp,
+        done, n = drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp,
                                X[start:], dt[start:], float(stimulus), n, plan, rows[start:],
                                novelty[start:], d[start:])
         start += done
         if start >= m:
             break
+        stopped = True
     (W,) = _trimmed([W], [False], n)
     clusterer.weights_ = W
     _set(clusterer, c_spec.arrays, _trimmed(c_arrays, c_square, n))
@@ -162,9 +166,10 @@ def learner(clusterer, synapse, reference: Callable) -> Callable | None:
     """
     if disabled():
         return None
-    compiled = compiled_for(clusterer, synapse)
+    state = ready(clusterer, synapse)
+    compiled = compiled_for(clusterer, synapse, state)
     if compiled is None:
         return None
     if compiled.module is not None or compiled.get() is not None:
-        return run
+        return partial(run, state=state, compiled=compiled)
     return handing_over(compiled, run, reference) if compiled.compiling else None

@@ -29,6 +29,8 @@ def spec_of(component) -> KernelSpec | None:
 
 def attribute(component, name: str):
     """``component.<name>``; a dotted name reaches into nested components."""
+    if "." not in name:
+        return getattr(component, name)
     for part in name.split("."):
         component = getattr(component, part)
     return component

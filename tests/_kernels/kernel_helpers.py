@@ -35,7 +35,7 @@ def kernel_learn(clusterer, synapse, X, dt, stimulus, distances=None):
     """The pair's compiled driver (waited for), also returning the winner of each row."""
     assert _kernels.wait(clusterer, synapse) is not None
     kernel = _kernels.learner(clusterer, synapse, learn_stream)
-    assert kernel is _kernels.learning.run
+    assert getattr(kernel, "func", None) is _kernels.learning.run
     winners = np.empty(X.shape[0], dtype=np.int64)
     out = kernel(clusterer, synapse, X, dt, stimulus, distances=distances, winners=winners)
     return out, winners

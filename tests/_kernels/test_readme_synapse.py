@@ -38,4 +38,4 @@ def test_the_readme_synapse_learns_compiled_as_the_reference(tmp_path, monkeypat
         expected = slow.stream(X[1:])
     np.testing.assert_array_equal(got, expected)
     assert_same_filter(fast, slow)
-    assert got[0] == 1.0 and got.min() < 0.1  # it does habituate
+    assert np.all(got <= 1.0) and got.min() < 0.1  # it does habituate
