@@ -1,7 +1,8 @@
 """Online k-means in the filter's compiled loop (see :mod:`novelty._kernels.drivers`).
 
-``state`` is ``(counts_,)``; ``p`` the vector of ``OnlineKMeans._kernel.params``
-(a learning rate of 0 stands for ``"count"``, which no constant rate is).
+``state`` is ``(counts_, unit_ids_)``, ``counters`` ``(next_unit_id_,)``; ``p``
+the vector of ``OnlineKMeans._kernel.params`` (a learning rate of 0 stands for
+``"count"``, which no constant rate is).
 """
 
 from __future__ import annotations
@@ -11,7 +12,10 @@ from ._graph_steps import nearest
 from .base import move_towards
 from .kmeans import OnlineKMeans
 
-LR = OnlineKMeans._kernel.params.index("learning_rate")
+_P = OnlineKMeans._kernel.params
+N_CLUSTERS, LR, INIT = (_P.index(name) for name in ("n_clusters", "learning_rate", "init"))
+FIRST = OnlineKMeans._parameter_rules["init"].values.index("first")
+NEXT_ID = OnlineKMeans._kernel.counters.index("next_unit_id_")
 
 _move = compiled(move_towards)
 
@@ -24,14 +28,22 @@ def match(d, n, state, counters, p, nb):
 
 @step
 def room(d, winner, n, state, counters, p):
-    """k-means never grows."""
-    return 0
+    """One unit while ``init="first"`` places the first distinct inputs."""
+    return 1 if p[INIT] == FIRST and n < p[N_CLUSTERS] and d[winner] > 0.0 else 0
 
 
 @step
 def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
-    """OnlineKMeans.adapt: the winner moves to the running mean of its inputs (or by a constant rate)."""
-    counts = state[0]
+    """OnlineKMeans.adapt: an input placed as a unit of its own (``init="first"``), or the
+    winner moves to the running mean of its inputs (or by a constant rate)."""
+    counts, ids = state
+    if room(d, winner, n, state, counters, p):
+        for f in range(WT.shape[0]):
+            WT[f, n] = x[f]
+        counts[n] = 1
+        ids[n] = counters[NEXT_ID]
+        counters[NEXT_ID] += 1
+        return n + 1, 0, 1, True
     counts[winner] += 1
     rate = 1.0 / counts[winner] if p[LR] == 0.0 else p[LR]
     for f in range(WT.shape[0]):

@@ -101,9 +101,11 @@ class OnlineKMeans(Clusterer):
 
     _kernel = KernelSpec(
         steps="novelty.clusterers._kmeans_steps",
-        params=("learning_rate",),  # "count" packs as 0, which no constant rate is
-        arrays=("counts_",),
-        ignores=("n_clusters", "init", "init_range"),
+        # "count" packs as 0, which no constant rate is; init: only "first" changes learning
+        params=("n_clusters", "learning_rate", "init"),
+        arrays=("counts_", "unit_ids_"),
+        counters=("next_unit_id_",),
+        ignores=("init_range",),
     )
 
     def __init__(self, n_clusters=10, learning_rate="count", init="sample", init_range=(0.0, 1.0)):

@@ -293,6 +293,9 @@ def test_every_registered_pair_equals_reference(clusterer_name, synapse_name, da
         clusterer.set_params(max_age=data.draw(st.integers(1, 6)))
     if clusterer_name == "gng":
         clusterer.set_params(insertion_interval=data.draw(st.integers(1, 10)))
+    if clusterer_name == "online-kmeans":
+        clusterer.set_params(init=data.draw(st.sampled_from(["sample", "first"])),
+                             n_clusters=data.draw(st.integers(1, 8)))
     if clusterer_name == "gwr":
         clusterer.set_params(activity_threshold=data.draw(st.floats(0, 1, **finite)),
                              new_unit_wins=data.draw(st.booleans()),
@@ -356,3 +359,19 @@ def test_path_says_which_loop_runs(monkeypatch):
     with reference_only():
         np.testing.assert_array_equal(got, ref.stream(X))
     assert_same_filter(hsom, ref)
+
+
+@pytest.mark.parametrize("n_features", [1, 3, 7, 8, 9, 16, 24, 64, 127, 128, 129, 200, 300])
+def test_distances_follow_numpy_summation(n_features):
+    """The drivers' squared distances equal ``((W - x) ** 2).sum(axis=1)`` bit for bit."""
+    rng = np.random.default_rng(n_features)
+    X = rng.uniform(-1, 1, (40, n_features)) * rng.choice([1e-3, 1.0, 1e3], (40, n_features))
+    clusterer = registry.clusterers.make("online-kmeans", n_clusters=13).initialize(X, 0)
+    synapse = registry.synapses.make("stanley").initialize(13)
+    (fast_c, fast_s), (slow_c, slow_s) = both(clusterer, synapse)
+    d_fast, d_slow = np.empty(len(X)), np.empty(len(X))
+    expected, expected_winners = reference_learn(slow_c, slow_s, X, np.ones(len(X)), 1.0, d_slow)
+    got, winners = kernel_learn(fast_c, fast_s, X, np.ones(len(X)), 1.0, d_fast)
+    np.testing.assert_array_equal(winners, expected_winners)
+    np.testing.assert_array_equal(d_fast, d_slow)
+    assert_same_state(fast_c, slow_c)
