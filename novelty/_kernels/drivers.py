@@ -152,16 +152,18 @@ _sources_digest: str | None = None
 
 
 def _package_digest() -> str:
-    """A hash of the package's own compiled code: kernels, clusterers, synapses."""
+    """A hash of the package's own compiled code: kernels, clusterers, synapses, the jit options."""
     global _sources_digest
     if _sources_digest is None:
         root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
         h = hashlib.sha256()
+        files = [os.path.join(root, "_jit.py")]
         for sub in ("_kernels", "clusterers", "habituation"):
-            for name in sorted(os.listdir(os.path.join(root, sub))):
-                if name.endswith(".py"):
-                    with open(os.path.join(root, sub, name), "rb") as f:
-                        h.update(name.encode() + b"\0" + f.read())
+            files += [os.path.join(root, sub, name) for name in sorted(os.listdir(os.path.join(root, sub)))
+                      if name.endswith(".py")]
+        for path in files:
+            with open(path, "rb") as f:
+                h.update(os.path.basename(path).encode() + b"\0" + f.read())
         _sources_digest = h.hexdigest()
     return _sources_digest
 
