@@ -1,4 +1,5 @@
-"""The README's new synapse (``fading.py``) runs compiled inside hsom's map, as the reference does."""
+"""The drivers compose a plugin's steps: the README's new synapse (``fading.py``) runs compiled
+inside hsom's map, as the reference does."""
 
 from __future__ import annotations
 
