@@ -180,7 +180,6 @@ ACROSS = {
     "test_layout.py": "this file: the layout of the repository",
     "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",
     "test_plugin.py": "a third-party plugin package, listed and benchmarked",
-    "test_kernels.py": "the compiled kernels against the reference (being reorganised)",
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
 }
