@@ -218,7 +218,8 @@ def pair_status(clusterer: str, synapse: str, X: np.ndarray) -> dict:
     from novelty.filter import HabituatingFilter
 
     det = HabituatingFilter(clusterer=clusterer, synapse=synapse).fit(X[:2])
-    compiled = _kernels.learner(det.clusterer_, det.synapse_) is not None
+    compiled = (_kernels.wait(det.clusterer_, det.synapse_) is not None
+                and det.compiled_ == "compiled")
     fast, slow = copy.deepcopy(det), copy.deepcopy(det)
     got = fast.stream(X)
     with reference_loops():
