@@ -28,6 +28,11 @@ Guarantees the base class gives every detector:
   calls a NaN normal;
 - calls on one detector from several threads run one at a time (a lock per
   detector), so threads never see or leave half-updated state.
+
+The base class is one module although it is long (a third of its lines
+document the conventions): its entry points make the same checks in the
+same order, those that learn build a first model aside before adopting it,
+and read side by side they show that each keeps the guarantees above.
 """
 
 from __future__ import annotations

@@ -26,6 +26,10 @@ the metadata is at most :data:`MAX_META_BYTES`; and no more bytes are read
 in all than the file holds (members that overlap are refused). :func:`save`
 reads the file back with the same checks before moving it into place, so no
 file is ever written that :func:`load` refuses.
+
+The format is one module although it is a little over 300 lines: writing
+and reading are each other's inverse, and :func:`save` runs every check of
+:func:`load`, so the two are read together.
 """
 
 from __future__ import annotations

@@ -17,6 +17,11 @@ feed a registry, in this order of precedence:
 Duplicate names are refused unless ``replace=True``; an unknown name is
 answered with the close matches and the list of known names; an unknown
 parameter with the valid ones.
+
+The registries are one module although it is long: the :class:`Registry`
+class, the four registries made from it and the two helpers over them are
+the one place a name becomes a component, and the built-in names read best
+beside the rules that look them up.
 """
 
 from __future__ import annotations
