@@ -275,8 +275,17 @@ def synapse_options(draw, name):
     return options
 
 
-CLUSTERERS = registry.clusterers.names()
-SYNAPSES = registry.synapses.names()
+def _declares_kernel(registry_, name) -> bool:
+    return "_kernel" in vars(type(registry_.make(name)))
+
+
+# Registered components that declare compiled steps (the package's own; a plugin's
+# when it does) must equal the reference; the others (an installed plugin's, such as
+# the example's "leader") must run the reference and say so.
+CLUSTERERS = [n for n in registry.clusterers.names() if _declares_kernel(registry.clusterers, n)]
+SYNAPSES = [n for n in registry.synapses.names() if _declares_kernel(registry.synapses, n)]
+UNDECLARED = [(r, n) for r in (registry.clusterers, registry.synapses) for n in r.names()
+              if not _declares_kernel(r, n)]
 
 
 @pytest.mark.parametrize("synapse_name", SYNAPSES)
@@ -323,10 +332,29 @@ def test_every_registered_pair_equals_reference(clusterer_name, synapse_name, da
         assert_same_state(fast_s, slow_s)
 
 
+def test_the_package_compiles_every_component_it_registers():
+    for registry_ in (registry.clusterers, registry.synapses):
+        own = [n for n in registry_.names()
+               if registry_.get(n).__module__.startswith("novelty.")]
+        assert own and all(_declares_kernel(registry_, n) for n in own), registry_.kind
+
+
+@pytest.mark.parametrize("registry_, name", UNDECLARED or [pytest.param(None, None, marks=pytest.mark.skip(
+    reason="no registered component without compiled steps (the example plugin is not installed)"))])
+def test_a_registered_component_without_compiled_steps_runs_the_reference(registry_, name):
+    X = corridor(30)
+    part = "clusterer" if registry_ is registry.clusterers else "synapse"
+    det = HabituatingFilter(**{part: name}).fit(X)
+    assert det.compiled_.startswith("reference (")
+    assert _kernels.learner(det.clusterer_, det.synapse_, learn_stream) is None
+
+
 def test_every_registered_component_declares_its_kernel_fully():
     """Every parameter reaches the steps or is declared not to change what is learned."""
     for registry_ in (registry.clusterers, registry.synapses):
         for name in registry_.names():
+            if not _declares_kernel(registry_, name):
+                continue  # runs the reference (tested above)
             component = registry_.make(name)
             spec = type(component).__dict__["_kernel"]
             params = {p.split(".")[0].rstrip("_") for p in spec.params}
