@@ -5,7 +5,9 @@ components' own defaults (documented in their modules), except that the
 growing networks (GNG, GWR) start from units drawn uniformly in [0, 1]^d
 (``init="uniform"``: the inputs are scaled sonar readings) instead of rows
 of the first batch, so that streaming scan by scan and in batches give the
-same novelty. Any parameter goes to the part that takes it, as
+same novelty; ``kmeans-stanley`` places its units on the first distinct
+scans learned (``init="first"``), which is the same both ways too. Any
+parameter goes to the part that takes it, as
 :meth:`~novelty.filter.HabituatingFilter.from_params` does, e.g.
 ``novelty.make("gwr-wang-hsu", activity_threshold=0.9, beta=1.5)``.
 ``hsom`` (the paper's detector) lives in :mod:`novelty.filter`.

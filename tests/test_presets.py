@@ -201,3 +201,16 @@ def test_gwr_explore_flags_a_new_feature_then_habituates_to_it(name, seed, d):
         det.stream(familiar(30))
     assert at_feature[0] > elsewhere[0], "flagged at first sight"
     assert at_feature[2] < at_feature[0], "less novel at the third exposure"
+
+
+@pytest.mark.parametrize("name", HABITUATING)
+def test_a_repeated_new_scan_grows_familiar_with_each_exposure(name, opened_door):
+    """One scan of the opened door, never seen in training, presented 30 times while learning."""
+    train, runs = opened_door
+    X, at_door = runs[0]
+    scan = X[at_door][len(X[at_door]) // 2]
+    det = novelty.make(name)
+    det.stream(train)
+    out = det.stream(np.repeat(scan[None, :], 30, axis=0))
+    assert np.all(np.diff(out) <= 0), out
+    assert out[-1] < out[0] / 2, out
