@@ -106,4 +106,5 @@ rules = st.sampled_from([
     {},
     {"novelty_rule": "mismatch", "calibration_scans": 7},
     {"novelty_rule": "mismatch", "match_scale": 0.3},
+    {"novelty_rule": "mismatch", "match_scale": "scott", "calibration_scans": 7},
 ])

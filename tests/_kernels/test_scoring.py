@@ -215,7 +215,7 @@ def corridor(n_scans, n_features=16, seed=0):
 
 @pytest.mark.parametrize("clusterer", [
     SOM(), GrowingNeuralGas(), GrowWhenRequired(), OnlineKMeans(),
-    SOM(n_rows=1, n_columns=1),
+    SOM(n_rows=1, n_columns=1), OnlineKMeans(n_clusters=100, init="first"),
 ])
 @pytest.mark.parametrize("synapse", ["stanley", "wang-hsu"])
 def test_every_nearest_unit_clusterer_scores_as_match(clusterer, synapse):
