@@ -5,8 +5,8 @@ components' own defaults (documented in their modules), except that the
 growing networks (GNG, GWR) start from units drawn uniformly in [0, 1]^d
 (``init="uniform"``: the inputs are scaled sonar readings) instead of rows
 of the first batch, so that streaming scan by scan and in batches give the
-same novelty; ``kmeans-stanley`` places its units on the first distinct
-scans learned (``init="first"``), which is the same both ways too. Any
+same novelty; ``kmeans-stanley`` places its units on the scans learned
+(``init="first"``), which is the same both ways too. Any
 parameter goes to the part that takes it, as
 :meth:`~novelty.filter.HabituatingFilter.from_params` does, e.g.
 ``novelty.make("gwr-wang-hsu", activity_threshold=0.9, beta=1.5)``.
@@ -43,11 +43,12 @@ _GROWING = {"clusterer__init": "uniform"}
 
 _MISMATCH = {"novelty_rule": "mismatch"}
 
-#: k-means as a novelty filter's clusterer (ours): 100 units placed on the first
-#: distinct scans (MacQueen's start, the same scan by scan and in batches), each
-#: the running mean of what it wins; the match scale a Parzen window would take
-_KMEANS_NOVELTY = {**_MISMATCH, "n_clusters": 100, "init": "first", "learning_rate": "count",
-                   "match_scale": "scott"}
+#: k-means as a novelty filter's clusterer (ours): a unit placed on each scan
+#: farther than the match scale from every unit (up to 400; the same scan by scan
+#: and in batches), each the running mean of what it wins; the match scale a
+#: Parzen window would take
+_KMEANS_NOVELTY = {**_MISMATCH, "n_clusters": 400, "init": "first", "placement_radius": "auto",
+                   "learning_rate": "count", "match_scale": "scott"}
 
 #: GWR as a novelty detector (ours): a unit for every input farther than the
 #: calibrated radius, which then stands for that input as its winner
@@ -201,16 +202,21 @@ def hsom_mismatch(**params) -> HabituatingFilter:
 
 
 def kmeans_stanley(**params) -> HabituatingFilter:
-    """Online k-means, 100 units on the first distinct scans, Stanley synapses; mismatch at Scott's scale (ours).
+    """Online k-means with Stanley synapses, a unit for each scan beyond Scott's scale (ours).
 
     The simplest clusterer (``online-kmeans``, MacQueen 1967) in a novelty
-    filter with Stanley synapses with the paper's values: ``n_clusters=100``
-    units placed on the first 100 distinct scans learned
-    (``init="first"``, MacQueen's start), each the running mean of the
-    scans it wins (``learning_rate="count"``); scored by habituation x
-    mismatch (``novelty_rule="mismatch"``) with sigma Scott's bandwidth of
-    the first 200 scans (``match_scale="scott"``). The novelty of a scan is
-    low only when it is within about a Parzen bandwidth of a unit that has
-    won often.
+    filter with Stanley synapses with the paper's values. Its units are
+    placed on the scans themselves (``init="first"``): a scan farther than
+    the match scale sigma from every unit becomes a unit
+    (``placement_radius="auto"``, Hartigan's leader rule), up to
+    ``n_clusters=400``; any other scan is learned by its winner, each unit
+    the running mean of the scans it wins (``learning_rate="count"``). The
+    novelty is habituation x mismatch (``novelty_rule="mismatch"``) with
+    sigma Scott's bandwidth of the first 200 scans (``match_scale="scott"``,
+    the bandwidth a Parzen window on them would take): low only within
+    about a bandwidth of a unit that has won often. A scan that recurs gets
+    a unit of its own at its first exposure and habituates from there.
+    ``n_clusters=100, placement_radius=0`` is MacQueen's start (the first
+    100 distinct scans).
     """
     return _compose("online-kmeans", "stanley", params, _KMEANS_NOVELTY)

@@ -13,7 +13,8 @@ from .base import move_towards
 from .kmeans import OnlineKMeans
 
 _P = OnlineKMeans._kernel.params
-N_CLUSTERS, LR, INIT = (_P.index(name) for name in ("n_clusters", "learning_rate", "init"))
+N_CLUSTERS, LR, INIT, RADIUS = (_P.index(name) for name in ("n_clusters", "learning_rate", "init",
+                                                              "placement_radius_"))
 FIRST = OnlineKMeans._parameter_rules["init"].values.index("first")
 NEXT_ID = OnlineKMeans._kernel.counters.index("next_unit_id_")
 
@@ -28,8 +29,9 @@ def match(d, n, state, counters, p, nb):
 
 @step
 def room(d, winner, n, state, counters, p):
-    """One unit while ``init="first"`` places the first distinct inputs."""
-    return 1 if p[INIT] == FIRST and n < p[N_CLUSTERS] and d[winner] > 0.0 else 0
+    """One unit while ``init="first"`` places inputs farther than the placement radius."""
+    r = p[RADIUS]
+    return 1 if p[INIT] == FIRST and n < p[N_CLUSTERS] and d[winner] > 0.0 and d[winner] > r * r else 0
 
 
 @step

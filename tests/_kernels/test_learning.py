@@ -303,8 +303,10 @@ def test_every_registered_pair_equals_reference(clusterer_name, synapse_name, da
     if clusterer_name == "gng":
         clusterer.set_params(insertion_interval=data.draw(st.integers(1, 10)))
     if clusterer_name == "online-kmeans":
-        clusterer.set_params(init=data.draw(st.sampled_from(["sample", "first"])),
-                             n_clusters=data.draw(st.integers(1, 8)))
+        init = data.draw(st.sampled_from(["sample", "first"]))
+        clusterer.set_params(init=init, n_clusters=data.draw(st.integers(1, 8)),
+                             placement_radius=data.draw(st.sampled_from([0.0, 0.5, 2.0]))
+                             if init == "first" else 0.0)
     if clusterer_name == "gwr":
         clusterer.set_params(activity_threshold=data.draw(st.floats(0, 1, **finite)),
                              new_unit_wins=data.draw(st.booleans()),

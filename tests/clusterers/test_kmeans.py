@@ -83,3 +83,54 @@ def test_online_kmeans_first_state_checks():
     sampled.counts_[:] = 0
     with pytest.raises(StateError, match="at least 1"):
         sampled._check_state()
+
+
+def test_online_kmeans_placement_radius_by_hand():
+    km = OnlineKMeans(n_clusters=3, init="first", placement_radius=1.5).initialize(np.zeros((1, 1)))
+    growths = [km.learn_one(np.array([x]))[1].added for x in (0.0, 1.0, 2.0, 4.0, 10.0, 20.0)]
+    # 1 and 2 are within 1.5 of unit 0 (2 exactly 1.5 from its mean 0.5): learned, not placed;
+    # 4 and 10 are placed; 20 comes when the three units are there
+    assert growths == [0, 0, 0, 1, 1, 0]
+    np.testing.assert_array_equal(km.weights_, [[1.0], [4.0], [15.0]])
+    np.testing.assert_array_equal(km.counts_, [3, 1, 2])
+
+
+def test_online_kmeans_auto_radius_is_the_filters_match_scale():
+    det = novelty.make("habituating", clusterer="online-kmeans", clusterer__init="first",
+                       clusterer__n_clusters=50, clusterer__placement_radius="auto",
+                       novelty_rule="mismatch", match_scale="scott", calibration_scans=30)
+    X = np.random.default_rng(1).uniform(size=(60, 3))
+    det.stream(X[:1])
+    assert det.clusterer_.placement_radius_ == 0.0          # no scale yet: every distinct scan
+    det.stream(X[1:])
+    assert det.clusterer_.placement_radius_ == det.match_scale_ > 0
+    W = det.clusterer_.weights_
+    gaps = np.sqrt(((W[:, None, :] - W[None, :, :]) ** 2).sum(-1))[np.triu_indices(len(W), 1)]
+    assert det.clusterer_.n_units_ < 50 and gaps.min() > 0
+    fixed = novelty.make("habituating", clusterer="online-kmeans", clusterer__init="first",
+                         clusterer__placement_radius="auto", novelty_rule="mismatch", match_scale=0.25)
+    fixed.fit(X)
+    assert fixed.clusterer_.placement_radius_ == 0.25
+
+
+@pytest.mark.parametrize("params,message", [
+    ({"init": "first", "placement_radius": -0.5}, "placement_radius"),
+    ({"init": "first", "placement_radius": "scott"}, "placement_radius"),
+    ({"init": "sample", "placement_radius": 0.5}, "init='first' only"),
+    ({"init": "reservoir"}, "init"),
+])
+def test_online_kmeans_refuses_bad_placement(params, message):
+    km = OnlineKMeans(**params)
+    with pytest.raises(ValueError, match=message):
+        km.initialize(np.zeros((2, 2)))
+    assert not hasattr(km, "weights_")
+
+
+@pytest.mark.parametrize("bad", [-1.0, np.inf, np.nan, True])
+def test_online_kmeans_refuses_a_bad_radius_in_its_state(bad):
+    from novelty._component import StateError
+
+    km = OnlineKMeans(n_clusters=3, init="first", placement_radius=0.5).initialize(np.zeros((1, 2)))
+    km.placement_radius_ = bad
+    with pytest.raises(StateError, match="placement_radius_"):
+        km._check_state()
