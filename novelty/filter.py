@@ -1,5 +1,9 @@
 """The habituating novelty filter: a clusterer composed with a synapse bank.
 
+One module although it is long (about 40% of it documentation): one
+estimator, its reference loop and the hooks that share its state (start,
+calibrate the match scale, learn, score), which read best together.
+
 Marsland, Nehmzow & Shapiro (2000), section 2: each input is presented to a
 clustering network; every unit connects to an output neuron through a
 habituating synapse; the efficacy of the winner's synapse is the novelty of

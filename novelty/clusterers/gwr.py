@@ -1,5 +1,9 @@
 """The Grow-When-Required network of Marsland, Shapiro & Nehmzow (2002).
 
+One module although it is long (nearly half of it documentation): the
+published algorithm's ten steps, our options for novelty and their checks are
+read side by side with the paper; the compiled steps are in ``_gwr_steps``.
+
 A topology-learning network like Growing Neural Gas, but one that adds a unit
 whenever an input is matched badly by a unit that has already learned (fired
 often), instead of at fixed intervals: it grows while the inputs show it

@@ -1,5 +1,9 @@
 """Wang & Hsu's (1990) habituating synapse with long-term memory.
 
+One module although it is long (nearly half of it documentation): the two
+equations, their closed forms and the Euler and exact integrators are checked
+against each other in one place; the compiled steps are in ``_wang_hsu_steps``.
+
 The efficacy ``y`` of a synapse is coupled with a second variable ``z``, the
 *speed of recovery*:
 
