@@ -272,8 +272,11 @@ class HabituatingFilter(NoveltyDetector):
         calibration = self._calibration
         if calibration is None or calibration.full:
             return self._learn_block(X, dt)
-        # Calibrating: one scan at a time, each scored with the scale of the
-        # scans before it, so that any batching gives the same numbers.
+        if not self.clusterer_.uses_match_scale:
+            return self._learn_calibrating(X, dt)
+        # Calibrating a scale the clusterer learns by: one scan at a time, each
+        # learned and scored with the scale of the scans before it, so that any
+        # batching gives the same numbers.
         out = np.empty(X.shape[0])
         i = 0
         while i < X.shape[0] and not calibration.full:
@@ -288,10 +291,34 @@ class HabituatingFilter(NoveltyDetector):
             out[i:] = self._learn_block(X[i:], dt[i:])
         return out
 
+    def _learn_calibrating(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        """Calibrating a scale that only the scoring reads: the block is learned in one call
+        (learning does not depend on the scale), then each scan calibrated is scored with
+        the scale of the scans before it -- the numbers of one scan at a time, without a
+        call per scan."""
+        calibration = self._calibration
+        efficacy, distances = self._learn_raw(X, dt)
+        out = np.empty(X.shape[0])
+        i = 0
+        while i < X.shape[0] and not calibration.full:
+            out[i] = self._combine(efficacy[i : i + 1], distances[i : i + 1])[0]
+            if calibration.add(X[i]):
+                self.match_scale_ = calibration.scale
+            i += 1
+        self.calibration_scans_ = calibration.scans
+        if i < X.shape[0]:
+            out[i:] = self._combine(efficacy[i:], distances[i:])
+        return out
+
     # The hooks below first ask novelty._kernels for a compiled kernel for this
     # (clusterer, synapse) pair; a kernel gives the same results as the
     # reference code after it, which runs when there is none.
     def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        return self._combine(*self._learn_raw(X, dt))
+
+    def _learn_raw(self, X: np.ndarray, dt: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """Learn the rows of ``X``: each row's efficacy novelty and, unless the rule is the
+        efficacy alone, its squared distance to its winner."""
         distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
         kernel = _kernels.learner(self.clusterer_, self.synapse_, learn_stream)
         if kernel is not None:
@@ -300,7 +327,7 @@ class HabituatingFilter(NoveltyDetector):
         else:
             efficacy = learn_stream(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
                                     distances=distances)
-        return self._combine(efficacy, distances)
+        return efficacy, distances
 
     def _combine(self, efficacy: np.ndarray, distances: np.ndarray | None) -> np.ndarray:
         if self.novelty_rule == "efficacy":

@@ -156,6 +156,7 @@ class ScaleCalibration:
         self.quantile = quantile
         self.rule = rule
         self._nearest = nearest_distinct(scans) if rule == "quantile" else None
+        self._scale = self._measure()
 
     def __eq__(self, other) -> bool:
         return (isinstance(other, ScaleCalibration) and self.capacity == other.capacity
@@ -169,6 +170,10 @@ class ScaleCalibration:
     @property
     def scale(self) -> float | None:
         """The scale of the scans collected; None before two distinct scans."""
+        return self._scale
+
+    def _measure(self) -> float | None:
+        # computed once per scan collected (a quantile costs tens of microseconds)
         if self.rule == "scott":
             return scott_scale(self.scans)
         finite = self._nearest[np.isfinite(self._nearest)]
@@ -184,14 +189,13 @@ class ScaleCalibration:
         """Collect ``x`` unless full; return whether the scale changed."""
         if self.full:
             return False
-        before = self.scale
-        if self.rule == "scott":
-            self.scans = np.vstack([self.scans, x[None, :]])
-            return self.scale != before
-        d = _distances(self.scans, x)
-        distinct = d > 0.0
-        np.minimum(self._nearest, np.where(distinct, d, np.inf), out=self._nearest)
-        own = d[distinct].min() if distinct.any() else np.inf
-        self._nearest = np.append(self._nearest, own)
+        before = self._scale
+        if self.rule == "quantile":
+            d = _distances(self.scans, x)
+            distinct = d > 0.0
+            np.minimum(self._nearest, np.where(distinct, d, np.inf), out=self._nearest)
+            own = d[distinct].min() if distinct.any() else np.inf
+            self._nearest = np.append(self._nearest, own)
         self.scans = np.vstack([self.scans, x[None, :]])
-        return self.scale != before
+        self._scale = self._measure()
+        return self._scale != before

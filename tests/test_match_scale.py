@@ -147,3 +147,27 @@ def test_filter_refuses_a_bad_match_scale(bad):
     with pytest.raises(ValueError, match="match_scale"):
         det.fit(np.zeros((3, 2)))
     assert not hasattr(det, "clusterer_")
+
+
+@pytest.mark.parametrize("name, params", [
+    ("hsom", {"novelty_rule": "mismatch"}),
+    ("hsom", {"novelty_rule": "product", "match_scale": "scott"}),
+    ("gng-stanley", {}),
+    ("gwr-explore", {}),  # its clusterer learns by the scale: the one-scan-at-a-time path
+    ("kmeans-stanley", {}),
+])
+def test_calibrating_in_one_call_equals_one_scan_at_a_time(name, params):
+    """Learning a block while the scale calibrates gives what scan-by-scan learning gives,
+    novelty and state, whichever path the clusterer takes."""
+    import novelty
+
+    X = np.random.default_rng(3).uniform(size=(90, 5))
+    whole = novelty.make(name, calibration_scans=50, **params)
+    out = whole.stream(X)
+    single = novelty.make(name, calibration_scans=50, **params)
+    one_by_one = np.array([single.score_learn_one(x) for x in X])
+    assert one_by_one.tobytes() == out.tobytes()
+    assert single.match_scale_ == whole.match_scale_
+    np.testing.assert_array_equal(single.calibration_scans_, whole.calibration_scans_)
+    np.testing.assert_array_equal(single.synapse_.efficacy_, whole.synapse_.efficacy_)
+    np.testing.assert_array_equal(single.clusterer_.weights_, whole.clusterer_.weights_)
