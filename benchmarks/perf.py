@@ -126,18 +126,7 @@ def hsom_stream(X: np.ndarray, n_rows: int = 10, reference: bool = False):
     import novelty
 
     det = novelty.make("hsom", n_rows=n_rows, n_columns=n_rows).fit(X[:1])
-    _driver_ready(det)
-
-    def setup():
-        fresh = copy.deepcopy(det)
-        if reference:
-            def run():
-                with reference_loops():
-                    return fresh.stream(X)
-            return run
-        return lambda: fresh.stream(X)
-
-    return setup
+    return _stream_case(det, X, reference)
 
 
 def _minisom(n_rows: int, n_features: int, **kwargs):
@@ -200,6 +189,12 @@ def pair_stream(clusterer: str, synapse: str, X: np.ndarray, reference: bool = F
     from novelty.filter import HabituatingFilter
 
     det = HabituatingFilter(clusterer=clusterer, synapse=synapse).fit(X[:2])
+    return _stream_case(det, X, reference)
+
+
+def _stream_case(det, X: np.ndarray, reference: bool):
+    """A timed case: a fresh copy of ``det`` (its compiled driver made ready) streaming ``X``,
+    through the numpy reference loops if ``reference``."""
     _driver_ready(det)
 
     def setup():

@@ -272,42 +272,29 @@ class HabituatingFilter(NoveltyDetector):
         calibration = self._calibration
         if calibration is None or calibration.full:
             return self._learn_block(X, dt)
-        if not self.clusterer_.uses_match_scale:
-            return self._learn_calibrating(X, dt)
-        # Calibrating a scale the clusterer learns by: one scan at a time, each
-        # learned and scored with the scale of the scans before it, so that any
-        # batching gives the same numbers.
+        # Calibrating: each scan is scored with the scale of the scans before it,
+        # so that any batching gives the same numbers. A clusterer that learns by
+        # the scale (GWR's "auto" radius) learns one scan at a time; any other
+        # learns the block in one call, since its learning does not read the scale.
+        at_once = not self.clusterer_.uses_match_scale
+        if at_once:
+            efficacy, distances = self._learn_raw(X, dt)
         out = np.empty(X.shape[0])
         i = 0
         while i < X.shape[0] and not calibration.full:
-            out[i] = self._learn_block(X[i : i + 1], dt[i : i + 1])[0]
+            if at_once:
+                out[i] = self._combine(efficacy[i : i + 1], distances[i : i + 1])[0]
+            else:
+                out[i] = self._learn_block(X[i : i + 1], dt[i : i + 1])[0]
             if calibration.add(X[i]):
                 self.match_scale_ = calibration.scale
-                if self.clusterer_.uses_match_scale:
+                if not at_once:
                     self.clusterer_.calibrate(self.match_scale_)
             i += 1
         self.calibration_scans_ = calibration.scans
         if i < X.shape[0]:
-            out[i:] = self._learn_block(X[i:], dt[i:])
-        return out
-
-    def _learn_calibrating(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
-        """Calibrating a scale that only the scoring reads: the block is learned in one call
-        (learning does not depend on the scale), then each scan calibrated is scored with
-        the scale of the scans before it -- the numbers of one scan at a time, without a
-        call per scan."""
-        calibration = self._calibration
-        efficacy, distances = self._learn_raw(X, dt)
-        out = np.empty(X.shape[0])
-        i = 0
-        while i < X.shape[0] and not calibration.full:
-            out[i] = self._combine(efficacy[i : i + 1], distances[i : i + 1])[0]
-            if calibration.add(X[i]):
-                self.match_scale_ = calibration.scale
-            i += 1
-        self.calibration_scans_ = calibration.scans
-        if i < X.shape[0]:
-            out[i:] = self._combine(efficacy[i:], distances[i:])
+            out[i:] = (self._combine(efficacy[i:], distances[i:]) if at_once
+                       else self._learn_block(X[i:], dt[i:]))
         return out
 
     # The hooks below first ask novelty._kernels for a compiled kernel for this
