@@ -59,6 +59,7 @@ __all__ = ["NoveltyDetector", "CONTAMINATION"]
 
 #: The rule for every detector's ``contamination`` parameter (as scikit-learn's and PyOD's).
 CONTAMINATION = (Options(("auto",)), Interval(numbers.Real, 0, 0.5, closed="right"))
+_CONTAMINATION_RULES = {"contamination": CONTAMINATION}
 
 # One re-entrant lock per detector, kept outside the instance so that copying,
 # pickling and cloning a detector never meet a lock.
@@ -249,7 +250,7 @@ class NoveltyDetector(OutlierMixin, Component):
     def _validate_params(self) -> None:
         super()._validate_params()
         if hasattr(self, "contamination"):
-            validate_parameters(self, {"contamination": CONTAMINATION})
+            validate_parameters(self, _CONTAMINATION_RULES)
 
     def _check_online(self) -> None:
         if not self.supports_online:

@@ -9,8 +9,12 @@ from __future__ import annotations
 
 import math
 import numbers
+import operator
+import weakref
 from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
 
 __all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters"]
 
@@ -94,11 +98,28 @@ def validate_parameters(owner: Any, rules: dict | None = None) -> None:
 
     Each rule is an :class:`Interval`, :class:`Options`, :class:`Instance`,
     :class:`Bounds` or a tuple of them (any may accept).
+
+    A call on the hot path (every ``stream``) must cost little, and the
+    parameters may have changed since the last call (``set_params``, or an
+    attribute set directly): so the values that passed are remembered, per
+    owner and set of rules, and a parameter is checked again unless it holds
+    the very object that passed, of the same type, and either of a type whose
+    value cannot change (a number, a string, None) or under a rule that reads
+    only the type (:class:`Instance`). A list, for one, or any value under a
+    rule of another kind, is checked every time.
     """
     if rules is None:
         rules = getattr(owner, "_parameter_rules", {})
-    for name, rule in rules.items():
-        value = getattr(owner, name)
+    items = tuple(rules.items())
+    values = tuple([getattr(owner, name) for name, _ in items])
+    types = tuple(map(type, values))
+    passed = _passed(owner, rules, items)
+    if passed is not None and types == passed[1] and all(map(operator.is_, values, passed[0])):
+        return
+    for i, (name, rule) in enumerate(items):
+        value = values[i]
+        if passed is not None and value is passed[0][i] and types[i] is passed[1][i]:
+            continue
         alternatives = rule if isinstance(rule, tuple) else (rule,)
         if not any(alt.accepts(value) for alt in alternatives):
             expected = " or ".join(alt.describe() for alt in alternatives)
@@ -106,3 +127,47 @@ def validate_parameters(owner: Any, rules: dict | None = None) -> None:
                 f"The '{name}' parameter of {type(owner).__name__} must be {expected}. "
                 f"Got {value!r} instead."
             )
+    _remember(owner, rules, items, values, types)
+
+
+#: types whose instances cannot change value: one that passed a rule passes it again
+_IMMUTABLE = frozenset({int, float, str, bool, type(None), np.float64, np.float32, np.int64,
+                        np.int32, np.bool_})
+#: a stand-in, in the memory below, for a value that must be checked every time
+_AGAIN = object()
+
+#: per owner, held weakly (so that copies and pickles never carry it): the id of a rules
+#: dict -> (its items, the values that passed, their types)
+_memory: "weakref.WeakKeyDictionary[Any, dict]" = weakref.WeakKeyDictionary()
+
+
+def _passed(owner: Any, rules: dict, items: tuple) -> tuple | None:
+    try:
+        entry = _memory.get(owner, {}).get(id(rules))
+    except TypeError:  # an owner that cannot be weakly referenced or hashed
+        return None
+    if entry is None or entry[0] != items:  # another dict at that address, or the rules changed
+        return None
+    return entry[1:]
+
+
+def _remember(owner: Any, rules: dict, items: tuple, values: tuple, types: tuple) -> None:
+    kept = tuple(value if _stable(items[i][1], types[i]) else _AGAIN for i, value in enumerate(values))
+    try:
+        entries = _memory.setdefault(owner, {})
+    except TypeError:
+        return
+    if len(entries) > 8:  # rules made afresh for each call: do not grow without bound
+        entries.clear()
+    entries[id(rules)] = (items, kept, types)
+
+
+def _stable(rule, kind: type) -> bool:
+    """Whether a value of type ``kind`` that passed ``rule`` passes it as long as it is the
+    same object: an immutable value under this module's rules, or any value under rules
+    that read only its type (a rule of another kind may read anything: never assumed)."""
+    alternatives = rule if isinstance(rule, tuple) else (rule,)
+    if all(type(alt) is Instance for alt in alternatives):
+        return True
+    return kind in _IMMUTABLE and all(type(alt) in (Interval, Options, Instance, Bounds)
+                                      for alt in alternatives)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import novelty
-from novelty._validation import Bounds, Interval, Options
+from novelty._validation import Bounds, Interval, Options, validate_parameters
 from novelty.registry import clusterers
 
 from .model_state import N_FEATURES, assert_equal_deep, fitted, snapshot
@@ -111,3 +111,97 @@ def test_every_clusterers_initial_range_is_one_check_refusing_booleans(name, bad
                                          r"\(low, high\) of finite floats with low < high\. Got "):
         net.initialize(np.zeros((4, 2)), random_state=0)
     assert not hasattr(net, "weights_")
+
+
+# -------------------------------------- parameters changed between two calls
+@pytest.mark.parametrize("name, bad, message", [
+    ("stimulus", -1.0, r"'stimulus' parameter of HabituatingFilter must be a float in \[0, inf\)"),
+    ("n_epochs", True, r"'n_epochs' parameter of HabituatingFilter must be an int in \[1, inf\)\. Got True"),
+    ("n_epochs", 1.0, r"'n_epochs' parameter of HabituatingFilter must be an int"),
+    ("threshold", float("nan"), r"'threshold' parameter of HabituatingFilter must be a float"),
+    ("novelty_rule", "mismatched", r"'novelty_rule' parameter of HabituatingFilter must be one of"),
+    ("contamination", 0.7, r"'contamination' parameter of HabituatingFilter must be"),
+    ("clusterer", novelty.StanleySynapse(), r"'clusterer' parameter of HabituatingFilter must be a clusterer"),
+])
+@pytest.mark.parametrize("how", ["attribute", "set_params"])
+def test_a_parameter_changed_after_a_checked_call_is_checked_again(name, bad, message, how):
+    # the checks of the calls before remember what passed; a change is still refused
+    det = fitted()
+    X = np.full((2, N_FEATURES), 0.5)
+    for _ in range(2):
+        det.partial_fit(X)
+        det.learn_one(X[0])
+    before = snapshot(det)
+    if how == "attribute":
+        setattr(det, name, bad)
+    else:
+        det.set_params(**{name: bad})
+    for method in ("partial_fit", "stream"):
+        with pytest.raises(ValueError, match=message):
+            getattr(det, method)(X)
+    after = snapshot(det)
+    after["detector"][name] = before["detector"][name]
+    assert_equal_deep(before, after)
+
+
+def test_a_valid_parameter_set_back_passes_and_a_bad_one_again_fails():
+    det = fitted()
+    X = np.full((2, N_FEATURES), 0.5)
+    for value, ok in [(1.0, True), (-1.0, False), (2.0, True), (-1.0, False), (-1.0, False), (1.0, True)]:
+        det.stimulus = value
+        if ok:
+            det.partial_fit(X)
+        else:
+            with pytest.raises(ValueError, match="'stimulus' parameter"):
+                det.partial_fit(X)
+
+
+class _Ranged(novelty.HabituatingFilter):
+    """A detector with a list parameter, which can change without being set again."""
+
+    _parameter_rules = {**novelty.HabituatingFilter._parameter_rules, "window": Bounds()}
+
+    def __init__(self, window=None, **params):
+        super().__init__(**params)
+        self.window = window
+
+
+def test_a_list_changed_in_place_is_checked_again():
+    owner = _Ranged(window=[0.0, 1.0])
+    validate_parameters(owner)
+    validate_parameters(owner)
+    owner.window[1] = -1.0  # the same list, now refused
+    with pytest.raises(ValueError, match=r"The 'window' parameter of _Ranged must be a pair"):
+        validate_parameters(owner)
+
+
+def test_a_rule_of_another_kind_is_asked_every_time():
+    calls = []
+
+    class Counting:
+        def accepts(self, value):
+            calls.append(value)
+            return value != "no"
+
+        def describe(self):
+            return "anything but 'no'"
+
+    owner = _Ranged(window=(0.0, 1.0))
+    owner.kind = "yes"
+    rules = {"kind": Counting(), "window": Bounds()}
+    validate_parameters(owner, rules)
+    validate_parameters(owner, rules)
+    assert calls == ["yes", "yes"]
+    owner.kind = "no"
+    with pytest.raises(ValueError, match=r"'kind' parameter of _Ranged must be anything but 'no'\. Got 'no'"):
+        validate_parameters(owner, rules)
+
+
+def test_changed_rules_are_applied_to_a_value_that_passed_the_old_ones():
+    owner = _Ranged(window=(0.0, 1.0))
+    owner.level = 5
+    rules = {"level": Interval(numbers.Integral, 0, 10)}
+    validate_parameters(owner, rules)
+    rules["level"] = Interval(numbers.Integral, 0, 3)  # the same dict, changed in place
+    with pytest.raises(ValueError, match=r"'level' parameter of _Ranged must be an int in \[0, 3\]"):
+        validate_parameters(owner, rules)

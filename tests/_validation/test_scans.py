@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 from sklearn.exceptions import NotFittedError
 
 import novelty
+from novelty._validation import MAX_SCAN_NORM, check_batch
 
 from .model_state import N_FEATURES, assert_equal_deep, fitted, snapshot
 
@@ -157,3 +158,63 @@ def test_rejected_input_leaves_state_unchanged(X, method, one_at_a_time):
         else:
             call(det, method, X)
     assert_equal_deep(before, snapshot(det))
+
+
+# --------------------------------------------- plain float arrays, taken as they are
+def _as_check_array(X):
+    from sklearn.utils import check_array
+
+    return check_array(X, dtype=np.float64, order="C", ensure_all_finite=False)
+
+
+@pytest.mark.parametrize("make", [
+    lambda X: X,
+    np.asfortranarray,
+    lambda X: np.repeat(X, 2, axis=1)[:, ::2],  # strided
+    lambda X: X.astype(np.float32),
+    lambda X: np.asfortranarray(X.astype(np.float32)),
+    lambda X: X.astype(">f8"),  # not the machine's byte order: the general path
+    lambda X: X.tolist(),
+])
+def test_a_batch_is_what_scikit_learn_would_make_of_it(make):
+    X = make(np.random.default_rng(3).uniform(-2, 2, size=(7, N_FEATURES)))
+    det = fitted()
+    got = check_batch(X, det, N_FEATURES)
+    assert got.dtype == np.float64 and got.flags.c_contiguous
+    np.testing.assert_array_equal(got, _as_check_array(X))
+
+
+def test_a_plain_batch_is_not_copied_and_a_read_only_one_is_not_written():
+    X = np.random.default_rng(4).uniform(size=(5, N_FEATURES))
+    assert check_batch(X, fitted()) is X
+    X.flags.writeable = False
+    det = fitted()
+    det.partial_fit(X)
+    assert check_batch(X, det) is X
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(0.999_998, 1.000_002), min_size=1, max_size=5), st.integers(0, 3))
+def test_scans_near_the_norm_bound_are_refused_exactly_when_a_row_is_above_it(scales, column):
+    # rows of norms about the bound: one sum over the batch may clear it, but the
+    # verdict is the row by row one
+    X = np.zeros((len(scales), N_FEATURES))
+    X[:, column] = np.array(scales) * MAX_SCAN_NORM
+    X[:, (column + 1) % N_FEATURES] = 1e90
+    above = np.flatnonzero(~(np.einsum("ij,ij->i", X, X) <= MAX_SCAN_NORM**2))
+    det = fitted()
+    if above.size:
+        with pytest.raises(ValueError, match=rf"norm above 1e\+100 \(first in row {above[0]}\)"):
+            check_batch(X, det, N_FEATURES)
+    else:
+        assert check_batch(X, det, N_FEATURES) is X
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_a_plain_batch_with_a_bad_value_names_its_first_row(dtype, bad):
+    X = np.full((6, N_FEATURES), 0.5, dtype=dtype)
+    X[4, 2] = bad
+    X[5, 0] = bad
+    with pytest.raises(ValueError, match=r"NaN or infinity \(first in row 4\)"):
+        check_batch(X, fitted(), N_FEATURES)
