@@ -445,17 +445,19 @@ from novelty import _kernels  # the package: the components and scikit-learn, no
 t0 = time.perf_counter()
 import numba
 t1 = time.perf_counter()
+# the batch-scoring kernel first: fitting a detector scores its training scans, which
+# would start compiling it in the background and hide its cost inside the drivers' times
+_kernels._NEAREST.wait()
+t2 = time.perf_counter()
 det = novelty.make("hsom").fit(np.zeros((2, 16)))
 _kernels.wait(det.clusterer_, det.synapse_)  # its pair's learning driver
-t2 = time.perf_counter()
+t3 = time.perf_counter()
 for name in ("gng-stanley", "gwr-novelty"):
     det = novelty.make(name).fit(np.zeros((2, 16)))
     _kernels.wait(det.clusterer_, det.synapse_)
-t3 = time.perf_counter()
-import novelty._kernels._nearest
 t4 = time.perf_counter()
-print(json.dumps({"import_numba": t1 - t0, "compile_or_load": t2 - t1, "growing": t3 - t2,
-                  "scoring": t4 - t3}))
+print(json.dumps({"import_numba": t1 - t0, "scoring": t2 - t1, "compile_or_load": t3 - t2,
+                  "growing": t4 - t3, "scoring_ready": _kernels._NEAREST.module is not None}))
 """
 
 

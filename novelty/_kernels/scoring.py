@@ -6,8 +6,8 @@ is ``((W - x) ** 2).sum(axis=1)`` at the winner; the novelty its efficacy),
 bit for bit, through the compiled :func:`._nearest.nearest` (a float32
 pre-filter with exact float64 re-checks; its docstring derives the bound).
 The batch is cut into chunks of :data:`CHUNK` scans (bounding the kernel's
-scratch whatever the batch) that threads score in parallel: the kernel
-releases the GIL. The number of threads is ``NOVELTY_NUM_THREADS`` when set
+scratch whatever the batch) that threads, the caller's among them, take one
+at a time and score in parallel: the kernel releases the GIL. The number of threads is ``NOVELTY_NUM_THREADS`` when set
 to a positive integer, else the cores this process may use. Scans are
 independent, so the result does not depend on the threads.
 
@@ -27,8 +27,9 @@ from ._pairwise import pairwise_plan
 
 __all__ = ["score", "threads"]
 
-#: scans per kernel call: from two chunks on, threads share the work
-CHUNK = 16384
+#: scans per kernel call: from two chunks on, threads share the work (8192: a chunk is
+#: about 0.4 ms of one core, small enough to share 200,000 scans evenly)
+CHUNK = 8192
 
 _plans: dict[int, np.ndarray] = {}
 _lock = threading.Lock()
@@ -88,19 +89,29 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     plan = _plan(W.shape[1])
     kernel = module.nearest
 
-    def part(lo: int, hi: int) -> None:
-        for a in range(lo, hi, CHUNK):
-            b = min(a + CHUNK, hi)
-            # a read-only or strided batch is copied chunk by chunk
-            kernel(W, y, _contiguous(X[a:b]), rows[a:b], out[a:b], dist[a:b], plan)
-
-    n_threads = min(threads(), n // CHUNK)
+    n_chunks = -(-n // CHUNK)
+    n_threads = min(threads(), n_chunks)
     if n_threads < 2:
-        part(0, n)
+        for a in range(0, n, CHUNK):
+            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist, plan)
         return out
-    bounds = np.linspace(0, n, n_threads + 1).astype(int)
-    pool = _executor(n_threads)
-    jobs = [pool.submit(part, int(a), int(b)) for a, b in zip(bounds[:-1], bounds[1:])]
+    # Chunks are handed out one at a time, as threads come for them: a thread
+    # slowed by another process on its core scores fewer (a fixed share each
+    # would make the whole call wait for the slowest).
+    starts = iter(range(0, n, CHUNK))  # next() on it is atomic (the GIL)
+
+    def work() -> None:
+        for a in starts:
+            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist, plan)
+
+    pool = _executor(n_threads - 1)
+    jobs = [pool.submit(work) for _ in range(n_threads - 1)]
+    work()  # this thread takes chunks too
     for job in jobs:
         job.result()
     return out
+
+
+def _chunk(kernel, W, y, X, a, b, rows, out, dist, plan) -> None:
+    # a read-only or strided batch is copied chunk by chunk
+    kernel(W, y, _contiguous(X[a:b]), rows[a:b], out[a:b], dist[a:b], plan)

@@ -178,6 +178,65 @@ def test_mixed_magnitudes_in_one_batch():
     assert huge.sum() <= n_exact < len(X) // 2
 
 
+# ------------------------------------------------- the pre-filter's bound
+def prefilter_values(W, X, general=False):
+    """The compiled pre-filter's values ``S[j, b]`` for units ``W`` and one block of scans."""
+    module = _kernels._NEAREST.wait()
+    lanes = module.LANES
+    Wm, wn, _ = module.weights32(np.ascontiguousarray(W, dtype=float))
+    XT = np.zeros((W.shape[1], lanes), dtype=np.float32)
+    XT[:, : len(X)] = X.T  # rounded to float32, as the kernel does
+    S = np.empty((W.shape[0], lanes), dtype=np.float32)
+    acc, s1, s2 = (np.empty(lanes, dtype=np.float32) for _ in range(3))
+    arg = np.empty(lanes, dtype=np.int32)
+    prefilter = module._prefilter if general or W.shape[1] != 16 else module._prefilter16
+    prefilter(Wm, wn, XT, S, acc, s1, s2, arg)
+    return S[:, : len(X)], s1[: len(X)], s2[: len(X)], arg[: len(X)]
+
+
+@pytest.mark.parametrize("general", [False, True])
+@pytest.mark.parametrize("n_features", [16, 5, 21])
+@pytest.mark.parametrize("case", ["uniform", "offset", "signs", "subnormal", "tiny", "large"])
+def test_prefilter_values_within_the_bound(case, n_features, general):
+    """|s^_j - (|w_j|^2 - 2 x.w_j)| <= gamma_{n+4}(u) (|w_j|^2 + 2 |x| |w_j|) + A, the module
+    docstring's bound, against exact rational arithmetic; and the least two and the first
+    unit of the least are those of the values."""
+    import math
+    from fractions import Fraction
+
+    from novelty._kernels._nearest import TINY32, U32
+
+    rng = np.random.default_rng(n_features)
+    W = rng.uniform(0, 1, (12, n_features))
+    X = rng.uniform(0, 1, (128, n_features))
+    if case == "offset":  # large common offset: the expanded form cancels
+        W, X = W * 1e-3 + 1e3, X * 1e-3 + 1e3
+    elif case == "signs":
+        W, X = W - 0.5, X - 0.5
+    elif case == "subnormal":  # products and sums below float32's smallest normal
+        W, X = W * 1e-22, X * 1e-22
+    elif case == "tiny":  # the values themselves subnormal in float32
+        W, X = W * 1e-40, X * 1e-40
+    elif case == "large":
+        W, X = W * 1e17, X * 1e17
+    X[:3] = W[:3]  # scans on units
+    S, s1, s2, arg = prefilter_values(W, X, general)
+    n = n_features
+    gamma = (n + 4) * U32 / (1 - (n + 4) * U32)
+    for b, x in enumerate(X):
+        x_norm = math.sqrt(sum(Fraction(v) ** 2 for v in x))
+        for j, w in enumerate(W):
+            exact = sum(Fraction(v) ** 2 for v in w) - 2 * sum(Fraction(a) * Fraction(c)
+                                                               for a, c in zip(x, w))
+            w_norm = math.sqrt(sum(Fraction(v) ** 2 for v in w))
+            r = x_norm + w_norm
+            bound = (gamma * (w_norm ** 2 + 2 * x_norm * w_norm)
+                     + 3 * TINY32 * (math.sqrt(n) * r + 2 * n + 2)) * (1 + 1e-9)  # the norms' rounding
+            assert abs(Fraction(float(S[j, b])) - exact) <= Fraction(bound), (b, j)
+        order = np.argsort(S[:, b], kind="stable")
+        assert arg[b] == order[0] and s1[b] == S[order[0], b] and s2[b] == S[order[1], b]
+
+
 # -------------------------------------------------------------- properties
 @st.composite
 def maps_and_scans(draw):
