@@ -53,6 +53,8 @@ estimators in d dimensions, h_j = s_j n^(-1/(d+4))).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["mismatch_novelty", "product_novelty", "nearest_distinct", "scott_scale", "ScaleCalibration", "RULES"]
@@ -121,6 +123,33 @@ def scott_scale(X: np.ndarray) -> float | None:
     return spread * m ** (-1.0 / (d + 4))
 
 
+def linear_quantile(values: np.ndarray, q: float) -> float:
+    """``np.quantile(values, q)`` (its default, linear interpolation) of a non-empty 1-D array
+    of finite numbers, in numpy's arithmetic, without its general machinery.
+
+    The ``q (m - 1)``-th value of the ``m`` values sorted, interpolated
+    between its neighbours of ranks ``k = floor(q (m - 1))`` and ``k + 1``
+    (Hyndman & Fan's definition 7), the way numpy interpolates: from the
+    nearer neighbour's side, ``b - (b - a)(1 - g)`` when ``g >= 0.5``, else
+    ``a + (b - a) g``. One calibration scan costs a quantile, which numpy
+    takes tens of microseconds to set up; a test checks equality with
+    ``np.quantile``, bit for bit.
+
+    >>> linear_quantile(np.array([4.0, 1.0, 2.0, 3.0]), 0.5)
+    2.5
+    """
+    m = values.shape[0]
+    virtual = (m - 1) * q
+    if virtual >= m - 1:
+        return float(values.max())
+    k = math.floor(virtual)
+    ordered = np.partition(values, (k, k + 1))
+    a, b, g = float(ordered[k]), float(ordered[k + 1]), virtual - k
+    if g >= 0.5:
+        return b - (b - a) * (1 - g)
+    return a + (b - a) * g
+
+
 def _distances(B: np.ndarray, x: np.ndarray) -> np.ndarray:
     # One formula for both orders of a pair: (b - x)^2 == (x - b)^2 exactly.
     return np.sqrt(((B - x) ** 2).sum(axis=1))
@@ -151,12 +180,20 @@ class ScaleCalibration:
     def __init__(self, scans: np.ndarray, capacity: int, quantile: float, rule: str = "quantile"):
         if rule not in RULES:
             raise ValueError(f"The match scale's rule must be one of {RULES}; got {rule!r}.")
-        self.scans = scans
         self.capacity = capacity
         self.quantile = quantile
         self.rule = rule
-        self._nearest = nearest_distinct(scans) if rule == "quantile" else None
+        # the scans and their nearest distances in arrays with room for more (filled in order,
+        # a row never rewritten: a view of the first rows stays as it was)
+        self._m = scans.shape[0]
+        self._rows = np.array(scans, dtype=np.float64)
+        self._near = nearest_distinct(self._rows) if rule == "quantile" else None
         self._scale = self._measure()
+
+    @property
+    def scans(self) -> np.ndarray:
+        """The scans collected so far, in order."""
+        return self._rows[:self._m]
 
     def __eq__(self, other) -> bool:
         return (isinstance(other, ScaleCalibration) and self.capacity == other.capacity
@@ -165,7 +202,7 @@ class ScaleCalibration:
 
     @property
     def full(self) -> bool:
-        return self.scans.shape[0] >= self.capacity
+        return self._m >= self.capacity
 
     @property
     def scale(self) -> float | None:
@@ -176,8 +213,9 @@ class ScaleCalibration:
         # computed once per scan collected (a quantile costs tens of microseconds)
         if self.rule == "scott":
             return scott_scale(self.scans)
-        finite = self._nearest[np.isfinite(self._nearest)]
-        return float(np.quantile(finite, self.quantile)) if finite.size else None
+        nearest = self._near[:self._m]
+        finite = nearest[np.isfinite(nearest)]
+        return linear_quantile(finite, self.quantile) if finite.size else None
 
     def extend(self, X: np.ndarray) -> "ScaleCalibration":
         """Collect the rows of ``X`` in order (until full)."""
@@ -190,12 +228,23 @@ class ScaleCalibration:
         if self.full:
             return False
         before = self._scale
+        m = self._m
+        if m == self._rows.shape[0]:  # room for twice as many (at most the capacity)
+            size = min(self.capacity, max(2 * m, 16))
+            rows = np.empty((size, self._rows.shape[1]))
+            rows[:m] = self._rows
+            self._rows = rows
+            if self._near is not None:
+                near = np.empty(size)
+                near[:m] = self._near
+                self._near = near
         if self.rule == "quantile":
-            d = _distances(self.scans, x)
+            d = _distances(self._rows[:m], x)
             distinct = d > 0.0
-            np.minimum(self._nearest, np.where(distinct, d, np.inf), out=self._nearest)
-            own = d[distinct].min() if distinct.any() else np.inf
-            self._nearest = np.append(self._nearest, own)
-        self.scans = np.vstack([self.scans, x[None, :]])
+            nearest = self._near[:m]
+            np.minimum(nearest, np.where(distinct, d, np.inf), out=nearest)
+            self._near[m] = d[distinct].min() if distinct.any() else np.inf
+        self._rows[m] = x
+        self._m = m + 1
         self._scale = self._measure()
         return self._scale != before

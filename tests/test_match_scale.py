@@ -6,8 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
-from novelty.match_scale import (ScaleCalibration, mismatch_novelty, nearest_distinct, product_novelty,
-                                  scott_scale)
+from novelty.match_scale import (ScaleCalibration, linear_quantile, mismatch_novelty, nearest_distinct,
+                                  product_novelty, scott_scale)
 
 
 def test_mismatch_novelty_by_hand():
@@ -72,6 +72,26 @@ def test_one_at_a_time_equals_all_at_once(X, capacity, q):
     assert cal.scale == (float(np.quantile(finite, q)) if finite.size else None)
     np.testing.assert_array_equal(cal.scans, kept)
     assert ScaleCalibration(kept, capacity, q).scale == cal.scale  # rebuilt from a model file
+
+
+@settings(max_examples=300, deadline=None)
+@given(values=hnp.arrays(np.float64, st.integers(1, 60),
+                         elements=st.one_of(st.floats(0, 1e6), st.sampled_from([0.5, 1.0, 2.0]))),
+       q=st.one_of(st.floats(0, 1), st.sampled_from([0.0, 0.1, 0.5, 0.9, 1.0, 1 / 3])))
+def test_the_quantile_is_numpys_bit_for_bit(values, q):
+    before = values.copy()
+    got = linear_quantile(values, q)
+    assert type(got) is float
+    assert got == float(np.quantile(values, q))
+    np.testing.assert_array_equal(values, before)  # the values are not reordered
+
+
+def test_the_quantile_by_hand():
+    # ranks (m - 1) q = 3 x 0.9 = 2.7: between 3.0 and 10.0, 0.7 of the way (from 10.0's side)
+    assert linear_quantile(np.array([10.0, 0.0, 3.0, 1.0]), 0.9) == 10.0 - 7.0 * (1 - 0.7000000000000002)
+    assert linear_quantile(np.array([10.0, 0.0, 3.0, 1.0]), 1.0) == 10.0
+    assert linear_quantile(np.array([10.0, 0.0, 3.0, 1.0]), 0.0) == 0.0
+    assert linear_quantile(np.array([7.0]), 0.3) == 7.0
 
 
 # ------------------------------------------------------------- Scott's rule

@@ -11,10 +11,18 @@ an input needs room it stops, and :func:`run` copies the state into arrays
 with spare rows (at most doubling them, so few are wasted) and resumes,
 until the batch is done; then the arrays, trimmed, are the components'
 again.
+
+A call of a few scans (the robot's, or a calibrating filter's one at a
+time) must cost little besides the driver: what :func:`ready` checked of a
+pair's arrays, and the pair's driver, are remembered while the components
+hold the same arrays; parameters are read on every call
+(:func:`.params.pack`).
 """
 
 from __future__ import annotations
 
+import operator
+import weakref
 from functools import partial
 from typing import Callable
 
@@ -24,7 +32,7 @@ from ._pairwise import pairwise_plan
 from .compiling import disabled
 from .drivers import driver_for
 from .handover import handing_over
-from .params import arrays_of, attribute, counters_of, nested_ready, pack, spec_of
+from .params import arrays_of, attribute, counters_of, getter, nested_ready, pack, spec_of
 
 __all__ = ["compiled_for", "learner", "run", "ready"]
 
@@ -53,10 +61,33 @@ def _plain(a) -> bool:
 
 
 def ready(clusterer, synapse) -> tuple | None:
-    """The pair's specs and state, if both declare kernels and hold their state as declared."""
+    """The pair's specs and state, if both declare kernels and hold their state as declared.
+
+    The checks of the state arrays are remembered for the pair
+    (:class:`_Checked`): while the components hold the very arrays checked
+    last time, of the same shapes and types, only that is verified.
+    """
     c_spec, s_spec = spec_of(clusterer), spec_of(synapse)
     if c_spec is None or s_spec is None or not nested_ready(clusterer, c_spec):
         return None
+    readers = _readers(type(clusterer), type(synapse), c_spec, s_spec)
+    try:
+        arrays = readers[0](clusterer) + readers[1](synapse)
+    except AttributeError:
+        return None
+    checked = _last_checked(clusterer)
+    if (checked is not None and checked.synapse is synapse and checked.specs == (c_spec, s_spec)
+            and all(map(operator.is_, arrays, checked.arrays))
+            and tuple(map(_LAYOUT, arrays)) == checked.layout):
+        counters = counters_of(clusterer, c_spec)
+        return None if counters is None else checked.parts + (counters,)
+    state = _check(clusterer, synapse, c_spec, s_spec)
+    if state is not None:
+        _remember(clusterer, synapse, state, arrays)
+    return state
+
+
+def _check(clusterer, synapse, c_spec, s_spec) -> tuple | None:
     W = getattr(clusterer, "weights_", None)
     if type(W) is not np.ndarray or W.ndim != 2 or W.dtype != np.float64 or W.shape[0] == 0:
         return None
@@ -70,6 +101,52 @@ def ready(clusterer, synapse) -> tuple | None:
             a.dtype != np.float64 or a.ndim != 1 for a in s_arrays):
         return None  # the drivers read the efficacy as the first of the synapse's arrays
     return c_spec, s_spec, W, c_arrays, s_arrays, counters
+
+
+#: what identifies an array's layout for the checks: its shape and type
+_LAYOUT = operator.attrgetter("shape", "dtype")
+_reader_cache: dict[tuple, tuple] = {}
+
+
+def _readers(c_class: type, s_class: type, c_spec, s_spec) -> tuple:
+    """Functions reading, in one call each, the clusterer's weights and state arrays and the
+    synapse's state arrays (as tuples)."""
+    key = (c_class, s_class)
+    known = _reader_cache.get(key)
+    if known is None or known[0] is not c_spec or known[1] is not s_spec:
+        known = _reader_cache[key] = (c_spec, s_spec, getter(("weights_",) + c_spec.arrays),
+                                      getter(s_spec.arrays))
+    return known[2:]
+
+
+class _Checked:
+    """A pair's state arrays as :func:`ready` last checked them (kept per clusterer, weakly)."""
+
+    __slots__ = ("synapse", "specs", "arrays", "layout", "parts", "compiled")
+
+
+_checked: "weakref.WeakKeyDictionary[object, _Checked]" = weakref.WeakKeyDictionary()
+
+
+def _last_checked(clusterer) -> _Checked | None:
+    try:
+        return _checked.get(clusterer)
+    except TypeError:  # a clusterer that cannot be weakly referenced or hashed
+        return None
+
+
+def _remember(clusterer, synapse, state: tuple, arrays: tuple) -> None:
+    checked = _Checked()
+    checked.synapse = synapse
+    checked.specs = state[:2]
+    checked.arrays = arrays
+    checked.layout = tuple(map(_LAYOUT, arrays))
+    checked.parts = state[:5]
+    checked.compiled = None  # the pair's driver for these arrays' types, once asked for
+    try:
+        _checked[clusterer] = checked
+    except TypeError:
+        pass
 
 
 def _roomy(arrays, square, n: int, cap: int) -> list:
@@ -115,31 +192,37 @@ def run(clusterer, synapse, X: np.ndarray, dt: np.ndarray, stimulus: float,
     novelty = np.empty(m)
     d = np.empty(m) if distances is None else distances
     rows = np.empty(m, dtype=np.int64) if winners is None else winners
-    c_square = [name in c_spec.square for name in c_spec.arrays]
-    s_square = [False] * len(s_arrays)
     plan = _plan(X.shape[1])
     cp, sp = pack(clusterer), pack(synapse)
-    n = W.shape[0]
+    stimulus = float(stimulus)
+    n = n_before = W.shape[0]
+    # in place on the components' own arrays when they are plain; else on copies
+    copies = not (_plain(W) and all(map(_plain, c_arrays)) and all(map(_plain, s_arrays)))
     start = 0
     stopped = False  # the driver stopped for want of room
     while True:
-        plain = _plain(W) and all(_plain(a) for a in c_arrays + s_arrays)
-        if not plain or stopped:  # copies, with room for what stopped the driver
+        if copies:  # with room for what stopped the driver, if it stopped
             cap = n + max(1, min(m - start, max(n, 16))) if stopped else n
+            c_square = [name in c_spec.square for name in c_spec.arrays]
             (W,) = _roomy([W], [False], n, cap)
             c_arrays = _roomy(c_arrays, c_square, n, cap)
-            s_arrays = _roomy(s_arrays, s_square, n, cap)
-        done, n = drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp,
-                               X[start:], dt[start:], float(stimulus), n, plan, rows[start:],
-                               novelty[start:], d[start:])
+            s_arrays = _roomy(s_arrays, [False] * len(s_arrays), n, cap)
+        if start:
+            done, n = drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp, X[start:],
+                            dt[start:], stimulus, n, plan, rows[start:], novelty[start:], d[start:])
+        else:
+            done, n = drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp, X, dt, stimulus,
+                            n, plan, rows, novelty, d)
         start += done
         if start >= m:
             break
-        stopped = True
-    (W,) = _trimmed([W], [False], n)
-    clusterer.weights_ = W
-    _set(clusterer, c_spec.arrays, _trimmed(c_arrays, c_square, n))
-    _set(synapse, s_spec.arrays, _trimmed(s_arrays, s_square, n))
+        copies = stopped = True
+    if copies or n != n_before:  # the arrays, trimmed, are the components' again
+        c_square = [name in c_spec.square for name in c_spec.arrays]
+        (W,) = _trimmed([W], [False], n)
+        clusterer.weights_ = W
+        _set(clusterer, c_spec.arrays, _trimmed(c_arrays, c_square, n))
+        _set(synapse, s_spec.arrays, _trimmed(s_arrays, [False] * len(s_arrays), n))
     for name, value in zip(c_spec.counters, counters.tolist()):
         setattr(clusterer, name, value)
     return novelty
@@ -150,12 +233,19 @@ def compiled_for(clusterer, synapse, state: tuple | None = None):
     state = state or ready(clusterer, synapse)
     if state is None:
         return None
+    checked = _last_checked(clusterer)
+    mine = checked is not None and checked.parts[3] is state[3] and checked.parts[4] is state[4]
+    if mine and checked.compiled is not None:  # the arrays checked last time: the same types
+        return checked.compiled
     c_spec, s_spec, W, c_arrays, s_arrays, _ = state
     try:
-        return driver_for(c_spec.steps, s_spec.steps, type(clusterer), type(synapse), W,
-                          c_arrays, s_arrays)
+        compiled = driver_for(c_spec.steps, s_spec.steps, type(clusterer), type(synapse), W,
+                              c_arrays, s_arrays)
     except (OSError, ImportError):  # no folder to write the driver to; a steps module missing
         return None
+    if mine:
+        checked.compiled = compiled
+    return compiled
 
 
 def learner(clusterer, synapse, reference: Callable) -> Callable | None:

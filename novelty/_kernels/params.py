@@ -9,15 +9,19 @@ from __future__ import annotations
 
 import math
 import numbers
+import operator
+import weakref
+from typing import Callable
 
 import numpy as np
 
 from .._component import Component, KernelSpec
 
-__all__ = ["spec_of", "pack", "attribute", "arrays_of", "counters_of"]
+__all__ = ["spec_of", "pack", "attribute", "arrays_of", "counters_of", "getter"]
 
-#: parameter vectors by the values they pack (reading the values costs less than packing)
-_packed: dict[tuple, np.ndarray] = {}
+#: the last vector packed for each component, with the values it packed (held weakly: a
+#: copy or a pickle of a component never carries it)
+_packed: "weakref.WeakKeyDictionary[Component, tuple]" = weakref.WeakKeyDictionary()
 
 
 def spec_of(component) -> KernelSpec | None:
@@ -36,22 +40,39 @@ def attribute(component, name: str):
     return component
 
 
-def _key(component, spec: KernelSpec) -> tuple:
-    values = []
-    for name in spec.params:
-        value = attribute(component, name)
-        if isinstance(value, Component):
-            inner = spec_of(value)
-            if inner is None:
-                raise TypeError(f"{type(value).__name__} declares no kernel")
-            value = (type(value), _key(value, inner))
-        values.append(value)
-    return type(component), tuple(values)
+def getter(names: tuple) -> Callable:
+    """A function reading ``names`` (dotted names reach into nested components) of an object as
+    a tuple, in one call (:func:`operator.attrgetter`)."""
+    if len(names) == 1:
+        one = operator.attrgetter(names[0])
+        return lambda obj: (one(obj),)
+    return operator.attrgetter(*names) if names else (lambda obj: ())
 
 
-def _encode(component, name: str, value) -> list[float]:
+_getters: dict[type, tuple] = {}
+
+
+def _params_getter(kind: type, spec: KernelSpec) -> Callable:
+    known = _getters.get(kind)
+    if known is None or known[0] is not spec:
+        known = _getters[kind] = (spec, getter(spec.params))
+    return known[1]
+
+
+def _last_packed(component) -> tuple | None:
+    try:
+        return _packed.get(component)
+    except TypeError:  # a component that cannot be weakly referenced or hashed
+        return None
+
+
+def _encode(component, name: str, value) -> list[float] | np.ndarray:
+    if type(value) is float or type(value) is int:  # the common case first
+        return [float(value)]
     if isinstance(value, Component):
-        return list(pack(value))
+        if spec_of(value) is None:
+            raise TypeError(f"{type(value).__name__} declares no kernel")
+        return pack(value)
     if value is None:
         return [math.nan]
     if isinstance(value, (bool, np.bool_)):
@@ -70,19 +91,33 @@ def _encode(component, name: str, value) -> list[float]:
 
 def pack(component) -> np.ndarray:
     """The float64 vector of the component's ``_kernel.params`` (see KernelSpec), nested
-    components' vectors appended in place. Parameters may change between calls
-    (``set_params``), so they are read every time."""
+    components' vectors appended in place.
+
+    Parameters may change between calls (``set_params``, or set directly), so
+    they are read every time; the vector is packed again unless every value is
+    equal to, and of the same type as, the one last packed (a nested
+    component's own vector the same object as last time).
+    """
     spec = spec_of(component)
-    key = _key(component, spec)
-    vector = _packed.get(key)
-    if vector is None:
-        parts: list[float] = []
-        for name in spec.params:
-            parts += _encode(component, name, attribute(component, name))
-        vector = np.array(parts, dtype=np.float64)
-        if len(_packed) > 256:  # a parameter sweep: do not grow without bound
-            _packed.clear()
-        _packed[key] = vector
+    values = _params_getter(type(component), spec)(component)
+    types = tuple(map(type, values))
+    last = _last_packed(component)
+    if last is not None and last[0] == types and last[1] == values and all(
+            pack(values[i]) is vector for i, vector in last[2]):
+        return last[3]
+    parts: list[float] = []
+    nested = []
+    for i, name in enumerate(spec.params):
+        encoded = _encode(component, name, values[i])
+        if isinstance(values[i], Component):
+            nested.append((i, encoded))
+            encoded = list(encoded)
+        parts += encoded
+    vector = np.array(parts, dtype=np.float64)
+    try:
+        _packed[component] = (types, values, tuple(nested), vector)
+    except TypeError:  # a component that cannot be weakly referenced or hashed
+        pass
     return vector
 
 

@@ -87,7 +87,10 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
     comparison, and then the rows are checked one by one.
     """
     flat = X.reshape(-1)
-    if np.dot(flat, flat) <= _CLEARED:
+    # BLAS's dot for a short vector (one thread); einsum's own loop for a long one, which
+    # BLAS may split over threads whose wake-up was seen to cost milliseconds on a busy machine
+    total = np.dot(flat, flat) if flat.shape[0] <= 4096 else np.einsum("i,i->", flat, flat)
+    if total <= _CLEARED:
         return
     # One pass gives every row's squared norm.
     squared = np.einsum("ij,ij->i", X, X)

@@ -405,3 +405,80 @@ def test_distances_follow_numpy_summation(n_features):
     np.testing.assert_array_equal(winners, expected_winners)
     np.testing.assert_array_equal(d_fast, d_slow)
     assert_same_state(fast_c, slow_c)
+
+
+# ------------------------------------------- state or parameters changed between calls
+def _set_weights(det):
+    det.clusterer_.weights_ = det.clusterer_.weights_[::-1] * 0.5  # a new array (strided)
+
+
+def _read_only_efficacy(det):
+    if det.compiled_ == "compiled":  # the reference writes in place: it needs a writable one
+        det.synapse_.efficacy_.flags.writeable = False
+
+
+def _efficacy_in_place(det):
+    det.synapse_.efficacy_[::2] = 0.25
+
+
+def _learning_rate(det):
+    det.clusterer_.learning_rate = 0.75
+
+
+def _tau_winner(det):
+    det.synapse_.set_params(tau_winner=7.5)
+
+
+def _method_then_alpha(det):
+    det.synapse_.method = "exact"
+    det.synapse_.alpha = 2.0
+
+
+def _counter(det):
+    det.clusterer_.n_updates_ = 3
+
+
+def _another_synapse(det):
+    det.synapse_ = copy.deepcopy(det.synapse_)
+    det.synapse_.tau_neighbour = 20.0
+
+
+def _firing_counters(det):
+    det.clusterer_.firing_.tau_winner = 9.0  # a nested component's parameter
+
+
+def _activity_threshold(det):
+    det.clusterer_.activity_threshold_ = 0.9
+
+
+def _removed_unit_ids(det):
+    det.clusterer_.unit_ids_ = det.clusterer_.unit_ids_ + 100
+
+
+CHANGES = [("hsom", {}, change) for change in (
+    _set_weights, _read_only_efficacy, _efficacy_in_place, _learning_rate, _tau_winner,
+    _method_then_alpha, _counter, _another_synapse)] + [
+    ("gwr-novelty", {"calibration_scans": 10}, change) for change in (
+        _firing_counters, _activity_threshold, _removed_unit_ids, _set_weights)]
+
+
+@pytest.mark.parametrize("preset, params, change", CHANGES, ids=lambda v: getattr(v, "__name__", None))
+def test_what_changed_between_two_compiled_calls_is_used(preset, params, change):
+    """The checks and the packed parameters remembered from one call are not used once the
+    state or a parameter changed: the next call equals the reference's, bit for bit."""
+    X = corridor(120, n_features=5, seed=3)
+    fast = novelty.make(preset, **params).fit(X[:10])
+    assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None
+    slow = copy.deepcopy(fast)
+    for block in (X[10:40], X[40:41], X[41:60]):  # compiled calls, remembered
+        fast.partial_fit(block)
+        with reference_only():
+            slow.partial_fit(block)
+    change(fast)
+    with reference_only():
+        change(slow)
+    got = fast.stream(X[60:])
+    with reference_only():
+        expected = slow.stream(X[60:])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_filter(fast, slow)
