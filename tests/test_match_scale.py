@@ -53,6 +53,19 @@ def test_nearest_distinct_ignores_repeats():
     assert np.all(np.isinf(nearest_distinct(np.zeros((3, 2)))))
 
 
+@settings(max_examples=60, deadline=None)
+@given(X=hnp.arrays(np.float64, st.tuples(st.integers(1, 70), st.sampled_from([1, 2, 7, 8, 9, 16, 130])),
+                    elements=st.one_of(st.floats(-1e3, 1e3), st.sampled_from([0.0, 1.0]))))
+def test_nearest_distinct_is_each_rows_own_distances_bit_for_bit(X):
+    expected = np.full(X.shape[0], np.inf)
+    for i, x in enumerate(X):
+        d = np.sqrt(((X - x) ** 2).sum(axis=1))
+        d = d[d > 0.0]
+        if d.size:
+            expected[i] = d.min()
+    np.testing.assert_array_equal(nearest_distinct(X), expected)
+
+
 def test_calibration_is_the_quantile_of_the_first_scans():
     X = np.array([[0.0], [1.0], [3.0], [7.0], [100.0]])
     cal = ScaleCalibration(np.empty((0, 1)), capacity=4, quantile=0.5).extend(X)
