@@ -197,11 +197,16 @@ def _prefilter(Wm, wn, XT, S, acc, s1, s2, arg):
     the first unit of the least ``arg[b]``.
 
     A function of its own (not inlined): in the caller's body LLVM vectorised
-    it less well; its fast-math flags (:data:`PREFILTER_MATH`) stay in it.
+    it less well; its fast-math flags (:data:`PREFILTER_MATH`) stay in it. No
+    helper taking arrays is inlined into its loops: compiled in the process
+    that runs it (not loaded from numba's cache) such a loop ran 10x slower.
     """
     n_units, n = Wm.shape
     end8 = n - n % 8
-    _start_lanes(s1, s2, arg)
+    for b in range(LANES):
+        s1[b] = np.inf
+        s2[b] = np.inf
+        arg[b] = 0
     for j in range(n_units):
         c = wn[j]
         for b in range(LANES):
@@ -221,8 +226,12 @@ def _prefilter(Wm, wn, XT, S, acc, s1, s2, arg):
             for b in range(LANES):
                 acc[b] += XT[k, b] * wk
         jj = np.int32(j)
-        for b in range(LANES):
-            _least_two(acc[b], jj, S, j, b, s1, s2, arg)
+        for b in range(LANES):  # least and second least, without branches
+            v = acc[b]
+            S[j, b] = v
+            arg[b] = jj if v < s1[b] else arg[b]
+            s2[b] = min(s2[b], max(v, s1[b]))
+            s1[b] = min(s1[b], v)
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath=PREFILTER_MATH)
@@ -230,7 +239,10 @@ def _prefilter16(Wm, wn, XT, S, acc, s1, s2, arg):
     """:func:`_prefilter` for the paper's 16 features: each lane's sum in registers
     (two chains of eight products), no pass through ``acc``; about 1.5x faster."""
     n_units = Wm.shape[0]
-    _start_lanes(s1, s2, arg)
+    for b in range(LANES):
+        s1[b] = np.inf
+        s2[b] = np.inf
+        arg[b] = 0
     for j in range(n_units):
         w0, w1, w2, w3 = Wm[j, 0], Wm[j, 1], Wm[j, 2], Wm[j, 3]
         w4, w5, w6, w7 = Wm[j, 4], Wm[j, 5], Wm[j, 6], Wm[j, 7]
@@ -243,24 +255,11 @@ def _prefilter16(Wm, wn, XT, S, acc, s1, s2, arg):
                  + XT[4, b] * w4 + XT[5, b] * w5 + XT[6, b] * w6 + XT[7, b] * w7)
             q = (XT[8, b] * w8 + XT[9, b] * w9 + XT[10, b] * w10 + XT[11, b] * w11
                  + XT[12, b] * w12 + XT[13, b] * w13 + XT[14, b] * w14 + XT[15, b] * w15)
-            _least_two(p + q, jj, S, j, b, s1, s2, arg)
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _start_lanes(s1, s2, arg):
-    for b in range(LANES):
-        s1[b] = np.inf
-        s2[b] = np.inf
-        arg[b] = 0
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _least_two(v, jj, S, j, b, s1, s2, arg):
-    """Lane b's value v for unit j: kept, and the least two so far updated (no branches)."""
-    S[j, b] = v
-    arg[b] = jj if v < s1[b] else arg[b]
-    s2[b] = min(s2[b], max(v, s1[b]))
-    s1[b] = min(s1[b], v)
+            v = p + q  # least and second least, as in _prefilter
+            S[j, b] = v
+            arg[b] = jj if v < s1[b] else arg[b]
+            s2[b] = min(s2[b], max(v, s1[b]))
+            s1[b] = min(s1[b], v)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
