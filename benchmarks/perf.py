@@ -7,8 +7,9 @@ Run::
 
 Every timed case runs once per repetition, all cases interleaved (so a change
 in the machine's load touches every case alike), with a short pause before
-each; the batch-scoring cases are timed first, as a group, in a process that
-has run nothing else (see :func:`measure_rates`); the table shows the median
+each and then a tenth of a second of busy waiting (see ``_WAKE_S``); the
+batch-scoring cases are timed first, as a group, in a process that has run
+nothing else (see :func:`measure_rates`); the table shows the median
 over the repetitions, in samples per second, and the ratio to the anchor of
 its row (MiniSom, River or our own numpy reference loop, all measured in the
 same run). Then the costs that are not rates: ``import novelty``, compiling
@@ -385,6 +386,22 @@ def build_rows(quick: bool) -> tuple[list[Row], dict]:
 #: while after a matrix product (MiniSom, our numpy reference) and would take a
 #: core from whatever runs next
 _PAUSE_S = 0.2
+#: busy time after the pause, before the timed run. A process that has slept for
+#: the pause starts slowly: a fixed cost of about a millisecond, which a run of a
+#: few milliseconds feels and a run of a tenth of a second does not. Measured on
+#: the 2-core machine of the README's table (15 repetitions, medians, the three
+#: ways interleaved): the hsom stream of 5,000 scans 2.16 ms with no pause, 3.28 ms
+#: right after the pause, 2.35 ms after the pause and 0.1 s of this; gng-stanley on
+#: 1,000 scans 4.81 / 8.93 / 4.89 ms; MiniSom's online loop 120.5 / 148.1 / 122.8 ms.
+#: Every case gets the same pause and the same busy time.
+_WAKE_S = 0.1
+
+
+def _busy(seconds: float) -> None:
+    """Keep this thread running for ``seconds`` (and nothing else: no memory, no BLAS)."""
+    end = time.perf_counter() + seconds
+    while time.perf_counter() < end:
+        pass
 
 
 def measure_rates(rows: list[Row], repeats: int) -> list[Case]:
@@ -409,6 +426,7 @@ def measure_rates(rows: list[Row], repeats: int) -> list[Case]:
             for case in cases:
                 run = case.setup()
                 time.sleep(_PAUSE_S)
+                _busy(_WAKE_S)
                 start = time.perf_counter()
                 run()
                 case.times.append(time.perf_counter() - start)
