@@ -279,11 +279,12 @@ class HabituatingFilter(NoveltyDetector):
         at_once = not self.clusterer_.uses_match_scale
         if at_once:
             efficacy, distances = self._learn_raw(X, dt)
+            scales = []  # each calibrating scan's scale, combined at the end
         out = np.empty(X.shape[0])
         i = 0
         while i < X.shape[0] and not calibration.full:
             if at_once:
-                out[i] = self._combine(efficacy[i : i + 1], distances[i : i + 1])[0]
+                scales.append(self.match_scale_)
             else:
                 out[i] = self._learn_block(X[i : i + 1], dt[i : i + 1])[0]
             if calibration.add(X[i]):
@@ -292,10 +293,22 @@ class HabituatingFilter(NoveltyDetector):
                     self.clusterer_.calibrate(self.match_scale_)
             i += 1
         self.calibration_scans_ = calibration.scans
+        if at_once:
+            out[:i] = self._combine_each(efficacy[:i], distances[:i], scales)
         if i < X.shape[0]:
             out[i:] = (self._combine(efficacy[i:], distances[i:]) if at_once
                        else self._learn_block(X[i:], dt[i:]))
         return out
+
+    def _combine_each(self, efficacy: np.ndarray, distances: np.ndarray, scales: list) -> np.ndarray:
+        """:meth:`_combine` of scans each with its own scale (None: the efficacy alone), in one
+        pass: the same operations on each element as one scan at a time."""
+        if self.novelty_rule == "efficacy":
+            return efficacy
+        known = np.array([s is not None for s in scales], dtype=bool)
+        sigma = np.array([1.0 if s is None else s for s in scales], dtype=np.float64)
+        rule = mismatch_novelty if self.novelty_rule == "mismatch" else product_novelty
+        return np.where(known, rule(efficacy, distances, sigma), efficacy)
 
     # The hooks below first ask novelty._kernels for a compiled kernel for this
     # (clusterer, synapse) pair; a kernel gives the same results as the

@@ -63,10 +63,12 @@ __all__ = ["mismatch_novelty", "product_novelty", "nearest_distinct", "scott_sca
 RULES = ("quantile", "scott")
 
 
-def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | None) -> np.ndarray:
+def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray,
+                     scale: float | np.ndarray | None) -> np.ndarray:
     """``1 - (1 - y) * exp(-d2 / (2 sigma^2))`` for efficacies ``y`` and squared distances ``d2``.
 
-    ``scale`` None (no scale yet) gives the efficacies unchanged.
+    ``scale``: one for all, or an array of one per input; None (no scale yet)
+    gives the efficacies unchanged.
 
     >>> mismatch_novelty(np.array([0.2, 0.2, 1.0]), np.array([0.0, 2.0, 0.0]), 1.0).round(4).tolist()
     [0.2, 0.7057, 1.0]
@@ -76,10 +78,12 @@ def mismatch_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | 
     return 1.0 - (1.0 - efficacy) * np.exp(-distance / (2.0 * scale * scale))
 
 
-def product_novelty(efficacy: np.ndarray, distance: np.ndarray, scale: float | None) -> np.ndarray:
+def product_novelty(efficacy: np.ndarray, distance: np.ndarray,
+                    scale: float | np.ndarray | None) -> np.ndarray:
     """``y * (1 - exp(-d2 / (2 sigma^2)))`` for efficacies ``y`` and squared distances ``d2``.
 
-    ``scale`` None (no scale yet) gives the efficacies unchanged.
+    ``scale``: one for all, or an array of one per input; None (no scale yet)
+    gives the efficacies unchanged.
 
     >>> product_novelty(np.array([0.2, 0.2, 1.0]), np.array([0.0, 2.0, 2.0]), 1.0).round(4).tolist()
     [0.0, 0.1264, 0.6321]
@@ -244,10 +248,10 @@ class ScaleCalibration:
                 self._near = near
         if self.rule == "quantile":
             d = _distances(self._rows[:m], x)
-            distinct = d > 0.0
+            d[~(d > 0.0)] = np.inf  # a repeat of x is not its neighbour
             nearest = self._near[:m]
-            np.minimum(nearest, np.where(distinct, d, np.inf), out=nearest)
-            self._near[m] = d[distinct].min() if distinct.any() else np.inf
+            np.minimum(nearest, d, out=nearest)
+            self._near[m] = d.min() if m else np.inf
         self._rows[m] = x
         self._m = m + 1
         self._scale = self._measure()
