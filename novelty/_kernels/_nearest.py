@@ -13,7 +13,7 @@ bit, at a fraction of the cost:
 2. **Decision** (:func:`_decide`): the distance to unit ``a``, in float64
    in numpy's order (:func:`row_distance`). If the gap ``s_b - s_a``
    exceeds the bound ``T`` below, unit ``a`` is the reference's winner and
-   that is its distance. Otherwise (ties, near ties; :func:`_recheck`) every
+   that is its distance. Otherwise (ties, near ties; in :func:`nearest`) every
    unit ``j`` with ``s_j <= s_a + T`` is a candidate (the others are farther
    than ``a``), the candidates' distances are computed in numpy's order and
    the first of the least wins, as in the reference.
@@ -293,28 +293,7 @@ def _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, plan, one, check, winne
     return n_check
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def _recheck(W, WT, X, i, b, r, S, least, a, best, plan, acc8, stack, one):
-    """Scan ``i`` (lane b) whose gap test failed: the winner and its distance, as ``match``.
-
-    Within the pre-filter's range, every unit ``j`` with ``S[j, b] <= least + T``
-    is a candidate (the others are farther than unit ``a``); their distances in
-    numpy's order, the first of the least. Beyond it, the exact path.
-    """
-    n_units, n = W.shape
-    if r > LIMIT:
-        return _exact(WT, X, i, plan, acc8, stack)
-    limit = least + _bound(r, n)
-    for j in range(n_units):
-        if j != a and np.float64(S[j, b]) <= limit:
-            d = row_distance(W, j, X, i, plan, one)
-            if d < best or (d == best and j < a):
-                a = j
-                best = d
-    return a, best
-
-
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _exact(WT, X, i, plan, acc8, stack):
     """What ``match`` does: all squared distances in numpy's order, the first of the least."""
     n_units = WT.shape[1]
@@ -384,12 +363,28 @@ def nearest(W, y, X, winners, novelty, distances, plan):
         if _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, plan, one, check, winners,
                    novelty, distances) == 0:
             continue
+        # The scans whose gap test failed. Within the pre-filter's range, every unit j
+        # with S[j, b] <= s_a + T is a candidate (the others are farther than unit a);
+        # their distances in numpy's order, the first of the least. Beyond it, the exact
+        # path. Written here, not in a function: a call passing these arrays cost
+        # about as much as the re-check itself.
         for b in range(m):
             if check[b]:
                 n_exact += 1
                 i = start + b
-                a, best = _recheck(W, WT, X, i, b, norm[b] + w_max, S, np.float64(s1[b]),
-                                   arg[b], distances[i], plan, acc8, stack, one)
+                r = norm[b] + w_max
+                if r > LIMIT:
+                    a, best = _exact(WT, X, i, plan, acc8, stack)
+                else:
+                    a = arg[b]
+                    best = distances[i]
+                    limit = np.float64(s1[b]) + _bound(r, n)
+                    for j in range(n_units):
+                        if j != a and np.float64(S[j, b]) <= limit:
+                            d = row_distance(W, j, X, i, plan, one)
+                            if d < best or (d == best and j < a):
+                                a = j
+                                best = d
                 winners[i] = a
                 novelty[i] = y[a]
                 distances[i] = best
