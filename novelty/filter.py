@@ -277,30 +277,35 @@ class HabituatingFilter(NoveltyDetector):
         # the scale (GWR's "auto" radius) learns one scan at a time; any other
         # learns the block in one call, since its learning does not read the scale.
         at_once = not self.clusterer_.uses_match_scale
+        n = X.shape[0]
         if at_once:
             efficacy, distances = self._learn_raw(X, dt)
-            scales = []  # each calibrating scan's scale, combined at the end
-        out = np.empty(X.shape[0])
+        else:
+            efficacy = np.empty(n)
+            distances = None if self.novelty_rule == "efficacy" else np.empty(n)
+        scales = []  # each calibrating scan's scale, combined at the end
         i = 0
-        while i < X.shape[0] and not calibration.full:
-            if at_once:
-                scales.append(self.match_scale_)
-            else:
-                out[i] = self._learn_block(X[i : i + 1], dt[i : i + 1])[0]
+        while i < n and not calibration.full:
+            scales.append(self.match_scale_)
+            if not at_once:
+                e, d = self._learn_raw(X[i : i + 1], dt[i : i + 1])
+                efficacy[i] = e[0]
+                if distances is not None:
+                    distances[i] = d[0]
             if calibration.add(X[i]):
                 self.match_scale_ = calibration.scale
                 if not at_once:
                     self.clusterer_.calibrate(self.match_scale_)
             i += 1
         self.calibration_scans_ = calibration.scans
-        if at_once:
-            out[:i] = self._combine_each(efficacy[:i], distances[:i], scales)
-        if i < X.shape[0]:
+        out = np.empty(n)
+        out[:i] = self._combine_each(efficacy[:i], None if distances is None else distances[:i], scales)
+        if i < n:
             out[i:] = (self._combine(efficacy[i:], distances[i:]) if at_once
                        else self._learn_block(X[i:], dt[i:]))
         return out
 
-    def _combine_each(self, efficacy: np.ndarray, distances: np.ndarray, scales: list) -> np.ndarray:
+    def _combine_each(self, efficacy: np.ndarray, distances: np.ndarray | None, scales: list) -> np.ndarray:
         """:meth:`_combine` of scans each with its own scale (None: the efficacy alone), in one
         pass: the same operations on each element as one scan at a time."""
         if self.novelty_rule == "efficacy":

@@ -187,6 +187,8 @@ def test_filter_refuses_a_bad_match_scale(bad):
     ("hsom", {"novelty_rule": "product", "match_scale": "scott"}),
     ("gng-stanley", {}),
     ("gwr-explore", {}),  # its clusterer learns by the scale: the one-scan-at-a-time path
+    ("gwr-novelty", {}),
+    ("gwr-novelty", {"novelty_rule": "efficacy"}),
     ("kmeans-stanley", {}),
 ])
 def test_calibrating_in_one_call_equals_one_scan_at_a_time(name, params):
