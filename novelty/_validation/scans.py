@@ -87,13 +87,17 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
     comparison, and then the rows are checked one by one.
     """
     flat = X.reshape(-1)
-    # BLAS's dot for a short vector (one thread); einsum's own loop for a long one, which
-    # BLAS may split over threads whose wake-up was seen to cost milliseconds on a busy machine
-    total = np.dot(flat, flat) if flat.shape[0] <= 4096 else np.einsum("i,i->", flat, flat)
-    if total <= _CLEARED:
-        return
-    # One pass gives every row's squared norm.
-    squared = np.einsum("ij,ij->i", X, X)
+    # Scans of accepted norms can overflow the batch's sum (and a refused value, the
+    # rows' sums): that overflow is an answer here, not something to warn a user about.
+    with np.errstate(over="ignore", invalid="ignore"):
+        # BLAS's dot for a short vector (one thread); einsum's own loop for a long one, which
+        # BLAS may split over threads whose wake-up was seen to cost milliseconds on a busy
+        # machine
+        total = np.dot(flat, flat) if flat.shape[0] <= 4096 else np.einsum("i,i->", flat, flat)
+        if total <= _CLEARED:
+            return
+        # One pass gives every row's squared norm.
+        squared = np.einsum("ij,ij->i", X, X)
     if not squared.max() <= _MAX_SQUARED_NORM:
         if not np.all(np.isfinite(X)):
             bad = int(np.flatnonzero(~np.isfinite(X).all(axis=1))[0])
@@ -143,7 +147,9 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
         )
     # One reduction (the squared norm: NaN, infinity and too large values all fail
     # the comparison); the elementwise mask only to say which.
-    if not np.dot(arr, arr) <= _MAX_SQUARED_NORM:
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is a refusal, said below
+        squared = np.dot(arr, arr)
+    if not squared <= _MAX_SQUARED_NORM:
         if not np.isfinite(arr).all():
             raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
         raise ValueError(_too_large("x", owner, ""))

@@ -1,5 +1,7 @@
 """Bad scans and batches: a clear ValueError, and the model exactly as it was."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -218,3 +220,19 @@ def test_a_plain_batch_with_a_bad_value_names_its_first_row(dtype, bad):
     X[5, 0] = bad
     with pytest.raises(ValueError, match=r"NaN or infinity \(first in row 4\)"):
         check_batch(X, fitted(), N_FEATURES)
+
+
+def test_checking_norms_warns_of_nothing():
+    # many rows of norms just under the bound overflow the batch's sum, and values
+    # beyond the float range overflow a row's: an answer of the check, not a warning
+    det = fitted()
+    near = np.zeros((5000, N_FEATURES))
+    near[:, 0] = 0.9 * MAX_SCAN_NORM
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert check_batch(near, det, N_FEATURES) is near
+        huge = np.full((3, N_FEATURES), 1e200)
+        with pytest.raises(ValueError, match=r"norm above 1e\+100 \(first in row 0\)"):
+            check_batch(huge, det, N_FEATURES)
+        with pytest.raises(ValueError, match=r"norm above 1e\+100"):
+            det.score_one(np.full(N_FEATURES, 1e200))
