@@ -90,7 +90,9 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     kernel = module.nearest
 
     n_chunks = -(-n // CHUNK)
-    n_threads = min(threads(), n_chunks)
+    # one chunk (score_one, a short batch): no threads, and no asking how many (an
+    # environment read and a system call, a third of a score_one's cost)
+    n_threads = 1 if n_chunks < 2 else min(threads(), n_chunks)
     if n_threads < 2:
         for a in range(0, n, CHUNK):
             _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist, plan)
