@@ -164,32 +164,33 @@ class StreamReader:
             if len(row) != len(layout.names):
                 raise UserError(f"standard input, line {number}: {len(row)} values, expected "
                                 f"{len(layout.names)}.")
+            where = f"standard input, line {number}"
             try:
-                raw = np.array([[self._number(layout, j, row[j]) for j in layout.sensors]])
-                x = sensors_to_scans(raw, self.preprocess, self.threshold)[0]
+                raw = np.array([[self._number(layout, j, row[j], where) for j in layout.sensors]])
+                x = sensors_to_scans(raw, self.preprocess, self.threshold,
+                                     lambda i, k: f"{where}, {layout.column(layout.sensors[k])}")[0]
+                extras = self._extras(layout, row, where)
             except ValueError as exc:
-                raise UserError(f"standard input, line {number}: {exc}") from None
-            yield x, self._extras(layout, row, number)
+                raise UserError(str(exc)) from None
+            yield x, extras
 
     @staticmethod
-    def _number(layout, j: int, cell: str) -> float:
+    def _number(layout, j: int, cell: str, where: str) -> float:
         try:
             return float(cell)
         except ValueError:
-            raise layout.not_a_number(j, cell) from None
+            raise layout.not_a_number(j, cell, where) from None
 
-    @staticmethod
-    def _extras(layout, row, number: int) -> dict:
+    @classmethod
+    def _extras(cls, layout, row, where: str) -> dict:
         extras = {}
         for name in ("label", "distance", "run", "time"):
             j = getattr(layout, name)
             if j is None:
                 continue
-            try:
-                value = float(row[j])
-            except ValueError:
-                raise UserError(f"standard input, line {number}: the {name} column "
-                                f"{layout.names[j]!r} holds {row[j]!r}, not a number.") from None
+            value = cls._number(layout, j, row[j], where)
+            if not np.isfinite(value):
+                raise ValueError(f"{where}, {layout.column(j)}: expected a finite number, got {value}.")
             if name == "label":
                 extras["y"] = int(value != 0)
             elif name == "run":

@@ -9,7 +9,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 __all__ = ["Layout", "plan_columns", "is_ros_export", "LABEL_COLUMNS", "TIME_COLUMNS", "ROUTE_COLUMNS",
-           "TEXT_COLUMNS"]
+           "TEXT_COLUMNS", "cell_text"]
 
 #: columns found by name that are never sensors
 LABEL_COLUMNS = ("y", "label")
@@ -53,12 +53,25 @@ class Layout:
         """Seconds per unit of the time column (ROS stamps are nanoseconds)."""
         return 1e-9 if self.time is not None and _nanoseconds(self.names[self.time]) else 1.0
 
-    def not_a_number(self, j: int, cell) -> ValueError:
+    def column(self, j: int) -> str:
+        """Column ``j`` as a message names it: ``column 'us05'``, ``column 'y' (the label)``."""
         name = self.names[j]
-        hint = (f"choose the sensor columns with columns= (--columns), e.g. 'field.ranges*'"
-                if is_ros_export(self.names) else "choose the sensor columns with columns= (--columns)")
-        return ValueError(f"Column {name!r} holds text ({str(cell)[:30]!r}), not a sensor reading; {hint}.")
+        role = next((r for r in ("label", "time", "distance", "run", "split") if getattr(self, r) == j), None)
+        return f"column {name!r}" if role in (None, name.lower()) else f"column {name!r} ({'the ' + role})"
 
+    def not_a_number(self, j: int, cell, where: str) -> ValueError:
+        """The error for ``cell`` of column ``j``, at ``where`` (a file and its line or row), not a number."""
+        message = f"{where}, {self.column(j)}: expected a number, got {cell_text(cell)}"
+        if j not in self.sensors:
+            return ValueError(message + ".")
+        example = ", e.g. 'field.ranges*'" if is_ros_export(self.names) else ""
+        return ValueError(f"{message}; choose the sensor columns with columns= (--columns){example}.")
+
+
+def cell_text(cell) -> str:
+    """What a cell that is not a number holds, for a message: ``text 'n/a'`` or ``an empty cell``."""
+    text = str(cell).strip()
+    return f"text {text[:30]!r}" if text else "an empty cell"
 
 def _find(names: Sequence[str], spec, what: str) -> list[int]:
     """Indices of the columns ``spec`` names: a name, a pattern, or a 0-based index."""

@@ -39,13 +39,14 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
 from ..data import Dataset
 from ._files import _is_float
 from .columns import (LABEL_COLUMNS, ROUTE_COLUMNS, TEXT_COLUMNS, TIME_COLUMNS, Layout,  # noqa: F401
-                      is_ros_export, plan_columns)
+                      cell_text, is_ros_export, plan_columns)
 from .tables import Table, header_of, read_table  # noqa: F401
 
 __all__ = ["Table", "Layout", "read_table", "plan_columns", "read_scans", "files", "PREPROCESSING"]
@@ -55,12 +56,22 @@ PREPROCESSING = ("none", "paper")
 
 
 # ------------------------------------------------------------ scans of a file
-def _numbers(table: Table, layout: Layout, j: int, what: str) -> np.ndarray:
+def _numbers(table: Table, layout: Layout, j: int) -> np.ndarray:
+    """Column ``j`` as numbers; a cell that is not one is refused by its line (or row) and column."""
     values = table.values[j]
     if values.dtype.kind in "US":
-        if what == "sensor":
-            raise layout.not_a_number(j, next(v for v in values if not _is_float(v)))
-        raise ValueError(f"{table.source}: the {what} column {layout.names[j]!r} must hold numbers.")
+        i = next(i for i, cell in enumerate(values) if not _is_float(cell))
+        raise layout.not_a_number(j, values[i], table.where(i))
+    return values
+
+
+def _finite(table: Table, layout: Layout, j: int) -> np.ndarray:
+    """Column ``j`` (a label, time, distance or run) as finite numbers."""
+    values = _numbers(table, layout, j)
+    bad = np.flatnonzero(~np.isfinite(values))
+    if bad.size:
+        raise ValueError(f"{table.where(bad[0])}, {layout.column(j)}: expected a finite number, "
+                         f"got {float(values[bad[0]])}.")
     return values
 
 
@@ -71,20 +82,29 @@ def _check_preprocess(preprocess) -> str:
     return choice
 
 
-def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float | None = None) -> np.ndarray:
-    """The detector's input from raw sensor values: checked, and preprocessed if asked."""
-    if _check_preprocess(preprocess) == "paper":
+def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float | None = None,
+                     where: Callable[[int, int], str] | None = None) -> np.ndarray:
+    """The detector's input from raw sensor values: checked, and preprocessed if asked.
+
+    ``where(i, k)`` says where reading ``X[i, k]`` came from (a file, its line
+    and column), for the message refusing it.
+    """
+    paper = _check_preprocess(preprocess) == "paper"
+    # the paper's preprocessing reads inf as no echo; NaN is never a reading
+    bad = np.isnan(X) if paper else ~np.isfinite(X)
+    if bad.any():
+        i, k = np.argwhere(bad)[0]
+        value = float(X[i, k])
+        expected = "a range in metres (inf for no echo)" if paper else "a finite number"
+        hint = " (preprocess='paper' reads inf as no echo)" if np.isinf(value) else ""
+        place = where(i, k) if where is not None else f"scan {i}, sensor {k}"
+        raise ValueError(f"{place}: expected {expected}, got {value}{hint}.")
+    if paper:
         # imported here: novelty.sonar loads the whole simulator (0.1 s), which every start of the
         # command line would otherwise pay
         from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess as paper_preprocess
 
-        if np.isnan(X).any():
-            raise ValueError("The sensor columns hold NaN; the paper's preprocessing needs ranges "
-                             "(inf for no echo is accepted).")
         X = paper_preprocess(X, PAPER_THRESHOLD if threshold is None else threshold)
-    if not np.all(np.isfinite(X)):
-        raise ValueError("The sensor readings must be finite numbers (with preprocess='paper', "
-                         "inf is read as no echo).")
     return X
 
 
@@ -124,20 +144,21 @@ def read_scans(path, columns=None, label=None, time=None, preprocess=None,
     """
     table = read_table(path)
     layout = plan_columns(table.names, columns, label, time, split)
-    raw = np.column_stack([_numbers(table, layout, j, "sensor") for j in layout.sensors])
-    X = sensors_to_scans(raw, preprocess, threshold)
+    raw = np.column_stack([_numbers(table, layout, j) for j in layout.sensors])
+    X = sensors_to_scans(raw, preprocess, threshold,
+                         lambda i, k: f"{table.where(i)}, {layout.column(layout.sensors[k])}")
     fields: dict = {}
     if layout.label is not None:
-        fields["y"] = (_numbers(table, layout, layout.label, "label") != 0).astype(np.int64)
+        fields["y"] = (_finite(table, layout, layout.label) != 0).astype(np.int64)
     if layout.distance is not None:
-        fields["distance"] = _numbers(table, layout, layout.distance, "distance")
+        fields["distance"] = _finite(table, layout, layout.distance)
     if layout.run is not None:
-        fields["run"] = _numbers(table, layout, layout.run, "run").astype(np.int64)
+        fields["run"] = _finite(table, layout, layout.run).astype(np.int64)
     if layout.split is not None:
-        fields["split"] = _split_values(table.values[layout.split], layout.names[layout.split])
+        fields["split"] = _split_values(table, layout)
     columns_ = {}
     if layout.time is not None:
-        columns_["time"] = _numbers(table, layout, layout.time, "time") * layout.time_scale
+        columns_["time"] = _finite(table, layout, layout.time) * layout.time_scale
     data = Dataset(Path(path).stem, X, columns=columns_, metadata={
         "source": str(path), "sensor_columns": layout.sensor_names,
         "time_column": None if layout.time is None else layout.names[layout.time],
@@ -145,11 +166,14 @@ def read_scans(path, columns=None, label=None, time=None, preprocess=None,
     return data if bin_length is None else smooth_by_distance(data, bin_length)
 
 
-def _split_values(values: np.ndarray, name: str) -> np.ndarray:
-    parts = np.char.lower(values.astype(str))
-    wrong = sorted(set(parts.tolist()) - {"train", "test"})
-    if wrong:
-        raise ValueError(f"The split column {name!r} must hold 'train' or 'test'; found {wrong[0]!r}.")
+def _split_values(table: Table, layout: Layout) -> np.ndarray:
+    values = table.values[layout.split]
+    parts = np.char.lower(np.char.strip(values.astype(str)))
+    wrong = np.flatnonzero(~np.isin(parts, ["train", "test"]))
+    if wrong.size:
+        i = wrong[0]
+        raise ValueError(f"{table.where(i)}, {layout.column(layout.split)}: expected 'train' or 'test', "
+                         f"got {cell_text(values[i])}.")
     return parts
 
 

@@ -16,15 +16,24 @@ __all__ = ["Table", "header_of", "read_table"]
 
 @dataclass(frozen=True)
 class Table:
-    """A file's columns, in file order: numbers (float64) or text (str)."""
+    """A file's columns, in file order: numbers (float64) or text (str).
+
+    ``lines`` holds the line of the file each row was read from (a CSV file),
+    or is ``None`` (an NPZ file: a row is its index in ``X``).
+    """
 
     source: str
     names: tuple[str, ...]
     values: tuple[np.ndarray, ...]
+    lines: tuple[int, ...] | None = None
 
     @property
     def n_rows(self) -> int:
         return self.values[0].shape[0] if self.values else 0
+
+    def where(self, i: int) -> str:
+        """Where row ``i`` is, as a reader finds it: ``scans.csv, line 14`` or ``scans.npz, row 12``."""
+        return f"{self.source}, line {self.lines[i]}" if self.lines is not None else f"{self.source}, row {i}"
 
 
 def header_of(first_row: Sequence[str]) -> list[str] | None:
@@ -55,7 +64,13 @@ def _column(cells: list[str]) -> np.ndarray:
 def _read_csv(path: Path) -> Table:
     try:
         with open(path, newline="", encoding="utf-8") as fh:
-            rows = [r for r in csv.reader(fh) if r and any(c.strip() for c in r)]
+            reader = csv.reader(fh)
+            # the line a row ends on, so that an error names the line an editor shows
+            rows, lines = [], []
+            for r in reader:
+                if r and any(c.strip() for c in r):
+                    rows.append(r)
+                    lines.append(reader.line_num)
     except UnicodeDecodeError as exc:
         raise ValueError(f"{path} is not UTF-8 text ({exc.reason}); "
                          "save it as UTF-8.") from None
@@ -67,16 +82,16 @@ def _read_csv(path: Path) -> Table:
             if not _is_float(cell):
                 raise ValueError(f"{path}, line 1: column {j + 1} holds {cell.strip()!r}, which is "
                                  "not a number (and too few of the row's cells are names for a header).")
-    body = rows[1:] if header else rows
+    body, lines = (rows[1:], lines[1:]) if header else (rows, lines)
     if not body:
         raise ValueError(f"{path} has a header but no scans.")
     width = len(header or body[0])
-    first_line = 2 if header else 1
-    for i, row in enumerate(body):
+    for row, line in zip(body, lines):
         if len(row) != width:
-            raise ValueError(f"{path}, line {i + first_line}: {len(row)} values, expected {width}.")
+            raise ValueError(f"{path}, line {line}: {len(row)} values, expected {width}.")
     names = header or [f"s{i}" for i in range(width)]
-    return Table(str(path), tuple(names), tuple(_column([r[j] for r in body]) for j in range(width)))
+    return Table(str(path), tuple(names), tuple(_column([r[j] for r in body]) for j in range(width)),
+                 tuple(lines))
 
 
 def _read_npz(path: Path) -> Table:

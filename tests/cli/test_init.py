@@ -164,7 +164,7 @@ def test_a_simulated_task_csv_runs_through_a_detector(tmp_path):
     (["run", "hsom", "--data", "DATA", "--param", "n_rows=0"], "must be an int in [1, inf)"),
     (["run", "hsom", "--data", "DATA", "--param", "n_rows"], "name=value"),
     (["run", "hsom", "--data", "missing.csv"], "Data file not found"),
-    (["run", "hsom", "--data", "BAD"], "Column 's1' holds text ('abc'), not a sensor reading"),
+    (["run", "hsom", "--data", "BAD"], "column 's1': expected a number, got text 'abc'"),
     (["score", "--model", "missing.npz", "--data", "DATA"], "Model file not found"),
     (["score", "--model", "DATA", "--data", "DATA"], "error"),
     (["bench", "SUITE", "--out", "OUT"], "not valid TOML"),

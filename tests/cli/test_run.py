@@ -110,7 +110,7 @@ def test_a_bad_line_on_stdin_names_its_line(monkeypatch, capsys):
     assert main(["run", "hsom", "--data", "-"]) == 2
     captured = capsys.readouterr()
     assert len(rows(captured.out)) == 2  # the first scan was written before the bad line was read
-    assert "standard input, line 3: Column 'b' holds text ('oops')" in captured.err
+    assert "standard input, line 3, column 'b': expected a number, got text 'oops'" in captured.err
 
 
 def test_alarm_policy_k_of_n_on_a_file(tmp_path, capsys):
@@ -158,3 +158,16 @@ def test_the_alarm_follows_the_detectors_threshold(tmp_path, capsys):
     novelty_ = np.array([float(r[1]) for r in table])
     assert 0 < (novelty_ > 0.7).sum() < len(table)
     assert [int(r[2]) for r in table] == (novelty_ > 0.7).astype(int).tolist()
+
+
+@pytest.mark.parametrize("line, message", [
+    ("0.3,0.4,", "standard input, line 3, column 'y' (the label): expected a number, got an empty cell."),
+    ("0.3,nan,1", "standard input, line 3, column 'b': expected a finite number, got nan."),
+    ("0.3,0.4,nan", "standard input, line 3, column 'y' (the label): expected a finite number, got nan."),
+])
+def test_a_bad_cell_on_stdin_names_its_line_and_column(monkeypatch, capsys, line, message):
+    import io
+
+    monkeypatch.setattr(sys, "stdin", io.StringIO(f"a,b,y\n0.1,0.2,0\n{line}\n"))
+    assert main(["run", "hsom", "--data", "-"]) == 2
+    assert message in capsys.readouterr().err

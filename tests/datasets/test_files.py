@@ -45,7 +45,7 @@ def test_default_columns_leave_out_label_time_distance_run_split_and_exports(tmp
 
 
 def test_a_text_column_is_refused_by_name_unless_columns_are_chosen(table):
-    with pytest.raises(ValueError, match=r"Column 'note' holds text \('n0'\), not a sensor reading; "
+    with pytest.raises(ValueError, match=r"line 2, column 'note': expected a number, got text 'n0'; "
                                          r"choose the sensor columns"):
         read_scans(table, label="novel", time="t")
     data = read_scans(table, columns="a,b", label="novel", time="t")
@@ -57,7 +57,8 @@ def test_a_text_column_is_refused_by_name_unless_columns_are_chosen(table):
 def test_a_ros_export_needs_its_sensor_columns_chosen(ros):
     with pytest.raises(ValueError, match=r"ROS 'rostopic echo -p' export.*e\.g\. 'field\.ranges\*'"):
         read_scans(ros)
-    with pytest.raises(ValueError, match=r"'field.header.frame_id' holds text \('laser'\)"):
+    with pytest.raises(ValueError, match=r"line 2, column 'field.header.frame_id': expected a number, got text 'laser'; "
+                                         r"choose the sensor columns with columns= \(--columns\), e\.g\. 'field\.ranges\*'\."):
         read_scans(ros, columns="field.header.frame_id")
 
 
@@ -72,7 +73,8 @@ def test_a_ros_export_reads_ranges_with_the_header_stamp_in_seconds(ros):
 
 
 def test_inf_ranges_need_the_paper_preprocessing(ros):
-    with pytest.raises(ValueError, match="must be finite numbers"):
+    with pytest.raises(ValueError, match=r"line 2, column 'field.ranges2': expected a finite number, got inf "
+                                         r"\(preprocess='paper' reads inf as no echo\)\."):
         read_scans(ros, columns="field.ranges*")
 
 
@@ -159,3 +161,47 @@ def test_a_file_that_is_not_utf8_is_named(tmp_path):
     path.write_bytes(b"s0,s1\n0.1,0.2\n0.3,\xff\n")
     with pytest.raises(ValueError, match=rf"{path} is not UTF-8 text \(invalid start byte\)"):
         read_scans(path)
+
+
+# -------------------------------------------------- where a bad cell is, and what it holds
+BAD_CELLS = "us01,us05,y\n0.1,0.2,0\n\n0.3,{cell},1\n"  # the bad cell is on line 4 (a blank line 3)
+
+
+@pytest.mark.parametrize("cell, options, got", [
+    ("n/a", {}, r"expected a number, got text 'n/a'; choose the sensor columns"),
+    ("", {}, r"expected a number, got an empty cell; choose the sensor columns"),
+    ("nan", {}, r"expected a finite number, got nan\.$"),
+    ("nan", {"preprocess": "paper"}, r"expected a range in metres \(inf for no echo\), got nan\.$"),
+])
+def test_a_bad_sensor_cell_is_named_by_line_and_column(tmp_path, cell, options, got):
+    path = write(tmp_path, BAD_CELLS.format(cell=cell))
+    with pytest.raises(ValueError, match=rf"^{path}, line 4, column 'us05': {got}"):
+        read_scans(path, **options)
+
+
+def test_a_nan_reading_does_not_mention_an_option_not_in_use(tmp_path):
+    with pytest.raises(ValueError) as error:
+        read_scans(write(tmp_path, BAD_CELLS.format(cell="nan")))
+    assert "preprocess" not in str(error.value)
+
+
+@pytest.mark.parametrize("cell, got", [("", "an empty cell"), ("x", "text 'x'"), ("nan", "nan")])
+def test_a_bad_label_cell_is_named_by_line_and_column(tmp_path, cell, got):
+    path = write(tmp_path, f"a,y\n0.1,0\n0.2,{cell}\n")
+    with pytest.raises(ValueError, match=rf"^{path}, line 3, column 'y' \(the label\): expected a "
+                                         rf"(finite )?number, got {got}\.$"):
+        read_scans(path)
+
+
+def test_a_bad_split_cell_is_named_by_line_and_column(tmp_path):
+    path = write(tmp_path, "a,y,split\n0.1,0,train\n0.2,1,tset\n")
+    with pytest.raises(ValueError, match=rf"^{path}, line 3, column 'split': expected 'train' or 'test', "
+                                         r"got text 'tset'\.$"):
+        read_scans(path)
+
+
+def test_a_bad_cell_of_an_npz_file_is_named_by_row_and_column(tmp_path):
+    X = np.array([[0.1, 0.2], [0.3, np.nan], [0.5, 0.6]])
+    np.savez(tmp_path / "d.npz", X=X, y=np.array([0, 1, 0]))
+    with pytest.raises(ValueError, match=r"d\.npz, row 1, column 's1': expected a finite number, got nan\."):
+        read_scans(tmp_path / "d.npz")
