@@ -21,6 +21,7 @@ import importlib
 from typing import Any
 
 from . import registry as _registries
+from ._markup import plain_descriptions
 from ._version import __version__
 from .registry import InvalidParameterError, Registry, RegistryError, UnknownNameError
 
@@ -94,8 +95,8 @@ def available(kind: str | None = None) -> dict:
     if kind is not None:
         if kind not in registries:
             raise ValueError(f"Unknown kind {kind!r}; expected one of {', '.join(registries)}.")
-        return dict(registries[kind].descriptions())
-    return {k: dict(r.descriptions()) for k, r in registries.items()}
+        return plain_descriptions(registries[kind])
+    return {k: plain_descriptions(r) for k, r in registries.items()}
 
 
 def load(path):

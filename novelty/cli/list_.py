@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import re
-
+from .._markup import plain_text
 from ..registry import of_kind
 from ._common import add_command
 
@@ -21,28 +20,9 @@ def add_parser(subparsers):
     return parser
 
 
-#: a Sphinx role (:func:`~novelty.x.name`) or a literal (``name``) in a docstring
-_MARKUP = re.compile(r":[a-z]+(?::[a-z]+)?:`(~?)([^`<]*?)(?:\s*<[^>]*>)?`|``([^`]+)``|`([^`]+)`")
-
-
-def plain(text: str) -> str:
-    """Docstring markup as a terminal shows it: roles and literals become their text.
-
-    >>> plain("see :func:`inspection`, :class:`~novelty.sonar.Robot`, ``x=1`` and `radius`")
-    'see inspection, Robot, x=1 and radius'
-    """
-    def text_of(match: re.Match) -> str:
-        tilde, target, literal, quoted = match.groups()
-        if target is not None:
-            return target.rsplit(".", 1)[-1] if tilde else target
-        return literal if literal is not None else quoted
-
-    return _MARKUP.sub(text_of, text)
-
-
 def _describe(registry, name: str) -> str:
     try:
-        return plain(registry.describe(name) or "")
+        return plain_text(registry.describe(name) or "")
     except Exception as exc:  # noqa: BLE001 - a broken plugin must not hide the others
         return f"(cannot be loaded: {type(exc).__name__}: {' '.join(str(exc).split())})"
 

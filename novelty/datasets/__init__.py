@@ -31,6 +31,7 @@ the other kinds of component.
 
 from __future__ import annotations
 
+from .._markup import plain_descriptions
 from ..data import Dataset
 from ..registry import datasets as registry
 
@@ -39,7 +40,7 @@ __all__ = ["Dataset", "registry", "available", "load", "register"]
 
 def available() -> dict:
     """Every dataset name with its one-line description."""
-    return dict(registry.descriptions())
+    return plain_descriptions(registry)
 
 
 def load(name: str, **options):
