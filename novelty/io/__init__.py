@@ -1,0 +1,26 @@
+"""Robot recordings in: CARMEN logs and ROS bags, laser and sonar messages to the paper's rings.
+
+- :mod:`novelty.io.carmen`: CARMEN logs (``FLASER``, ``RLASER``,
+  ``ROBOTLASER1``, ``ODOM``), plain or gzipped.
+- :mod:`novelty.io.rosbag`: ROS 1 bags and ROS 2 bags (``.db3``, ``.mcap``)
+  through the optional package ``rosbags`` (the ``ros`` extra).
+- :mod:`novelty.io.messages`: the message types the readers return.
+- :mod:`novelty.io.scans`: invalid readings by the ROS conventions, a laser
+  scan reduced to sectors, sonar readings gathered into rings;
+  :mod:`novelty.io.sectors` the same as a scikit-learn transformer.
+- :mod:`novelty.io.recording`: a recording as rings, or as a dataset of the
+  paper's inputs with times, poses and distance travelled.
+
+Every reader is a generator: it reads the file as the messages are asked
+for, a message at a time.
+"""
+
+from .carmen import CarmenError, CarmenLog, read_carmen
+from .messages import LaserScan, Pose, RangeReading
+from .recording import Ring, is_recording, read_recording, read_rings
+from .rosbag import BagError, bag_topics, read_bag
+from .scans import clean_ranges, laser_ring, sonar_rings
+
+__all__ = ["CarmenLog", "CarmenError", "read_carmen", "BagError", "bag_topics", "read_bag", "LaserScan",
+           "RangeReading", "Pose", "Ring", "read_rings", "read_recording", "is_recording", "clean_ranges",
+           "laser_ring", "sonar_rings"]

@@ -1,0 +1,195 @@
+"""A robot recording (a CARMEN log or a ROS bag) as rings of ranges, then as a :class:`~novelty.data.Dataset`.
+
+:func:`read_rings` streams one :class:`Ring` a scan: a laser scan reduced to
+sectors (:func:`novelty.io.scans.laser_ring`) or one reading of every sonar
+(:func:`novelty.io.scans.sonar_rings`), with its time and the robot's pose
+when the recording has one. :func:`read_recording` collects them into a
+dataset of the paper's inputs (threshold, normalise, invert:
+:func:`novelty.sonar.preprocess`), with the time, pose and distance
+travelled of every scan.
+
+Which messages: in a CARMEN log ``topic`` is a laser message (``FLASER``
+by default, ``RLASER``, ``ROBOTLASER1``), whose messages carry the robot's
+pose; ``pose_topic="ODOM"`` takes the odometry instead. In a bag ``topic``
+is a ``LaserScan`` topic, a ``Range`` topic (all sonars on it, told apart
+by their frames) or several ``Range`` topics (one a sonar); ``pose_topic``
+an ``Odometry`` or ``PoseStamped`` topic, the latest pose before each ring.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterator, Sequence
+
+import numpy as np
+
+from ..data import Dataset
+from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
+from .carmen import CarmenLog
+from .messages import LaserScan, Pose, RangeReading
+from .rosbag import bag_topics, is_bag, read_bag
+from .scans import laser_ring, sector_index, clean_ranges, reduce_sectors, sonar_rings
+
+__all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
+
+#: File names taken for CARMEN logs (``.clf``: the "CARMEN log file" of some data sets).
+CARMEN_SUFFIXES = (".log", ".log.gz", ".clf", ".clf.gz", ".carmen", ".carmen.gz")
+#: The CARMEN messages that are laser scans.
+CARMEN_LASERS = ("FLASER", "RLASER", "ROBOTLASER1")
+
+
+@dataclass(frozen=True, eq=False)
+class Ring:
+    """One ring of ranges (m, ``+inf`` where nothing was seen), its time (s) and the robot's pose or None."""
+
+    time: float
+    ranges: np.ndarray
+    pose: np.ndarray | None
+
+
+def is_recording(path) -> bool:
+    """Whether ``path`` names a recording read here: a CARMEN log or a bag, by its name."""
+    name = Path(path).name.lower()
+    return is_bag(path) or name.endswith(CARMEN_SUFFIXES)
+
+
+def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int = 16, reduce="min",
+               limits=None, front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
+               sensors=None, max_span: float | None = None) -> Iterator[Ring]:
+    """The recording's rings, one at a time (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        A CARMEN log (plain or gzipped) or a bag (``.bag``, ``.db3``, ``.mcap``).
+    topic : str or sequence of str, optional
+        The scans' topic or CARMEN message (default: ``FLASER``, or a bag's
+        only ``LaserScan``/``Range`` topic).
+    sectors, reduce, limits, front, clip
+        How a laser scan becomes a ring (:func:`novelty.io.scans.laser_ring`).
+    pose_topic : str, optional
+        Where poses come from (default: the scans' own, CARMEN's corrected poses).
+    sensors, max_span
+        How sonar readings gather into rings (:func:`novelty.io.scans.sonar_rings`).
+    """
+    options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip)
+    if is_bag(path):
+        topics = _bag_scan_topics(path, topic)
+        types = bag_topics(path)
+        messages = read_bag(path, topics + ([pose_topic] if pose_topic else []))
+        if types[topics[0]] == "sensor_msgs/msg/Range":
+            yield from _sonar(messages, topics, sensors, max_span)
+            return
+        yield from _lasers(messages, options, use_own_pose=False)
+        return
+    if not Path(path).name.lower().endswith(CARMEN_SUFFIXES):
+        raise ValueError(f"{path} is neither a CARMEN log ({', '.join(CARMEN_SUFFIXES)}) nor a bag "
+                         "(.bag, .db3, .mcap, a ROS 2 bag folder).")
+    yield from _carmen(path, topic or "FLASER", pose_topic, options)
+
+
+def _bag_scan_topics(path, topic) -> list[str]:
+    if topic is not None:
+        return [topic] if isinstance(topic, str) else list(topic)
+    scans = [t for t, kind in bag_topics(path).items()
+             if kind in ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range")]
+    if len(scans) != 1:
+        listing = ", ".join(f"{t} ({k})" for t, k in bag_topics(path).items()) or "none"
+        raise ValueError(f"Name the scans' topic of {path} (topic=, --topic); its topics: {listing}.")
+    return scans
+
+
+def _carmen(path, topic: str, pose_topic: str | None, options: dict) -> Iterator[Ring]:
+    if topic not in CARMEN_LASERS:
+        raise ValueError(f"A CARMEN log's scans are one of {', '.join(CARMEN_LASERS)}; got {topic!r}.")
+    if pose_topic not in (None, "ODOM"):
+        raise ValueError(f"A CARMEN log's poses are the scans' own (None) or ODOM; got {pose_topic!r}.")
+    log = CarmenLog(path, messages=(topic,) + ((pose_topic,) if pose_topic else ()))
+    count = 0
+    for ring in _lasers(iter(log), options, use_own_pose=pose_topic is None):
+        count += 1
+        yield ring
+    if count == 0:
+        held = ", ".join(f"{name} ({n})" for name, n in log.skipped.most_common()) or "no messages"
+        raise ValueError(f"{path} holds no {topic} messages; it holds: {held}.")
+
+
+def _lasers(messages, options: dict, use_own_pose: bool) -> Iterator[Ring]:
+    latest: np.ndarray | None = None
+    geometry, index = None, None
+    for msg in messages:
+        if isinstance(msg, Pose):
+            latest = np.array([msg.x, msg.y, msg.theta])
+            continue
+        if not isinstance(msg, LaserScan):
+            raise ValueError(f"Expected laser scans on the scans' topic; got a {type(msg).__name__}.")
+        key = (len(msg.ranges), msg.angle_min, msg.angle_increment)
+        if key != geometry:   # the beams' sectors, worked out again only when the laser's geometry changes
+            index = sector_index(msg.angles, options["sectors"], options["limits"], options["front"])
+            geometry = key
+        ranges = clean_ranges(msg.ranges, msg.range_min, msg.range_max)
+        ring = reduce_sectors(ranges, index, options["sectors"], options["reduce"], options["clip"])
+        yield Ring(msg.stamp, ring, msg.pose if use_own_pose else latest)
+
+
+def _sonar(messages, topics, sensors, max_span) -> Iterator[Ring]:
+    latest: list = [None]
+
+    def readings():
+        for msg in messages:
+            if isinstance(msg, Pose):
+                latest[0] = np.array([msg.x, msg.y, msg.theta])
+            elif isinstance(msg, RangeReading):
+                yield msg
+            else:
+                raise ValueError(f"Expected Range messages on {topics}; got a {type(msg).__name__}.")
+
+    order = sensors if sensors is not None else (topics if len(topics) > 1 else None)
+    for time, ranges in sonar_rings(readings(), order, max_span):
+        yield Ring(time, ranges, latest[0])
+
+
+def read_recording(path, topic=None, *, threshold: float | None = PAPER_THRESHOLD, limit: int | None = None,
+                   **options) -> Dataset:
+    """The recording as a dataset of rings: preprocessed as the paper's, with time, poses and distance.
+
+    Parameters
+    ----------
+    path, topic, **options
+        As :func:`read_rings`.
+    threshold : float or None, default=4.0
+        The paper's preprocessing threshold (m); ``None`` keeps the ranges
+        in metres (``+inf`` where a sector saw nothing).
+    limit : int, optional
+        Read at most this many rings (nothing of the file beyond them).
+
+    Returns
+    -------
+    Dataset
+        ``X`` the rings; ``columns["time"]`` the times (s); ``poses`` and
+        ``distance`` (the path length travelled, m) where every ring has a pose
+        (the scans before the pose topic's first message are left out).
+    """
+    rings = list(itertools.islice(read_rings(path, topic, **options), limit))
+    first_pose = next((i for i, r in enumerate(rings) if r.pose is not None), 0)
+    rings = rings[first_pose:]   # scans before the first pose have no place on the path
+    if not rings:
+        raise ValueError(f"{path}: no scans read.")
+    ranges = np.array([r.ranges for r in rings])
+    X = ranges if threshold is None else preprocess(ranges, threshold)
+    poses = None
+    distance = None
+    if all(r.pose is not None for r in rings):
+        poses = np.array([r.pose for r in rings], dtype=np.float64)
+        steps = np.hypot(*np.diff(poses[:, :2], axis=0).T)
+        distance = np.concatenate([[0.0], np.cumsum(steps)])
+    metadata = {"source": str(path), "topic": topic, "skipped_before_first_pose": first_pose, "sectors": options.get("sectors", 16),
+                "reduce": options.get("reduce", "min"),
+                "encoding": "ranges (m)" if threshold is None else "1 - min(r, T) / T"}
+    if threshold is not None:
+        metadata["threshold_m"] = float(threshold)
+    return Dataset(Path(path).name, X, poses=poses, distance=distance,
+                   columns={"time": np.array([r.time for r in rings])}, metadata=metadata)

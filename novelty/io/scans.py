@@ -1,0 +1,288 @@
+"""From range messages to the paper's ring: invalid readings, laser sectors, sonar rings.
+
+The paper's novelty filter takes a ring of ranges, one a sensor around the
+robot (16 sonars, Marsland et al. 2000, section 4.1). A robot's recording
+holds laser scans (hundreds of beams) or one ``Range`` message a sonar;
+three steps make rings of them, then the paper's preprocessing
+(:class:`novelty.sonar.SonarPreprocessor`: threshold, normalise, invert).
+
+1. **Invalid readings** (:func:`clean_ranges`), by the conventions of
+   ``sensor_msgs/LaserScan`` and ``sensor_msgs/Range`` and REP 117:
+   ``+inf`` means no object within range (kept: the paper's "no echo",
+   preprocessed to 0); ``-inf`` a detection too close to measure (becomes
+   ``range_min``, the closest the sensor tells); NaN an erroneous
+   measurement, and a finite value outside [``range_min``, ``range_max``]
+   one to discard (both become NaN: no information).
+2. **Sectors** (:func:`sector_index`, :func:`reduce_sectors`,
+   :func:`laser_ring`): the beams' angles, measured from the robot's
+   ``front``, are cut into ``n_sectors`` equal sectors between the angular
+   ``limits``, ordered counter-clockwise (for a front laser: from the
+   robot's right to its left), and each sector's valid beams are reduced to
+   one range: their minimum (what a sonar's cone reports: its nearest echo,
+   the paper's sensor), their mean, their median or a percentile. A sector
+   with no valid beam reads ``+inf`` (nothing seen). By default each beam
+   owns an equal slice of the scan's span, so ``n_sectors`` equal to the
+   number of beams gives the beams back unchanged.
+3. **Sonar rings** (:func:`sonar_rings`): one reading of every sonar,
+   gathered by time, in the order of their mounting angles.
+
+``clip`` (m) counts every range beyond it, ``+inf`` included, as ``clip``
+before reducing: with ``clip`` the paper's threshold, a sector's mean then
+preprocesses to the mean of its beams' preprocessed values (the
+preprocessing is linear below the threshold), where without it one beam
+without an echo makes the whole sector's mean ``+inf``.
+
+References
+----------
+Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features
+of an environment using habituation. Proc. SAB 2000, section 4.1.
+ROS Enhancement Proposal 117, "Informational Distance Measurements"
+(Bohren, 2012): the meanings of ``-inf``, ``+inf`` and NaN.
+ROS ``sensor_msgs/LaserScan`` and ``sensor_msgs/Range`` message definitions:
+"values < range_min or > range_max should be discarded".
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import re
+import warnings
+from typing import Iterable, Iterator, Mapping, Sequence
+
+import numpy as np
+
+from .messages import LaserScan, RangeReading
+
+__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "sonar_rings", "REDUCTIONS"]
+
+#: Named ways to reduce a sector's beams to one range (a number q is the q-th percentile).
+REDUCTIONS = ("min", "mean", "median")
+
+
+def clean_ranges(ranges, range_min: float = 0.0, range_max: float = math.inf) -> np.ndarray:
+    """Ranges with REP 117's meanings made explicit: a range, ``+inf`` (nothing seen) or NaN (no information).
+
+    ``-inf`` (too close to measure) becomes ``range_min``; a finite value
+    below ``range_min`` or above ``range_max``, and NaN, become NaN.
+
+    Examples
+    --------
+    >>> clean_ranges([1.0, float("inf"), float("-inf"), float("nan"), 0.01, 9.0], 0.1, 8.0).tolist()
+    [1.0, inf, 0.1, nan, nan, nan]
+    """
+    r = np.array(ranges, dtype=np.float64)
+    finite = np.isfinite(r)
+    out = np.where(finite & ((r < range_min) | (r > range_max)), np.nan, r)
+    out[np.isneginf(r)] = range_min
+    return out
+
+
+def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = None,
+                 front: float = 0.0) -> np.ndarray:
+    """The sector of every beam (-1 outside the limits), sectors counter-clockwise from ``limits[0]``.
+
+    Parameters
+    ----------
+    angles : array-like of shape (n_beams,)
+        The beams' angles (rad), evenly spaced and increasing, in the frame
+        in which the robot's front is at ``front``.
+    n_sectors : int
+    limits : (float, float), optional
+        The angular span (rad, from the front, ``low < high``) cut into
+        sectors. Default: the scan's span, each beam owning an equal slice
+        of it (half a beam's spacing beyond the first and last beams).
+    front : float, default=0.0
+        The angle (rad) of the robot's front in the scan's frame.
+
+    Examples
+    --------
+    >>> angles = np.deg2rad([-90, -45, 0, 45, 90])
+    >>> sector_index(angles, 5).tolist(), sector_index(angles, 2).tolist()
+    ([0, 1, 2, 3, 4], [0, 0, 1, 1, 1])
+    >>> sector_index(angles, 2, limits=(-np.pi / 4, np.pi / 4)).tolist()
+    [-1, 0, 1, 1, -1]
+    """
+    if isinstance(n_sectors, bool) or not isinstance(n_sectors, numbers.Integral) or n_sectors < 1:
+        raise ValueError(f"n_sectors must be an int >= 1; got {n_sectors!r}.")
+    a = np.asarray(angles, dtype=np.float64) - front
+    a = (a + math.pi) % (2 * math.pi) - math.pi      # from the front, in [-pi, pi)
+    if limits is None:
+        half = abs(float(np.median(np.diff(a)))) / 2 if len(a) > 1 else math.pi
+        low, high = float(a.min()) - half, float(a.max()) + half
+    else:
+        low, high = (float(v) for v in limits)
+        if not (-2 * math.pi <= low < high <= 2 * math.pi):
+            raise ValueError(f"limits must be (low, high) radians with low < high; got {limits!r}.")
+    k = np.floor((a - low) / (high - low) * n_sectors + 1e-9).astype(np.intp)
+    # a beam on the high limit belongs to the last sector; beyond either limit to none
+    k = np.where(np.isclose(a, high), n_sectors - 1, k)
+    k = np.where((a < low - 1e-12) | (a > high + 1e-12) | (k < 0) | (k >= n_sectors), -1, k)
+    empty = sorted(set(range(n_sectors)) - set(k.tolist()))
+    if empty:
+        raise ValueError(f"{len(empty)} of {n_sectors} sectors hold no beam (sectors {empty[:5]}...): "
+                         f"{len(a)} beams cannot fill them; use fewer sectors or wider limits.")
+    return k
+
+
+def reduce_sectors(ranges, index: np.ndarray, n_sectors: int, reduce="min",
+                   clip: float | None = None) -> np.ndarray:
+    """Reduce each sector's valid beams (not NaN) to one range; ``+inf`` where a sector has none.
+
+    Parameters
+    ----------
+    ranges : array-like of shape (n_beams,) or (n_scans, n_beams)
+        Cleaned ranges (:func:`clean_ranges`).
+    index : ndarray of shape (n_beams,)
+        Each beam's sector (:func:`sector_index`); -1 beams are left out.
+    n_sectors : int
+    reduce : {"min", "mean", "median"} or float, default="min"
+        A number ``q`` in [0, 100] takes the q-th percentile (linear).
+    clip : float, optional
+        Ranges beyond ``clip`` (m) count as ``clip``.
+
+    Examples
+    --------
+    >>> r = [1.0, 3.0, np.nan, 2.0, np.inf, 4.0]
+    >>> idx = np.array([0, 0, 0, 1, 1, 1])
+    >>> reduce_sectors(r, idx, 2).tolist(), reduce_sectors(r, idx, 2, "mean").tolist()
+    ([1.0, 2.0], [2.0, inf])
+    >>> reduce_sectors(r, idx, 2, "mean", clip=4.0).tolist(), reduce_sectors(r, idx, 2, 50).tolist()
+    ([2.0, 3.3333333333333335], [2.0, 4.0])
+    """
+    _check_reduce(reduce)
+    r = np.asarray(ranges, dtype=np.float64)
+    one = r.ndim == 1
+    r = np.atleast_2d(r)
+    if clip is not None:
+        r = np.where(r > clip, clip, r)   # NaN stays NaN
+    out = np.empty((r.shape[0], n_sectors))
+    for k in range(n_sectors):
+        out[:, k] = _reduce(r[:, index == k], reduce)
+    return out[0] if one else out
+
+
+def _reduce(block: np.ndarray, reduce) -> np.ndarray:
+    valid = ~np.isnan(block)
+    count = valid.sum(axis=1)
+    if reduce == "min":
+        value = np.where(valid, block, np.inf).min(axis=1)
+    elif reduce == "mean":
+        with np.errstate(invalid="ignore"):
+            value = np.where(valid, block, 0.0).sum(axis=1) / np.maximum(count, 1)
+    else:
+        q = 50.0 if reduce == "median" else float(reduce)
+        # linear interpolation towards +inf is +inf (numpy's gives NaN): interpolate with a
+        # finite stand-in, then anything beyond the sector's largest finite range is +inf
+        stand_in = np.where(np.isposinf(block), 1e300, block)
+        largest = np.where(np.isfinite(block), block, -np.inf).max(axis=1, initial=-np.inf)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)   # all-NaN sectors: answered below
+            value = np.nanpercentile(stand_in, q, axis=1) if block.shape[1] else np.full(len(block), np.nan)
+        value = np.where(value > largest, np.inf, value)
+    return np.where(count > 0, value, np.inf)
+
+
+def _check_reduce(reduce) -> None:
+    if reduce in REDUCTIONS:
+        return
+    if isinstance(reduce, numbers.Real) and not isinstance(reduce, bool) and 0 <= reduce <= 100:
+        return
+    raise ValueError(f"reduce must be one of {', '.join(REDUCTIONS)} or a percentile in [0, 100]; "
+                     f"got {reduce!r}.")
+
+
+def laser_ring(scan: LaserScan, n_sectors: int, reduce="min", limits=None, front: float = 0.0,
+               clip: float | None = None) -> np.ndarray:
+    """A laser scan as a ring of ``n_sectors`` ranges (see the module docstring).
+
+    Examples
+    --------
+    >>> scan = LaserScan(0.0, np.array([1.0, np.nan, 2.0, -np.inf]), angle_min=-np.pi / 2,
+    ...                  angle_increment=np.pi / 3, range_min=0.25)
+    >>> laser_ring(scan, 2).tolist()
+    [1.0, 0.25]
+    """
+    index = sector_index(scan.angles, n_sectors, limits, front)
+    ranges = clean_ranges(scan.ranges, scan.range_min, scan.range_max)
+    return reduce_sectors(ranges, index, n_sectors, reduce, clip)
+
+
+# ------------------------------------------------------------------ sonar rings
+def sonar_rings(readings: Iterable[RangeReading], sensors: Sequence[str] | Mapping[str, float] | None = None,
+                max_span: float | None = None) -> Iterator[tuple[float, np.ndarray]]:
+    """Gather one reading of every sonar into a ring: ``(time, ranges)``, in mounting order.
+
+    A ring is complete when every sensor has reported since the last ring;
+    its time is its newest reading's. A sensor reporting twice before the
+    ring completes keeps its newer reading.
+
+    Parameters
+    ----------
+    readings : iterable of RangeReading
+        In time order.
+    sensors : sequence of str, or dict of str to float, optional
+        The sensors in mounting order, or each sensor's mounting angle (rad;
+        the ring runs counter-clockwise from the smallest). Default: the
+        sensors met before the first repeat, in natural name order
+        (``sonar2`` before ``sonar10``): ``Range`` messages do not carry
+        their mounting angle, so give it where the names do not follow it.
+    max_span : float, optional
+        Seconds: a reading older than this before the newest one of the
+        ring is dropped (its sensor reports again before the ring completes).
+
+    Examples
+    --------
+    >>> rs = [RangeReading(0.0, 1.0, "s1"), RangeReading(0.1, 2.0, "s0"),
+    ...       RangeReading(0.2, float("inf"), "s1"), RangeReading(0.3, 0.5, "s0")]
+    >>> [(t, ring.tolist()) for t, ring in sonar_rings(rs)]
+    [(0.1, [2.0, 1.0]), (0.3, [0.5, inf])]
+    """
+    it = iter(readings)
+    order = _sensor_order(sensors) if sensors is not None else None
+    pending: list[RangeReading] = []
+    if order is None:
+        order, pending = _discover_sensors(it)
+    position = {name: i for i, name in enumerate(order)}
+    ring: dict[str, RangeReading] = {}
+    for reading in _chain(pending, it):
+        if reading.sensor not in position:
+            raise ValueError(f"A reading of sensor {reading.sensor!r}, not one of the ring's "
+                             f"{list(order)}.")
+        ring[reading.sensor] = reading
+        if max_span is not None:
+            ring = {k: v for k, v in ring.items() if reading.stamp - v.stamp <= max_span}
+        if len(ring) == len(order):
+            values = [clean_ranges([ring[s].range], ring[s].range_min, ring[s].range_max)[0]
+                      for s in order]
+            yield max(v.stamp for v in ring.values()), np.where(np.isnan(values), np.inf, values)
+            ring = {}
+
+
+def _chain(first, rest):
+    yield from first
+    yield from rest
+
+
+def _sensor_order(sensors) -> list[str]:
+    if isinstance(sensors, Mapping):
+        return [name for name, _ in sorted(sensors.items(), key=lambda item: (float(item[1]), item[0]))]
+    order = [str(s) for s in sensors]
+    if not order or len(set(order)) != len(order):
+        raise ValueError(f"sensors must name each sensor once; got {order!r}.")
+    return order
+
+
+def _discover_sensors(it) -> tuple[list[str], list[RangeReading]]:
+    seen: list[RangeReading] = []
+    names: set[str] = set()
+    for reading in it:
+        if reading.sensor in names:
+            return sorted(names, key=_natural), seen + [reading]
+        names.add(reading.sensor)
+        seen.append(reading)
+    return sorted(names, key=_natural), seen
+
+
+def _natural(name: str):
+    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]

@@ -1,0 +1,92 @@
+"""Small bags written with rosbags' writers for the tests: ROS 1, ROS 2 SQLite and ROS 2 MCAP.
+
+Each holds a laser (/scan: 4 beams over 180 degrees with +inf, NaN, -inf and
+out-of-range readings), three sonars on one topic (/sonar, frames s0..s2)
+and odometry (/odom). Scans at 1.0, 1.1, 1.2 s, then a gap to 6.0, 6.1 s; each message recorded a
+microsecond after its header's stamp (so a test can tell the two apart).
+"""
+
+import dataclasses
+import math
+import shutil
+
+import numpy as np
+
+SCAN_TIMES = (1.0, 1.1, 1.2, 6.0, 6.1)
+#: the laser's ranges at each scan (range_min 0.1, range_max 10)
+SCAN_RANGES = [[1.0, math.inf, 2.0, 3.0], [math.nan, 1.5, -math.inf, 12.0]] + [[2.0, 2.0, 2.0, 2.0]] * 3
+#: the three sonars' readings at each time (range 0.2..5), each frame in turn s2, s0, s1
+SONAR = [(1.0, "s2", 3.0), (1.01, "s0", 1.0), (1.02, "s1", math.inf), (1.1, "s2", 4.0), (1.11, "s0", 2.0),
+         (1.12, "s1", 0.5), (6.0, "s2", 1.0), (6.01, "s0", 9.0), (6.02, "s1", 1.0)]
+#: odometry: x = t metres, heading 0.5 rad
+ODOM_TIMES = (0.95, 1.15, 5.95)
+
+
+def _stamp(ts, t):
+    return ts.types["builtin_interfaces/msg/Time"](sec=int(t), nanosec=int(round((t % 1) * 1e9)))
+
+
+def _make(ts, msgtype, **values):
+    """A message of ``msgtype`` with ``values``; every other field a zero of its kind."""
+    cls = ts.types[msgtype]
+    for field in dataclasses.fields(cls):
+        if field.name not in values:
+            values[field.name] = 0 if field.name in ("seq", "radiation_type") else 0.0
+    return cls(**values)
+
+
+def _header(ts, t, frame):
+    return _make(ts, "std_msgs/msg/Header", stamp=_stamp(ts, t), frame_id=frame)
+
+
+def _messages(ts):
+    """(time, topic, type, message) in time order."""
+    out = []
+    for t, ranges in zip(SCAN_TIMES, SCAN_RANGES):
+        out.append((t, "/scan", "sensor_msgs/msg/LaserScan", _make(
+            ts, "sensor_msgs/msg/LaserScan", header=_header(ts, t, "laser"), angle_min=-math.pi / 2,
+            angle_max=math.pi / 2, angle_increment=math.pi / 3, range_min=0.1, range_max=10.0,
+            ranges=np.array(ranges, dtype=np.float32), intensities=np.zeros(0, np.float32))))
+    for t, frame, r in SONAR:
+        out.append((t, "/sonar", "sensor_msgs/msg/Range", _make(
+            ts, "sensor_msgs/msg/Range", header=_header(ts, t, frame), field_of_view=0.5, min_range=0.2,
+            max_range=5.0, range=r)))
+    for t in ODOM_TIMES:
+        quaternion = _make(ts, "geometry_msgs/msg/Quaternion", z=math.sin(0.25), w=math.cos(0.25))
+        pose = _make(ts, "geometry_msgs/msg/Pose", position=_make(ts, "geometry_msgs/msg/Point", x=t),
+                     orientation=quaternion)
+        odom = _make(ts, "nav_msgs/msg/Odometry", header=_header(ts, t, "odom"), child_frame_id="base",
+                     pose=_make(ts, "geometry_msgs/msg/PoseWithCovariance", pose=pose, covariance=np.zeros(36)),
+                     twist=_make(ts, "geometry_msgs/msg/TwistWithCovariance", covariance=np.zeros(36),
+                                 twist=_make(ts, "geometry_msgs/msg/Twist",
+                                             linear=_make(ts, "geometry_msgs/msg/Vector3"),
+                                             angular=_make(ts, "geometry_msgs/msg/Vector3"))))
+        out.append((t, "/odom", "nav_msgs/msg/Odometry", odom))
+    return sorted(out, key=lambda m: m[0])
+
+
+def write_bag(folder, kind: str):
+    """Write the test bag of ``kind`` ("ros1", "sqlite3", "mcap") under ``folder``; its path."""
+    from rosbags.rosbag1 import Writer as Writer1
+    from rosbags.rosbag2 import StoragePlugin
+    from rosbags.rosbag2 import Writer as Writer2
+    from rosbags.typesys import Stores, get_typestore
+
+    if kind == "ros1":
+        ts = get_typestore(Stores.ROS1_NOETIC)
+        path = folder / "run.bag"
+        writer, serialize = Writer1(path), ts.serialize_ros1
+    else:
+        ts = get_typestore(Stores.ROS2_HUMBLE)
+        root = folder / f"run-{kind}"
+        shutil.rmtree(root, ignore_errors=True)
+        plugin = StoragePlugin.SQLITE3 if kind == "sqlite3" else StoragePlugin.MCAP
+        writer, serialize = Writer2(root, version=9, storage_plugin=plugin), ts.serialize_cdr
+        path = root / f"run-{kind}.{'db3' if kind == 'sqlite3' else 'mcap'}"
+    with writer:
+        connections = {}
+        for t, topic, msgtype, msg in _messages(ts):
+            if topic not in connections:
+                connections[topic] = writer.add_connection(topic, msgtype, typestore=ts)
+            writer.write(connections[topic], int(round(t * 1e9)) + 1000, serialize(msg, msgtype))
+    return path
