@@ -924,3 +924,64 @@ def test_overlapping_entries_are_read_no_more_than_the_file_holds(saved, tmp_pat
             novelty.load(bad)
 
     assert peak_mib(load) < 12
+
+
+# ------------------------------------------------------- targets that are not regular files
+def _fifo(path):
+    os.mkfifo(path)
+    return "FIFO"
+
+
+def _symlink(path):
+    (path.parent / "real.npz").write_bytes(b"kept")
+    path.symlink_to(path.parent / "real.npz")
+    return "symbolic link"
+
+
+def _dangling_symlink(path):
+    path.symlink_to(path.parent / "nowhere" / "x.npz")
+    return "symbolic link"
+
+
+def _directory(path):
+    path.mkdir()
+    return "directory"
+
+
+def _device(path):
+    try:
+        os.mknod(path, 0o600 | stat.S_IFCHR, os.makedev(1, 3))  # the numbers of a null device
+    except PermissionError:
+        pytest.skip("making a device node needs privileges")
+    return "character device"
+
+
+@pytest.mark.parametrize("make_target", [_fifo, _symlink, _dangling_symlink, _directory, _device])
+def test_save_refuses_a_target_that_is_not_a_regular_file(saved, tmp_path, make_target):
+    det, _ = saved
+    target = tmp_path / "target.npz"
+    kind = make_target(target)
+    before = os.lstat(target)
+    with pytest.raises(FileExistsError, match=f"{kind}.*only a regular file is replaced"):
+        det.save(target)
+    after = os.lstat(target)
+    assert (after.st_mode, after.st_ino) == (before.st_mode, before.st_ino)  # the same entry, untouched
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary file left
+    if make_target is _symlink:
+        assert (tmp_path / "real.npz").read_bytes() == b"kept"  # nothing written through the link
+
+
+def test_save_refuses_a_target_that_appears_while_it_writes(saved, tmp_path, monkeypatch):
+    # the check is made again just before the rename
+    det, _ = saved
+    target = tmp_path / "late.npz"
+    real_savez = np.savez
+
+    def savez_then_plant(fh, **arrays):
+        real_savez(fh, **arrays)
+        os.mkfifo(target)
+
+    monkeypatch.setattr(np, "savez", savez_then_plant)
+    with pytest.raises(FileExistsError, match="FIFO"):
+        det.save(target)
+    assert stat.S_ISFIFO(os.lstat(target).st_mode)

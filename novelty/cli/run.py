@@ -7,6 +7,7 @@ import sys
 
 import numpy as np
 
+from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, parse_params, read_scans, write_novelty
@@ -63,6 +64,8 @@ def run(args) -> int:
 
     if args.passes < 1:
         raise UserError(f"--passes must be at least 1; got {args.passes}.")
+    if args.save:
+        check_target(args.save)  # a device or a pipe is refused before the scans are read
     det = check_detector(DetectorSpec(args.detector, parse_params(args.param)))
     alarm = _alarm_policy(det, args.alarm)
     if args.data == "-":

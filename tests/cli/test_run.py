@@ -171,3 +171,18 @@ def test_a_bad_cell_on_stdin_names_its_line_and_column(monkeypatch, capsys, line
     monkeypatch.setattr(sys, "stdin", io.StringIO(f"a,b,y\n0.1,0.2,0\n{line}\n"))
     assert main(["run", "hsom", "--data", "-"]) == 2
     assert message in capsys.readouterr().err
+
+
+def test_save_to_a_fifo_or_a_link_is_refused_before_the_scans_are_read(tmp_path, capsys):
+    data = tmp_path / "scans.csv"
+    data.write_text("a,b\n0.1,0.2\n0.3,0.4\n")
+    fifo = tmp_path / "pipe.npz"
+    os.mkfifo(fifo)
+    link = tmp_path / "link.npz"
+    link.symlink_to(tmp_path / "elsewhere.npz")
+    for target, kind in ((fifo, "FIFO"), (link, "symbolic link")):
+        assert main(["run", "hsom", "--data", str(data), "--param", "n_rows=2", "--save", str(target)]) == 2
+        captured = capsys.readouterr()
+        assert kind in captured.err and "only a regular file is replaced" in captured.err
+        assert captured.out == ""  # refused before any scan was scored
+    assert os.path.islink(link) and not (tmp_path / "elsewhere.npz").exists()
