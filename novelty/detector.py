@@ -53,7 +53,7 @@ from sklearn.utils.metaestimators import available_if
 from . import persistence
 from ._component import Component, StateError, _is_state_name, check_array_state, check_int_state
 from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
-                          frame_names, scan_names, validate_parameters)
+                          frame_names, last_timestamp, scan_names, validate_parameters)
 
 __all__ = ["NoveltyDetector", "CONTAMINATION"]
 
@@ -129,8 +129,9 @@ class NoveltyDetector(OutlierMixin, Component):
         Names of the features, when the first batch was a DataFrame with
         string column names or the first scan a dict (strings as an object
         array, integer keys as an int64 array). Saved with the model.
-    last_time_ : float or None
-        Timestamp of the last scan learned, when timestamps were given.
+    last_time_ : float, int or None
+        Timestamp of the last scan learned, when timestamps were given (an
+        int when they were integers: epoch nanoseconds are held exactly).
     decision_scores_ : ndarray of shape (n_samples,)
         Novelty of each training scan of the last :meth:`fit`, under the
         fitted model (PyOD's name; higher = more abnormal). Saved with the model.
@@ -188,7 +189,7 @@ class NoveltyDetector(OutlierMixin, Component):
 
     def _advance_clock(self, n: int, timestamps: Any) -> None:
         if timestamps is not None:
-            self.last_time_ = float(np.asarray(timestamps, dtype=np.float64)[-1])
+            self.last_time_ = last_timestamp(timestamps)
         elif getattr(self, "last_time_", None) is not None:
             self.last_time_ += float(n)
 
@@ -244,8 +245,10 @@ class NoveltyDetector(OutlierMixin, Component):
         if hasattr(self, "decision_scores_"):
             check_array_state(self, "decision_scores_", 1)
         t = getattr(self, "last_time_", None)
-        if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or not math.isfinite(t)):
-            raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number; got {t!r}.")
+        if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or (
+                abs(t) > 2**63 - 1 if isinstance(t, numbers.Integral) else not math.isfinite(t))):
+            raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number (an int "
+                             f"within int64); got {t!r}.")
 
     def _validate_params(self) -> None:
         super()._validate_params()

@@ -19,7 +19,7 @@ from .names import _dict_values, _name_mismatch, _type_name, check_feature_names
 from .parameters import Bounds, Instance, Interval, Options, validate_parameters
 from .scans import (_MAX_SQUARED_NORM, _NOT_REAL, MAX_SCAN_NORM, _dtype_kinds, _NotReal,  # noqa: F401
                     _refuse_not_real, _too_large, check_batch, check_one)
-from .timestamps import check_timestamps, pass_timestamps
+from .timestamps import check_timestamps, last_timestamp, pass_timestamps
 
 __all__ = [
     "Interval",
@@ -30,6 +30,7 @@ __all__ = [
     "check_batch",
     "check_one",
     "check_timestamps",
+    "last_timestamp",
     "pass_timestamps",
     "scan_names",
     "frame_names",
