@@ -346,6 +346,7 @@ _DATASETS = {
     "uci-sonar": "novelty.datasets.uci:uci_sonar",
     "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
     "files": "novelty.datasets.files:files",
+    "recording": "novelty.io.tasks:recording_task",
 }
 
 datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)

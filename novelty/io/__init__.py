@@ -10,6 +10,9 @@
   :mod:`novelty.io.sectors` the same as a scikit-learn transformer.
 - :mod:`novelty.io.recording`: a recording as rings, or as a dataset of the
   paper's inputs with times, poses and distance travelled.
+- :mod:`novelty.io.tasks`: runs, features marked from a CSV or places on a
+  grid, visit counts from poses, and exploration tasks from recordings
+  (the registered dataset ``recording``).
 
 Every reader is a generator: it reads the file as the messages are asked
 for, a message at a time.

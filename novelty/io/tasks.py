@@ -1,0 +1,276 @@
+"""Runs, marked features and novelty tasks from robot recordings.
+
+A recording is split into runs (:func:`split_runs`: by file, by gaps in
+time, or by the user's time intervals); the features a scan perceives are
+marked from the user's CSV (:func:`read_marks`, :func:`mark_features`: "the
+box stood here from t1 to t2") or are the places of a grid over the robot's
+poses (:func:`place_features`); :func:`recording_task` makes of them an
+exploration task (:func:`novelty.exploration.from_runs`: each scan's tracked
+feature and its exposure count), which is also a hold-out task (learn the
+warm-up runs, score the rest; ``y`` = 1 at a feature's first exposure). The
+task carries the poses and times, so novelty can be drawn on the robot's
+path. It is the registered dataset ``recording``.
+
+:func:`visit_counts` says, from the poses alone, how often the robot had
+been at each scan's place before: the ground truth of a robot exploring a
+building, whose novelty should fall as places recur.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Sequence
+
+import numpy as np
+
+from ..data import Dataset
+from ..exploration.runs import from_runs
+from ..sonar.preprocessing import PAPER_THRESHOLD
+from .recording import read_recording
+
+__all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
+           "recording_task"]
+
+_MARK_COLUMNS = ("feature", "start", "end", "x", "y", "radius")
+
+
+@dataclass(frozen=True)
+class Mark:
+    """A feature the robot perceives during a time interval, within a region, or both.
+
+    A scan perceives the feature when its time is in [``start``, ``end``]
+    (if given) and the robot is within ``radius`` metres of (``x``, ``y``)
+    (if given).
+    """
+
+    feature: str
+    start: float = -math.inf
+    end: float = math.inf
+    x: float | None = None
+    y: float | None = None
+    radius: float | None = None
+
+
+def read_marks(path) -> list[Mark]:
+    """The marks of a CSV file with a header: ``feature`` and ``start,end`` (s) and/or ``x,y,radius`` (m).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> path = os.path.join(tempfile.mkdtemp(), "marks.csv")
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("feature,start,end,x,y,radius\\nbox,10,20,,,\\ndoor,,,1.5,2,0.5\\n")
+    >>> [(m.feature, m.start, m.radius) for m in read_marks(path)]
+    [('box', 10.0, None), ('door', -inf, 0.5)]
+    """
+    with open(path, newline="", encoding="utf-8") as fh:
+        rows = csv.reader(fh)
+        header = [h.strip() for h in next(rows, [])]
+        unknown = sorted(set(header) - set(_MARK_COLUMNS))
+        if "feature" not in header or unknown:
+            raise ValueError(f"{path}: the header must name 'feature' and some of start, end, x, y, radius; "
+                             f"got {header}.")
+        marks = [_mark(dict(zip(header, (c.strip() for c in row))), path, line)
+                 for line, row in enumerate(rows, start=2) if any(c.strip() for c in row)]
+    if not marks:
+        raise ValueError(f"{path}: no marks (one row a feature after the header).")
+    return marks
+
+
+def _mark(row: dict, path, line: int) -> Mark:
+    def number(name):
+        text = row.get(name, "")
+        if text == "":
+            return None
+        try:
+            return float(text)
+        except ValueError:
+            raise ValueError(f"{path}, line {line}: {name} is {text!r}, not a number.") from None
+
+    start, end, x, y, radius = (number(n) for n in ("start", "end", "x", "y", "radius"))
+    if not row.get("feature"):
+        raise ValueError(f"{path}, line {line}: no feature name.")
+    region = (x, y, radius)
+    if any(v is None for v in region) and any(v is not None for v in region):
+        raise ValueError(f"{path}, line {line}: a region needs x, y and radius.")
+    if radius is not None and not radius > 0:
+        raise ValueError(f"{path}, line {line}: radius must be positive; got {radius}.")
+    if start is None and end is None and x is None:
+        raise ValueError(f"{path}, line {line}: give a time interval (start, end) or a region (x, y, radius).")
+    start = -math.inf if start is None else start
+    end = math.inf if end is None else end
+    if end < start:
+        raise ValueError(f"{path}, line {line}: end {end} is before start {start}.")
+    return Mark(row["feature"], start, end, x, y, radius)
+
+
+def mark_features(marks: Sequence[Mark], time, poses=None) -> list[tuple[str, ...]]:
+    """The features each scan perceives, by its time and (for regions) its pose.
+
+    Examples
+    --------
+    >>> marks = [Mark("box", 1.0, 2.0), Mark("door", x=0.0, y=0.0, radius=1.0)]
+    >>> mark_features(marks, [0.5, 1.5, 3.0], [[0.0, 0.5, 0.0], [5.0, 5.0, 0.0], [0.0, -0.9, 0.0]])
+    [('door',), ('box',), ('door',)]
+    """
+    time = np.asarray(time, dtype=np.float64)
+    seen = [set() for _ in range(len(time))]
+    for mark in marks:
+        inside = (time >= mark.start) & (time <= mark.end)
+        if mark.radius is not None:
+            if poses is None:
+                raise ValueError(f"Mark {mark.feature!r} is a region, but the recording has no poses.")
+            p = np.asarray(poses, dtype=np.float64)
+            inside &= np.hypot(p[:, 0] - mark.x, p[:, 1] - mark.y) <= mark.radius
+        for i in np.flatnonzero(inside):
+            seen[i].add(mark.feature)
+    return [tuple(sorted(s)) for s in seen]
+
+
+def place_features(poses, cell: float) -> list[tuple[str, ...]]:
+    """Each scan's place: the square of side ``cell`` (m) of a grid over the plane that its pose is in.
+
+    Examples
+    --------
+    >>> place_features([[0.2, 0.3, 0.0], [1.7, -0.2, 1.0]], 1.0)
+    [('place 0,0',), ('place 1,-1',)]
+    """
+    if not cell > 0:
+        raise ValueError(f"cell must be a positive length (m); got {cell!r}.")
+    p = np.floor(np.asarray(poses, dtype=np.float64)[:, :2] / cell).astype(np.int64)
+    return [(f"place {i},{j}",) for i, j in p.tolist()]
+
+
+def split_runs(time, *, gap: float | None = None, intervals=None) -> np.ndarray:
+    """The run of each scan: a new run after each gap longer than ``gap`` s, or one per interval.
+
+    With ``intervals`` (a list of ``(start, end)`` in s, in order, not
+    overlapping), scans outside every interval get run -1.
+
+    Examples
+    --------
+    >>> split_runs([0.0, 0.1, 5.0, 5.1, 20.0], gap=1.0).tolist()
+    [0, 0, 1, 1, 2]
+    >>> split_runs([0.0, 0.1, 5.0, 5.1, 20.0], intervals=[(0, 1), (4.5, 30)]).tolist()
+    [0, 0, 1, 1, 1]
+    """
+    t = np.asarray(time, dtype=np.float64)
+    if (gap is None) == (intervals is None):
+        raise ValueError("Split by gap= (seconds) or by intervals= [(start, end), ...], one of the two.")
+    if gap is not None:
+        if not gap > 0:
+            raise ValueError(f"gap must be a positive number of seconds; got {gap!r}.")
+        return np.concatenate([[0], np.cumsum(np.diff(t) > gap)]).astype(np.int64)
+    spans = [(float(a), float(b)) for a, b in intervals]
+    if any(b < a for a, b in spans) or any(spans[k][1] > spans[k + 1][0] for k in range(len(spans) - 1)):
+        raise ValueError(f"intervals must be (start, end) pairs in order, not overlapping; got {intervals!r}.")
+    run = np.full(len(t), -1, dtype=np.int64)
+    for k, (a, b) in enumerate(spans):
+        run[(t >= a) & (t <= b)] = k
+    return run
+
+
+def visit_counts(poses, radius: float, leave: float | None = None) -> np.ndarray:
+    """How many times the robot had been within ``radius`` of each scan's position before this visit.
+
+    The robot enters the place of scan ``i`` (the disc of ``radius`` around
+    its position) at an earlier scan within it that follows a moment beyond
+    ``leave`` (default ``2 * radius``, so that hovering at the edge is not
+    leaving) or that is the first within it. The count is the number of such
+    entries before the current visit: 0 on the first visit.
+
+    Examples
+    --------
+    >>> x = [0.0, 1.0, 5.0, 1.0, 0.0, 5.0]          # out and back along a line
+    >>> visit_counts(np.c_[x, np.zeros(6)], radius=1.5).tolist()
+    [0, 0, 0, 1, 1, 1]
+    """
+    p = np.asarray(poses, dtype=np.float64)[:, :2]
+    if not radius > 0:
+        raise ValueError(f"radius must be positive (m); got {radius!r}.")
+    leave = 2 * radius if leave is None else leave
+    if leave < radius:
+        raise ValueError(f"leave ({leave}) must be at least radius ({radius}).")
+    counts = np.zeros(len(p), dtype=np.int64)
+    for i in range(len(p)):
+        d = np.hypot(*(p[:i + 1] - p[i]).T)
+        entries, away = 0, True
+        for near, far in zip((d <= radius).tolist(), (d > leave).tolist()):
+            if near and away:
+                entries += 1
+                away = False
+            elif far:
+                away = True
+        counts[i] = entries - 1
+    return counts
+
+
+def recording_task(paths, topic=None, *, marks=None, places: float | None = None, gap: float | None = None,
+                   intervals=None, warmup: int = 1, name: str | None = None,
+                   threshold: float = PAPER_THRESHOLD, **options) -> Dataset:
+    """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
+
+    Parameters
+    ----------
+    paths : str, Path or sequence of them
+        Recordings (CARMEN logs or bags), in the order they were driven;
+        each file is a run, split further by ``gap`` or ``intervals``.
+    topic, threshold, **options
+        As :func:`novelty.io.recording.read_recording` (``sectors``,
+        ``reduce``, ``pose_topic``, ...).
+    marks : str, Path or sequence of Mark, optional
+        Tracked features: a CSV file (:func:`read_marks`) or the marks.
+    places : float, optional
+        Track the places of a grid of this cell size (m) instead (or as well).
+    gap, intervals
+        How a file splits into runs (:func:`split_runs`); default one run a file.
+    warmup : int, default=1
+        The first runs, learned before anything is tracked.
+    name : str, optional
+        The task's name (default: the first file's).
+
+    Returns
+    -------
+    Dataset
+        As :func:`novelty.exploration.from_runs`, plus ``poses``,
+        ``columns["time"]`` and ``metadata["sources"]``.
+    """
+    paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
+    if marks is None and places is None:
+        raise ValueError("Say what is tracked: marks= (a CSV of features) or places= (a grid cell in m).")
+    if isinstance(marks, (str, Path)):
+        marks = read_marks(marks)
+    runs, features, envs, poses, times = [], [], [], [], []
+    for path in paths:
+        data = read_recording(path, topic, threshold=threshold, **options)
+        t = data.columns["time"]
+        run = np.zeros(len(data), np.int64) if gap is None and intervals is None else \
+            split_runs(t, gap=gap, intervals=intervals)
+        seen = _features(data, marks, places)
+        for r in np.unique(run[run >= 0]):
+            take = np.flatnonzero(run == r)
+            runs.append(data.X[take])
+            features.append([seen[i] for i in take])
+            envs.append(f"{Path(path).name}#{r}")
+            poses.append(None if data.poses is None else data.poses[take])
+            times.append(t[take])
+    task = from_runs(runs, features, warmup=warmup, name=name or Path(paths[0]).name, environments=envs)
+    meta = dict(task.metadata, sources=[str(p) for p in paths], threshold_m=float(threshold),
+                encoding="1 - min(r, T) / T", description="Recorded runs of a robot.")
+    pose_array = None if any(p is None for p in poses) else np.concatenate(poses)
+    return replace(task, poses=pose_array, columns=dict(task.columns, time=np.concatenate(times)),
+                   metadata=meta)
+
+
+def _features(data: Dataset, marks, places) -> list[tuple[str, ...]]:
+    seen = [()] * len(data)
+    if marks is not None:
+        seen = mark_features(marks, data.columns["time"], data.poses)
+    if places is not None:
+        if data.poses is None:
+            raise ValueError(f"places= needs poses; {data.name} has none (give pose_topic=).")
+        seen = [tuple(sorted(set(a) | set(b))) for a, b in zip(seen, place_features(data.poses, places))]
+    return seen
