@@ -315,6 +315,7 @@ detectors = Registry(
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",
         "som-distance": "novelty.baselines.som_distance:SOMDistance",
+        "nearest-memory": "novelty.baselines.nearest_memory:NearestMemory",
         "parzen": "novelty.baselines.parzen:ParzenDetector",
         "isolation-forest": "novelty.baselines.sklearn_outlier:IsolationForestDetector",
         "one-class-svm": "novelty.baselines.sklearn_outlier:OneClassSVMDetector",
