@@ -30,9 +30,11 @@ class BuildWithRevision(build_py):
     def run(self):
         super().run()
         revision = _git("rev-parse", "HEAD")
-        if revision and not self.dry_run:
+        # An editable install reads the checkout's .git instead (and builds no package folder here).
+        if revision and not self.dry_run and not getattr(self, "editable_mode", False):
             dirty = _git("status", "--porcelain", "--untracked-files=no")
             target = Path(self.build_lib) / "novelty" / "_revision.txt"
+            target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(revision + ("+dirty" if dirty else "") + "\n", encoding="utf-8")
 
 

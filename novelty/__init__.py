@@ -62,7 +62,7 @@ _LAZY = {
 
 
 #: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
-_SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation")
+_SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing")
 
 
 def __getattr__(name: str) -> Any:

@@ -17,6 +17,8 @@ from novelty._validation import MAX_SCAN_NORM
 from novelty.registry import detectors
 from novelty.testing.conformance import _assert_same_state, _state_arrays
 
+from .registered import detector_params
+
 NAMES = ["front", "left", "right", "rear"]  # sorted: front, left, rear, right
 SORTED = sorted(NAMES)
 
@@ -319,7 +321,7 @@ def test_baselines_fitted_with_contamination_flag_that_fraction(name):
 # returned; learning from several threads leaving a consistent model.
 
 N_FEATURES = 4
-DETECTORS = detectors.names()
+DETECTORS = detector_params()
 QUICK = {"autoencoder-filter": {"max_iter": 20}, "isolation-forest": {"n_estimators": 10}}
 
 

@@ -19,6 +19,13 @@ def test_subpackages_are_reachable_after_import_novelty_alone_and_not_imported_b
     assert out == ["False", "novelty.datasets", "True"]
 
 
+def test_the_conformance_suite_is_reachable_after_import_novelty_alone():
+    code = "import novelty; print(novelty.testing.check_conformance.__module__)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         env={"PYTHONPATH": ROOT, "PATH": ""}, check=True).stdout.split()
+    assert out == ["novelty.testing.conformance"]
+
+
 def test_an_unknown_attribute_is_an_attribute_error():
     with pytest.raises(AttributeError, match="module 'novelty' has no attribute 'dataset'"):
         novelty.dataset

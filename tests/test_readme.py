@@ -70,3 +70,20 @@ def test_readme_own_data_commands_run_as_written(tmp_path, monkeypatch):
     assert (tmp_path / "novelty.csv").read_text().startswith("scan,novelty,alarm,y,distance,time\n")
     (tmp_path / "suite.toml").write_text('[[detectors]]\nname = "hsom"\n' + toml[0])
     assert load_suite(tmp_path / "suite.toml").tasks[0].options["path"] == str(tmp_path / "corridor.csv")
+
+
+def quickstart_commands(text: str) -> list[str]:
+    section = text.split("## Quickstart", 1)[1].split("\n## ", 1)[0]
+    block = re.search(r"```bash\n(.*?)```", section, flags=re.S).group(1)
+    return [line.strip() for line in block.splitlines() if line.strip()]
+
+
+def test_ci_runs_the_readme_quickstart_first_as_written():
+    readme = quickstart_commands(README.read_text(encoding="utf-8"))
+    script = (README.parent / ".ci" / "run").read_text(encoding="utf-8").splitlines()
+    start, end = script.index("# >>> README quickstart"), script.index("# <<< README quickstart")
+    assert [line.strip() for line in script[start + 1:end] if line.strip()] == readme
+    before = [line for line in script[:start] if line.strip() and not line.lstrip().startswith("#")]
+    # nothing installed or run before the quickstart but a fresh virtual environment
+    assert not [line for line in before if re.search(r"\b(pip|pytest|novelty|sphinx)\b", line)], before
+    assert any("-m venv" in line for line in before)

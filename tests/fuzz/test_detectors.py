@@ -34,8 +34,9 @@ from hypothesis.extra import numpy as hnp
 from sklearn.base import clone
 
 import novelty
-from novelty.registry import detectors
 from novelty.testing.conformance import _state_arrays
+
+from ..registered import detector_params
 
 N_FEATURES = 3
 #: small versions of the detectors, so that each call is quick
@@ -150,7 +151,7 @@ def _report_counts():
         print(f"  {method}: " + ", ".join(f"{o} {n}" for (m, o), n in sorted(TRIED.items()) if m == method))
 
 
-@pytest.mark.parametrize("name", detectors.names())
+@pytest.mark.parametrize("name", detector_params())
 def test_invalid_and_extreme_input_gives_a_finite_result_or_a_clear_error(name):
     fitted = quick(name)
     with warnings.catch_warnings():
