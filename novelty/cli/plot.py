@@ -20,6 +20,7 @@ scans shaded and the alarm threshold dashed; or the output of 'novelty run' /
 
 EXAMPLES = [
     "novelty plot novelty.csv --out route.png",
+    "novelty run hsom --data intel-corrected.log.gz --out intel.csv && novelty plot intel.csv --out path.png",
     "novelty plot results/quick --task inspection-easy --seed 0 --out easy.png",
 ]
 
@@ -68,9 +69,12 @@ def _read_run_output(path: Path) -> dict:
         if not rows:
             raise UserError(f"{path} has no rows.")
         try:
-            data = {k: np.array([float(r[k]) for r in rows]) for k in rows[0] if k in ("novelty", "distance", "y")}
+            data = {k: np.array([float(r[k]) if r[k] != "" else np.nan for r in rows])
+                    for k in rows[0] if k in ("novelty", "distance", "y", "x")}
         except (TypeError, ValueError):
-            raise UserError(f"{path}: the novelty, distance and y columns must be numbers.") from None
+            raise UserError(f"{path}: the novelty, distance, y, x columns must be numbers.") from None
+    if "x" in data and "y" in data:   # the robot's position: y is its second coordinate, not a label
+        data["position_y"] = data.pop("y")
     if "novelty" not in data:
         raise UserError(f"{path} has no 'novelty' column; expected the output of 'novelty run' or a bench folder.")
     return data
@@ -112,6 +116,22 @@ def _plot_bench(folder: Path, args, plt):
     return fig
 
 
+def _plot_path(data: dict, path: Path, plt):
+    """The robot's path coloured by novelty, and the novelty scan by scan below it."""
+    # deferred: plotting imports matplotlib; `novelty --help` does not
+    from ..bench.plots import plot_route
+    from ..io.plotting import plot_path
+
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8), gridspec_kw={"height_ratios": [3, 1]})
+    placed = ~np.isnan(data["x"])
+    high = max(1.0, float(np.nanmax(data["novelty"])))
+    plot_path(top, data["x"][placed], data["position_y"][placed], data["novelty"][placed], vmax=high)
+    top.set_title(f"{path.name}: novelty on the robot's path", fontsize=10)
+    along = plot_route(bottom, data["novelty"], None, None)
+    bottom.set(xlabel=along, ylabel="novelty")
+    return fig
+
+
 def run(args) -> int:
     path = Path(args.results)
     if not path.exists():
@@ -126,9 +146,12 @@ def run(args) -> int:
         from ..bench.plots import plot_route
 
         data = _read_run_output(path)
-        fig, ax = plt.subplots(figsize=(9, 3))
-        along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
-        ax.set(xlabel=along, ylabel="novelty", title=path.name)
+        if "x" in data:
+            fig = _plot_path(data, path, plt)
+        else:
+            fig, ax = plt.subplots(figsize=(9, 3))
+            along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
+            ax.set(xlabel=along, ylabel="novelty", title=path.name)
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)
     plt.close(fig)

@@ -11,6 +11,7 @@ from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, parse_params, read_scans, write_novelty
+from .recording import RowSink, add_recording_options, pose_columns, recording_rings
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 
@@ -28,7 +29,13 @@ fitted on all the scans, then scores them.
 
 With --data - the scans are read from standard input, a CSV line at a time
 (a header line first, or none), and each scan's row is written and flushed
-as soon as it is scored: for a live sensor feed."""
+as soon as it is scored: for a live sensor feed.
+
+A robot recording (a CARMEN log, .log or .log.gz; a ROS 1 bag, .bag; a ROS 2
+bag, .db3 or .mcap) is read a message at a time: each laser scan reduced to
+--sectors sectors (or each ring of sonar Range readings), preprocessed as
+the paper's (1 - min(r, T) / T), scored, learned, and its row (scan,
+novelty, alarm, time, x, y, theta) written and flushed at once."""
 
 EXAMPLES = [
     "novelty run hsom --data scans.csv",
@@ -37,6 +44,8 @@ EXAMPLES = [
     "novelty run hsom --data ranges.csv --columns 'sonar*' --preprocess paper --time stamp",
     "rostopic echo -p /sonar | novelty run hsom --data - --columns 'field.ranges*' --preprocess paper",
     "novelty run hsom --data scans.csv --alarm k-of-n:3,5",
+    "novelty run hsom --data run.bag --topic /scan --sectors 16 --pose-topic /odom --out novelty.csv",
+    "novelty run hsom --data intel-corrected.log.gz --sectors 16 --reduce min",
 ]
 
 
@@ -44,7 +53,9 @@ def add_parser(subparsers):
     parser = add_command(subparsers, "run", "stream scans through a detector and write their novelty",
                          DESCRIPTION, EXAMPLES)
     parser.add_argument("detector", metavar="DETECTOR", help="detector name (see 'novelty list detectors')")
-    add_data_options(parser, "scans: .csv or .npz, or - for CSV lines on standard input")
+    add_data_options(parser, "scans: .csv or .npz, - for CSV lines on standard input, or a recording "
+                     "(.log, .log.gz, .bag, .db3, .mcap)")
+    add_recording_options(parser)
     parser.add_argument("--param", "-p", action="append", metavar="k=v",
                         help="detector parameter (repeatable); values are JSON-ish: 5, 1.2, true, som")
     parser.add_argument("--passes", type=int, default=1, metavar="N",
@@ -70,6 +81,8 @@ def run(args) -> int:
     alarm = _alarm_policy(det, args.alarm)
     if args.data == "-":
         n = _run_stream(det, args, alarm)
+    elif _is_recording(args.data):
+        n = _run_recording(det, args, alarm)
     else:
         n = _run_file(det, args, alarm)
     if args.save:
@@ -106,6 +119,33 @@ def _run_file(det, args, alarm: Alarm | None) -> int:
         novelty = det.fit(data.X).novelty(data.X)
     write_novelty(args.out, novelty, data, None if alarm is None else alarm.run(novelty).astype(np.int8))
     return len(data)
+
+
+def _is_recording(path: str) -> bool:
+    # deferred: the readers are loaded only for a recording
+    from ..io.recording import is_recording
+
+    return is_recording(path)
+
+
+def _run_recording(det, args, alarm: Alarm | None) -> int:
+    """Score and learn a recording's rings as they are read, writing each ring's row at once."""
+    if not getattr(det, "supports_online", True):
+        raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")
+    if args.passes != 1 or args.bin_length is not None or args.columns or args.preprocess != "none":
+        raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
+                        "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
+    n = 0
+    with RowSink(args.out, pose=args.pose_topic is not None) as sink:
+        for n, (time, x, pose) in enumerate(recording_rings(args), start=1):
+            novelty = det.score_learn_one(x, time if args.stamps else None)
+            row = {"scan": n - 1, "novelty": novelty}
+            if alarm is not None:
+                row["alarm"] = int(alarm.update(novelty))
+            sink.write({**row, "time": time, **pose_columns(pose)})
+    if n == 0:
+        raise UserError(f"No scans in {args.data}.")
+    return n
 
 
 def _run_stream(det, args, alarm: Alarm | None) -> int:

@@ -30,7 +30,7 @@ from ..data import Dataset
 from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from .carmen import CarmenLog
 from .messages import LaserScan, Pose, RangeReading
-from .rosbag import bag_topics, is_bag, read_bag
+from .rosbag import POSE_TYPES, bag_topics, is_bag, read_bag, topic_types
 from .scans import laser_ring, sector_index, clean_ranges, reduce_sectors, sonar_rings
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
@@ -78,9 +78,14 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
     options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip)
     if is_bag(path):
         topics = _bag_scan_topics(path, topic)
-        types = bag_topics(path)
+        kinds = set(topic_types(path, topics))
+        if len(kinds) > 1 or kinds & set(POSE_TYPES):
+            raise ValueError(f"The scans' topics must be LaserScan or Range topics, all of one type; "
+                             f"{', '.join(topics)} hold {', '.join(sorted(kinds))}.")
+        if pose_topic is not None and topic_types(path, [pose_topic])[0] not in POSE_TYPES:
+            raise ValueError(f"pose_topic {pose_topic} must hold poses: one of {', '.join(POSE_TYPES)}.")
         messages = read_bag(path, topics + ([pose_topic] if pose_topic else []))
-        if types[topics[0]] == "sensor_msgs/msg/Range":
+        if kinds == {"sensor_msgs/msg/Range"}:
             yield from _sonar(messages, topics, sensors, max_span)
             return
         yield from _lasers(messages, options, use_own_pose=False)

@@ -37,11 +37,13 @@ import numpy as np
 
 from .messages import LaserScan, Pose, RangeReading
 
-__all__ = ["BagError", "bag_topics", "read_bag", "SUPPORTED_TYPES", "BAG_SUFFIXES", "is_bag"]
+__all__ = ["BagError", "bag_topics", "topic_types", "read_bag", "SUPPORTED_TYPES", "POSE_TYPES", "BAG_SUFFIXES", "is_bag"]
 
 #: Message types read, by their ``rosbags`` names (``package/msg/Type``).
 SUPPORTED_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range", "nav_msgs/msg/Odometry",
                    "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped")
+#: The types read as poses.
+POSE_TYPES = SUPPORTED_TYPES[2:]
 #: File names taken for bags: a ROS 1 bag, ROS 2 storage files (a ROS 2 bag folder too).
 BAG_SUFFIXES = (".bag", ".db3", ".mcap")
 
@@ -120,7 +122,18 @@ def read_bag(path, topics: str | Sequence[str]) -> Iterator[LaserScan | RangeRea
 
 
 def _connections(reader, path, topics: Sequence[str]) -> list:
-    available = {topic: info.msgtype for topic, info in reader.topics.items()}
+    _check_topics(path, {topic: info.msgtype for topic, info in reader.topics.items()}, topics)
+    return [c for c in reader.connections if c.topic in topics]
+
+
+def topic_types(path, topics: Sequence[str]) -> list[str]:
+    """The message type of each of ``topics``; a :class:`BagError` for one missing or not read here."""
+    available = bag_topics(path)
+    _check_topics(path, available, topics)
+    return [available[t] for t in topics]
+
+
+def _check_topics(path, available: dict, topics: Sequence[str]) -> None:
     listing = ", ".join(f"{t} ({available[t]})" for t in sorted(available)) or "none"
     for topic in topics:
         if topic not in available:
@@ -128,7 +141,6 @@ def _connections(reader, path, topics: Sequence[str]) -> list:
         if available[topic] not in SUPPORTED_TYPES:
             raise BagError(f"Topic {topic} holds {available[topic]}, not read here; supported: "
                            f"{', '.join(SUPPORTED_TYPES)}.")
-    return [c for c in reader.connections if c.topic in topics]
 
 
 # ------------------------------------------------------------------ conversion

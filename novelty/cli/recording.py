@@ -1,0 +1,123 @@
+"""Recordings (CARMEN logs, ROS bags) on the command line: their options, and streaming their rings."""
+
+from __future__ import annotations
+
+import csv
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from ._common import UserError, format_cell
+
+__all__ = ["add_recording_options", "recording_rings", "pose_columns", "RowSink"]
+
+
+def add_recording_options(parser) -> None:
+    """The options that say which messages of a recording are the scans and how they become rings."""
+    group = parser.add_argument_group(
+        "recordings (--data a CARMEN log .log/.log.gz or a ROS bag .bag/.db3/.mcap; rings are "
+        "preprocessed as the paper's, T = --range-threshold)")
+    group.add_argument("--topic", metavar="TOPIC",
+                       help="the scans: a LaserScan or Range topic, several Range topics comma-separated "
+                       "(one a sonar), or a CARMEN message (default FLASER, or a bag's only scan topic)")
+    group.add_argument("--pose-topic", metavar="TOPIC",
+                       help="poses: an Odometry or PoseStamped topic, or ODOM in a CARMEN log "
+                       "(default: a CARMEN laser's own corrected pose)")
+    group.add_argument("--sectors", type=int, default=16, metavar="N",
+                       help="laser beams reduced to N equal sectors (default 16, the paper's sonars)")
+    group.add_argument("--reduce", default="min", metavar="HOW",
+                       help="a sector's beams to one range: min (a sonar's nearest echo), mean, median or "
+                       "a percentile 0-100 (default min)")
+    group.add_argument("--front", type=float, default=0.0, metavar="DEG",
+                       help="the angle of the robot's front in the laser's frame, degrees (default 0)")
+    group.add_argument("--stamps", action="store_true",
+                       help="give the detector the messages' times as elapsed time (default: one step a "
+                       "scan, as the paper presents one perception a step)")
+    group.add_argument("--limits", metavar="LOW,HIGH",
+                       help="the span cut into sectors, degrees from the front (default: the whole scan)")
+
+
+def _reduce(text: str):
+    if text in ("min", "mean", "median"):
+        return text
+    try:
+        return float(text)
+    except ValueError:
+        raise UserError(f"--reduce must be min, mean, median or a percentile; got {text!r}.") from None
+
+
+def _limits(text: str | None):
+    if text is None:
+        return None
+    try:
+        low, high = (math.radians(float(v)) for v in text.split(","))
+    except ValueError:
+        raise UserError(f"--limits must be LOW,HIGH in degrees; got {text!r}.") from None
+    return low, high
+
+
+def recording_rings(args):
+    """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes."""
+    # deferred: the readers are loaded only for a recording
+    from ..io.recording import read_rings
+    from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
+
+    topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
+    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
+    try:
+        rings = read_rings(args.data, topic, sectors=args.sectors, reduce=_reduce(args.reduce),
+                           limits=_limits(args.limits), front=math.radians(args.front),
+                           pose_topic=args.pose_topic)
+        for ring in rings:
+            yield ring.time, preprocess(ring.ranges, threshold), ring.pose
+    except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
+        raise UserError(str(exc)) from None
+
+
+def pose_columns(pose) -> dict:
+    """The pose columns of an output row (x, y, theta), empty without a pose."""
+    if pose is None:
+        return {}
+    return {"x": float(pose[0]), "y": float(pose[1]), "theta": float(np.asarray(pose)[2])}
+
+
+class RowSink:
+    """Rows written as they come: CSV to standard output or a file, each flushed; an .npz at the end.
+
+    The columns are the first row's, and the pose columns (x, y, theta) when
+    ``pose`` says poses will come; a row without a pose leaves them empty.
+    """
+
+    def __init__(self, out: str | None, pose: bool = False):
+        self.out, self.pose = out, pose
+        self.npz = out not in (None, "-") and Path(out).suffix.lower() == ".npz"
+        self.columns: dict[str, list] = {}
+        self.fh = self.writer = None
+
+    def __enter__(self):
+        if not self.npz:
+            self.fh = sys.stdout if self.out in (None, "-") else open(self.out, "w", newline="", encoding="utf-8")
+        return self
+
+    def write(self, row: dict) -> None:
+        if self.npz:
+            for key, value in row.items():
+                self.columns.setdefault(key, []).append(value)
+            return
+        if self.writer is None:
+            names = list(row) + [k for k in ("x", "y", "theta") if self.pose and k not in row]
+            self.writer = csv.DictWriter(self.fh, fieldnames=names, restval="", lineterminator="\n")
+            self.writer.writeheader()
+        self.writer.writerow({k: format_cell(v, exact=k == "time") for k, v in row.items()})
+        self.fh.flush()
+
+    def __exit__(self, *exc_info):
+        if self.npz and exc_info[0] is None:
+            if len({len(v) for v in self.columns.values()}) > 1:
+                raise UserError("Some scans have no pose (before the first on --pose-topic); write CSV.")
+            with open(self.out, "wb") as fh:
+                np.savez(fh, **{k: np.asarray(v) for k, v in self.columns.items()})
+        if self.fh is not None and self.fh is not sys.stdout:
+            self.fh.close()

@@ -1,0 +1,118 @@
+"""``novelty run`` on robot recordings: CARMEN logs and ROS bags streamed ring by ring; ``novelty plot`` of the path."""
+
+import argparse
+import csv
+import io
+
+import numpy as np
+import pytest
+
+from novelty.cli import main
+from novelty.cli.recording import recording_rings
+
+from ..io.test_carmen import LOG
+
+
+def table(text: str) -> list[dict]:
+    return list(csv.DictReader(io.StringIO(text)))
+
+
+def test_a_carmen_log_streams_with_its_poses(tmp_path, capsys):
+    path = tmp_path / "run.log"
+    path.write_text(LOG)
+    assert main(["run", "hsom", "--data", str(path), "--sectors", "2", "--param", "n_rows=2",
+                 "--param", "n_columns=2"]) == 0
+    (row,) = table(capsys.readouterr().out)
+    assert list(row) == ["scan", "novelty", "alarm", "time", "x", "y", "theta"]
+    assert (row["novelty"], row["time"], row["x"], row["theta"]) == ("1", "10.5", "0.5", "0.125")
+
+
+def test_wrong_options_for_a_recording(tmp_path, capsys):
+    path = tmp_path / "run.log"
+    path.write_text(LOG)
+    for extra, message in [(["--topic", "ODOM"], "one of FLASER, RLASER, ROBOTLASER1"),
+                           (["--reduce", "most"], "--reduce must be min, mean, median or a percentile"),
+                           (["--limits", "90"], "--limits must be LOW,HIGH in degrees"),
+                           (["--passes", "2"], "no --passes")]:
+        assert main(["run", "hsom", "--data", str(path), *extra]) == 2
+        assert message in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module", params=("ros1", "sqlite3", "mcap"))
+def bag(request, tmp_path_factory):
+    pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra: pip install "
+                        "'novelty-habituation[ros]'")
+    from ..io.bags import write_bag
+
+    return write_bag(tmp_path_factory.mktemp(request.param), request.param)
+
+
+def test_a_bag_streams_its_laser_with_odometry(bag, tmp_path, capsys):
+    out = tmp_path / "novelty.csv"
+    assert main(["run", "hsom", "--data", str(bag), "--topic", "/scan", "--sectors", "2", "--pose-topic",
+                 "/odom", "--out", str(out), "--param", "n_rows=2", "--param", "n_columns=2"]) == 0
+    rows = table(out.read_text())
+    assert [r["x"] for r in rows] == ["0.95", "0.95", "1.15", "5.95", "5.95"]
+    assert rows[0]["novelty"] == "1" and float(rows[2]["novelty"]) < 1
+    npz = tmp_path / "novelty.npz"
+    assert main(["run", "hsom", "--data", str(bag), "--topic", "/sonar", "--out", str(npz)]) == 0
+    with np.load(npz) as saved:
+        assert saved["novelty"].shape == (3,) and saved["time"][0] == pytest.approx(1.02)
+
+
+def test_a_bag_refuses_a_wrong_topic_naming_what_exists(bag, capsys):
+    assert main(["run", "hsom", "--data", str(bag), "--topic", "/laser"]) == 2
+    err = capsys.readouterr().err
+    assert "no topic '/laser'; its topics: /odom (nav_msgs/msg/Odometry), /scan" in err
+    assert main(["run", "hsom", "--data", str(bag), "--topic", "/odom"]) == 2
+    assert "must be LaserScan or Range topics" in capsys.readouterr().err
+
+
+def test_a_file_that_is_not_a_bag(tmp_path, capsys):
+    pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra")
+    path = tmp_path / "run.mcap"
+    path.write_bytes(b"\x00" * 64)
+    assert main(["run", "hsom", "--data", str(path), "--topic", "/scan"]) == 2
+    assert "is not a readable bag" in capsys.readouterr().err
+
+
+def test_without_rosbags_the_message_names_the_extra(tmp_path, capsys, monkeypatch):
+    from novelty.io import rosbag
+
+    def missing():
+        raise ImportError("Reading ROS bags needs the optional package rosbags: pip install "
+                          "'novelty-habituation[ros]' (or pip install rosbags).")
+
+    monkeypatch.setattr(rosbag, "_rosbags", missing)
+    (tmp_path / "run.bag").write_bytes(b"#ROSBAG V2.0\n")
+    assert main(["run", "hsom", "--data", str(tmp_path / "run.bag"), "--topic", "/scan"]) == 2
+    assert "novelty-habituation[ros]" in capsys.readouterr().err
+
+
+def test_plot_draws_the_path_coloured_by_novelty(tmp_path, monkeypatch):
+    figure = pytest.importorskip("matplotlib.figure", reason="plots need matplotlib (novelty-habituation[plot])")
+    out = tmp_path / "run.csv"
+    out.write_text("scan,novelty,alarm,time,x,y,theta\n0,1,1,0.0,0.0,0.0,0\n1,0.5,1,1.0,1.0,2.0,0\n")
+    drawn = []
+    monkeypatch.setattr(figure.Figure, "savefig", lambda fig, *a, **k: drawn.append(fig))
+    assert main(["plot", str(out), "--out", str(tmp_path / "path.png")]) == 0
+    path_axes = drawn[0].axes[0]
+    dots = path_axes.collections[0]
+    assert dots.get_offsets().tolist() == [[0.0, 0.0], [1.0, 2.0]]
+    assert dots.get_array().tolist() == [1.0, 0.5]
+    assert path_axes.get_xlabel() == "x (m)"
+
+
+def test_the_rings_are_the_papers_inputs(tmp_path):
+    # one FLASER of five beams at -90..90 degrees, 1..5 m; two sectors: min 1 m and 3 m -> 1 - r / 2 with T = 2
+    path = tmp_path / "run.log"
+    path.write_text(LOG)
+    args = argparse.Namespace(data=str(path), topic=None, pose_topic=None, sectors=2, reduce="min", front=0.0,
+                              limits=None, range_threshold=2.0)
+    ((time, x, pose),) = list(recording_rings(args))
+    assert x.tolist() == [0.5, 0.0] and time == 10.5 and pose.tolist() == [0.5, 0.25, 0.125]
+    # the front turned to the laser's left (+90 degrees): the beams at -180, -135, -90, -45, 0 degrees from
+    # it; the front half (-90..90) in two sectors holds 3 m and 4 m (right), 5 m (left); means with T = 10
+    args.front, args.limits, args.reduce, args.range_threshold = 90.0, "-90,90", "mean", 10.0
+    ((_, x, _),) = list(recording_rings(args))
+    assert x.tolist() == pytest.approx([1 - 3.5 / 10, 1 - 5 / 10])
