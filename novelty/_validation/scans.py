@@ -7,7 +7,10 @@ infinity and turns the learned state into NaN. With the bound, a squared
 distance between scans or prototypes (convex combinations of scans) is at
 most 4e200, which leaves room for sums of many of them (a network's
 accumulated errors, a mixture's covariances) below the float64 limit of
-1.8e308. Complex numbers and dates are refused rather than converted.
+1.8e308. Complex numbers and dates are refused rather than converted, and so
+is text: numpy would read the string ``"0.3"`` as 0.3, but a string among
+scans is usually a cell a reader left unconverted (``"n/a"`` next to
+``"0.3"``), which only reading every string as a number would hide.
 """
 
 from __future__ import annotations
@@ -62,7 +65,10 @@ def _converted(X: Any, owner: Any) -> np.ndarray:
     of shape, emptiness and sparsity, and its messages), numbers only."""
     from sklearn.utils import check_array  # deferred: keeps ``import novelty`` light
 
-    _refuse_not_real(_dtype_kinds(X), f"{type(owner).__name__} expects X as real numbers")
+    kinds = _dtype_kinds(X)
+    _refuse_not_real(kinds, f"{type(owner).__name__} expects X as real numbers")
+    if set(kinds) & set(_MAY_HOLD_TEXT):
+        _refuse_text_cells(X, owner)
     try:
         return check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
                            ensure_all_finite=False)
@@ -119,9 +125,14 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
         arr = x
     else:
         if isinstance(x, dict):
+            key = next((k for k, v in x.items() if isinstance(v, _TEXT)), None)
+            if key is not None:
+                raise _NotReal(_text_in_scan(owner, x[key], f"the value of key {key!r}"))
             x = _dict_values(x, owner, n_features, names)
         try:
             arr = np.asarray(x)
+            if arr.dtype.kind in _MAY_HOLD_TEXT:
+                _refuse_text_values(x, arr, owner)
             _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
             arr = arr.astype(np.float64, copy=False)
         except (TypeError, ValueError) as exc:
@@ -154,6 +165,40 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
             raise ValueError(f"Input x for {type(owner).__name__} contains NaN or infinity.")
         raise ValueError(_too_large("x", owner, ""))
     return arr
+
+
+# what a string is, and the dtype kinds an array of them (or holding them) has
+_TEXT = (str, bytes)
+_MAY_HOLD_TEXT = "USO"
+
+
+def _text_in_scan(owner: Any, value: Any, where: str) -> str:
+    return (f"{type(owner).__name__} expects one scan of numbers; got the string {value!r} as {where}; "
+            "convert text to numbers first.")
+
+
+def _refuse_text_values(x: Any, arr: np.ndarray, owner: Any) -> None:
+    """Refuse a scan holding a string (its first one named by position)."""
+    values = x if isinstance(x, (list, tuple)) else arr.reshape(-1).tolist()
+    i = next((i for i, v in enumerate(values) if isinstance(v, _TEXT)), None)
+    if i is not None:
+        raise _NotReal(_text_in_scan(owner, values[i], f"value {i}"))
+
+
+def _refuse_text_cells(X: Any, owner: Any) -> None:
+    """Refuse a batch holding a string (its first one named by row and column)."""
+    try:
+        cells = np.asarray(X, dtype=object)
+    except (TypeError, ValueError):  # ragged: check_array says so
+        return
+    if cells.ndim != 2:
+        return
+    is_text = np.frompyfunc(lambda v: isinstance(v, _TEXT), 1, 1)(cells).astype(bool)
+    if is_text.any():
+        i, j = np.argwhere(is_text)[0]
+        raise _NotReal(
+            f"{type(owner).__name__} expects X as a 2-D array of numbers; got the string "
+            f"{cells[i, j]!r} in row {i}, column {j}; convert text to numbers first.")
 
 
 class _NotReal(ValueError):

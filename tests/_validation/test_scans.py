@@ -27,7 +27,11 @@ BAD_BATCHES = {
     "inf": ([row(np.inf)], r"NaN or infinity"),
     "-inf": ([row(-np.inf), row(0.2)], r"NaN or infinity"),
     "empty": (np.zeros((0, N_FEATURES)), r"0 sample\(s\).*minimum of 1 is required"),
-    "strings": ([["a", "b", "c", "d"]], r"expects X as a 2-D array of numbers.*not numeric"),
+    "strings": ([["a", "b", "c", "d"]], r"expects X as a 2-D array of numbers; got the string 'a' in row 0, "
+                                        r"column 0"),
+    "a numeric string": ([row(0.5), row("0.3")], r"got the string '0.3' in row 1, column 1; convert text"),
+    "an array of numeric strings": (np.array([row(0.5)], dtype=str), r"got the string '0.5' in row 0, column 0"),
+    "bytes in an object array": (np.array([row(b"0.3")], dtype=object), r"got the string b'0.3' in row 0, column 1"),
     "ragged": ([[1, 2, 3, 4], [1, 2]], r"expects X as a 2-D array of numbers"),
     "3-D": (np.zeros((2, 2, N_FEATURES)), r"dim 3.*dim <= 2"),
     "1-D": (np.zeros(N_FEATURES), r"Expected 2D array, got 1D array"),
@@ -43,7 +47,9 @@ BAD_SCANS = {
     "NaN": (row(np.nan), r"contains NaN or infinity"),
     "inf": (np.array(row(np.inf)), r"contains NaN or infinity"),
     "empty": (np.zeros(0), r"empty scan"),
-    "strings": (["a", "b", "c", "d"], r"1-D sequence of numbers; got values that are not numeric"),
+    "strings": (["a", "b", "c", "d"], r"expects one scan of numbers; got the string 'a' as value 0"),
+    "a numeric string": (row("0.3"), r"expects one scan of numbers; got the string '0.3' as value 1; convert text"),
+    "an array of numeric strings": (np.array(row(0.5), dtype=str), r"got the string '0.5' as value 0"),
     "2-D": (np.zeros((1, N_FEATURES)), r"1-D array of shape \(n_features,\).*shape \(1, 4\)"),
     "3-D": (np.zeros((1, 1, N_FEATURES)), r"1-D array of shape \(n_features,\)"),
     "scalar": (0.5, r"1-D array of shape \(n_features,\); got an array of shape \(\)"),
@@ -87,6 +93,17 @@ def test_bad_scan_is_refused_and_changes_nothing(method, case):
     before = snapshot(det)
     with pytest.raises(ValueError, match=message):
         getattr(det, method)(x)
+    assert_equal_deep(before, snapshot(det))
+
+
+@pytest.mark.parametrize("method", ONE_METHODS)
+def test_a_string_in_a_dict_scan_is_refused_by_its_key(method):
+    det = novelty.make("hsom", n_rows=2, n_columns=2)
+    det.learn_one({"a": 0.1, "b": 0.2})
+    before = snapshot(det)
+    with pytest.raises(ValueError, match=r"HabituatingFilter expects one scan of numbers; got the string '0.3' "
+                                         r"as the value of key 'b'; convert text to numbers first"):
+        getattr(det, method)({"a": 0.1, "b": "0.3"})
     assert_equal_deep(before, snapshot(det))
 
 
