@@ -23,6 +23,7 @@ The per-scan loop is :func:`learn_stream`, on plain arrays, in one place.
 
 from __future__ import annotations
 
+import difflib
 import numbers
 
 import numpy as np
@@ -211,30 +212,53 @@ class HabituatingFilter(NoveltyDetector):
         own = {k: params.pop(k) for k in list(params) if k in own_names}
         parts = {"clusterer": clusterer, "synapse": synapse}
         routed: dict[str, dict] = {"clusterer": {}, "synapse": {}}
-        valid: dict[str, list[str]] = {}
-        for part, spec in parts.items():
-            if isinstance(spec, str):
-                valid[part] = of_kind(part).parameters(spec) or []
-            else:
-                valid[part] = list(spec.get_params(deep=False))
+        valid = {part: _parameters_of(part, spec) for part, spec in parts.items()}
         for key, value in params.items():
             part, _, name = key.partition("__")
             if name and part in routed:
                 check_parameters(f"{part} {parts[part]!r}", {name: value}, valid[part])
                 routed[part][name] = value
                 continue
-            takers = [p for p in routed if key in valid[p]]
-            if len(takers) > 1:
-                raise InvalidParameterError(
-                    f"Parameter '{key}' is taken by both the clusterer and the synapse; "
-                    f"write clusterer__{key} or synapse__{key}."
-                )
-            if not takers:
+            taker = _component_taking(key, valid)
+            if taker is None:
                 all_valid = own_names + [n for p in routed for n in valid[p]]
                 check_parameters("the habituating filter", {key: value}, all_valid)
-            routed[takers[0]][key] = value
+            routed[taker][key] = value
         built = {part: build(part, spec, **routed[part]) for part, spec in parts.items()}
         return cls(clusterer=built["clusterer"], synapse=built["synapse"], **own)
+
+    def set_params(self, **params):
+        """Set parameters, a component's also by its short name as :func:`novelty.make` takes it.
+
+        ``set_params(alpha=1.2)`` is ``set_params(synapse__alpha=1.2)`` when
+        the filter has no ``alpha`` and exactly one of its components takes
+        it (the routing of :meth:`from_params`), so a grid over ``{"alpha":
+        [...]}`` searches the synapse. ``get_params`` still reports the full
+        names only: ``clone`` rebuilds the filter from them, and no parameter
+        is reported twice.
+        """
+        own = self._get_param_names()
+        short = [key for key in params if key not in own and "__" not in key]
+        if not short:
+            return super().set_params(**params)
+        # a component given in the same call is the one a short name goes to; a value that is
+        # not a component yet (checked in fit, as every parameter) takes no short name
+        parts = {part: params.get(part, getattr(self, part)) for part in ("clusterer", "synapse")}
+        valid = {part: _parameters_of(part, spec, strict=False) for part, spec in parts.items()}
+        full = {key: value for key, value in params.items() if key not in short}
+        for key in short:
+            value = params[key]
+            try:
+                taker = _component_taking(key, valid)
+            except InvalidParameterError as exc:
+                raise ValueError(str(exc)) from None
+            if taker is None:
+                raise ValueError(_unknown_parameter(type(self).__name__, key, own, valid))
+            if isinstance(parts[taker], str):
+                raise ValueError(f"'{key}' is a parameter of the {taker} {parts[taker]!r}, given by name; "
+                                 f"set {taker}= to an instance (novelty.make builds one) to set it.")
+            full[f"{taker}__{key}"] = value
+        return super().set_params(**full)
 
     # ------------------------------------------------------------------- hooks
     def _start(self, X: np.ndarray) -> None:
@@ -409,6 +433,43 @@ class HabituatingFilter(NoveltyDetector):
         if hasattr(self, "calibration_scans_"):
             check_array_state(self, "calibration_scans_", 2, shape=(None, self.n_features_in_))
         self.synapse_.check_efficacy(self.stimulus)
+
+
+def _parameters_of(part: str, spec, strict: bool = True) -> list[str]:
+    """The parameter names of a clusterer or synapse, given by its registered name or as an instance.
+
+    Not ``strict``: anything else (an unknown name, a value that is no
+    component) takes no parameter, rather than raising.
+    """
+    if isinstance(spec, str):
+        if not strict and spec not in of_kind(part):
+            return []
+        return of_kind(part).parameters(spec) or []
+    if not strict and not hasattr(spec, "get_params"):
+        return []
+    return list(spec.get_params(deep=False))
+
+
+def _component_taking(key: str, valid: dict[str, list[str]]) -> str | None:
+    """Which component (``"clusterer"`` or ``"synapse"``) takes the short name ``key``; None if neither."""
+    takers = [part for part in valid if key in valid[part]]
+    if len(takers) > 1:
+        raise InvalidParameterError(
+            f"Parameter '{key}' is taken by both the clusterer and the synapse; "
+            f"write clusterer__{key} or synapse__{key}."
+        )
+    return takers[0] if takers else None
+
+
+def _unknown_parameter(owner: str, key: str, own: list[str], valid: dict[str, list[str]]) -> str:
+    """The message for a name neither the filter nor a component takes: the full names listed."""
+    short = {name: f"{part}__{name}" for part, names in valid.items() for name in names}
+    close = difflib.get_close_matches(key, own + list(short), n=1)
+    hint = ""
+    if close:
+        hint = f" (did you mean '{close[0]}'" + (f", that is '{short[close[0]]}'" if close[0] in short else "") + "?)"
+    settable = sorted(own + list(short.values()))
+    return f"Unknown parameter '{key}'{hint} for {owner}. Valid parameters: {', '.join(settable)}."
 
 
 def hsom(**params) -> HabituatingFilter:
