@@ -210,7 +210,9 @@ def visit_counts(poses, radius: float, leave: float | None = None) -> np.ndarray
 
 def recording_task(paths, topic=None, *, marks=None, places: float | None = None, gap: float | None = None,
                    intervals=None, warmup: int = 1, name: str | None = None,
-                   threshold: float = PAPER_THRESHOLD, **options) -> Dataset:
+                   threshold: float = PAPER_THRESHOLD, sectors: int = 16, reduce="min", limits=None,
+                   front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
+                   sensors=None, max_span: float | None = None) -> Dataset:
     """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
 
     Parameters
@@ -218,9 +220,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     paths : str, Path or sequence of them
         Recordings (CARMEN logs or bags), in the order they were driven;
         each file is a run, split further by ``gap`` or ``intervals``.
-    topic, threshold, **options
-        As :func:`novelty.io.recording.read_recording` (``sectors``,
-        ``reduce``, ``pose_topic``, ...).
+    topic, threshold, sectors, reduce, limits, front, clip, pose_topic, sensors, max_span
+        As :func:`novelty.io.recording.read_recording`.
     marks : str, Path or sequence of Mark, optional
         Tracked features: a CSV file (:func:`read_marks`) or the marks.
     places : float, optional
@@ -238,6 +239,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
         As :func:`novelty.exploration.from_runs`, plus ``poses``,
         ``columns["time"]`` and ``metadata["sources"]``.
     """
+    options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip,
+                   pose_topic=pose_topic, sensors=sensors, max_span=max_span)
     paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
     if marks is None and places is None:
         raise ValueError("Say what is tracked: marks= (a CSV of features) or places= (a grid cell in m).")
