@@ -50,7 +50,7 @@ class LaserSectors(TransformerMixin, BaseEstimator):
     ----------
     n_features_in_ : int
         Beams per scan.
-    sector_of_beam_ : ndarray of shape (n_features_in_,)
+    sector_of_beam_ : ndarray of shape (n_beams,)
         Each beam's sector, -1 outside ``limits``.
 
     References
