@@ -1,0 +1,272 @@
+"""Results tables in README.md and docs/, generated from the committed results of their suites.
+
+A table in a document is a region between two markers::
+
+    <!-- generated: exploration/exploration-open-door -->
+    ...
+    <!-- end generated -->
+
+``exploration`` is a suite (``benchmarks/suites/exploration.toml``, whose
+committed results are ``benchmarks/results/exploration/``) and the part after
+the slash is the table: ``ranking`` (the ranked table of ``novelty bench``),
+``per-task`` (ROC AUC per task), or, for a suite of the exploration protocol,
+a task's name (its table of first encounters and habituation). The region
+holds a one-line caption (the command, the suite, its seeds, the versions and
+revision that made the results) and the table, both formatted now from the
+committed rows by the package's own report functions, so a change of the
+formatting is regenerated, never edited by hand.
+
+    python benchmarks/tables.py              # rewrite every generated region in place
+    python benchmarks/tables.py --check      # exit 1 and print a diff where a region differs
+    python benchmarks/tables.py --run exploration --jobs 2
+                                             # run a suite, then commit its rows: results.csv
+                                             # and provenance.json in benchmarks/results/<suite>/
+
+``results.csv`` is the file ``novelty bench`` writes, less the columns every
+row repeats (versions, revision, host, platform: kept once in
+``provenance.json``); the per-scan arrays and plots stay out of the
+repository. ``provenance.json`` says how the rows were made: the command, the
+package versions, the git revision, the date, how long the run took and on
+how many cores.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import difflib
+import json
+import os
+import platform
+import re
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import datetime, timezone
+from importlib import metadata
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SUITES = ROOT / "benchmarks" / "suites"
+RESULTS = ROOT / "benchmarks" / "results"
+RESULTS_CSV = "results.csv"
+PROVENANCE = "provenance.json"
+COMMAND = "python benchmarks/tables.py"
+
+REGION = re.compile(r"(<!-- generated: (?P<key>[\w.-]+/[\w.-]+) -->\n)(?P<body>.*?)(<!-- end generated -->)",
+                    re.S)
+
+#: columns that name a cell; read as text whatever they look like (a hex id can look like a number)
+TEXT_COLUMNS = {"cell_id", "detector", "detector_name", "task", "task_name", "params", "task_options"}
+#: columns of the bench that name the run, not the cell: kept once in provenance.json when all rows agree
+RUN_COLUMNS = ("versions", "git_revision", "host", "platform")
+#: the distributions whose versions a run records; the caption names those that compute results
+VERSIONED = ("novelty-habituation", "numpy", "scipy", "scikit-learn", "numba", "river", "pyod", "joblib", "dask")
+CAPTION_VERSIONS = ("python", "novelty-habituation", "numpy", "scipy", "scikit-learn", "numba", "river", "pyod")
+
+
+# ------------------------------------------------------------------ reading results
+def _shown(path: Path) -> Path:
+    """``path`` relative to the repository where it is inside it."""
+    return path.relative_to(ROOT) if path.is_relative_to(ROOT) else path
+
+
+def _typed(values: list[str]):
+    """A CSV column back to the values ``novelty bench`` wrote: int, float, bool, text; '' is None."""
+    present = [v for v in values if v != ""]
+    for kind in (int, float):
+        try:
+            converted = [kind(v) for v in present]
+        except ValueError:
+            continue
+        it = iter(converted)
+        return [None if v == "" else next(it) for v in values]
+    if present and set(present) <= {"True", "False"}:
+        return [None if v == "" else v == "True" for v in values]
+    return [None if v == "" else v for v in values]
+
+
+def read_csv_rows(path) -> list[dict]:
+    """The rows of a ``results.csv``, each value of the type the bench wrote."""
+    with open(path, newline="", encoding="utf-8") as fh:
+        raw = list(csv.DictReader(fh))
+    if not raw:
+        return []
+    columns = {}
+    for name in raw[0]:
+        values = [row[name] for row in raw]
+        columns[name] = ([None if v == "" else v for v in values] if name in TEXT_COLUMNS else _typed(values))
+    return [{name: columns[name][i] for name in columns} for i in range(len(raw))]
+
+
+def committed_rows(suite: str) -> list[dict]:
+    path = RESULTS / suite / RESULTS_CSV
+    if not path.exists():
+        raise FileNotFoundError(f"No committed results for suite {suite!r}: {_shown(path)} is missing; "
+                                f"make them with '{COMMAND} --run {suite}'.")
+    return read_csv_rows(path)
+
+
+def provenance(suite: str) -> dict:
+    return json.loads((RESULTS / suite / PROVENANCE).read_text(encoding="utf-8"))
+
+
+# ------------------------------------------------------------------ the tables
+def _table_lines(text: str) -> str:
+    """The markdown table of a report section (its heading and notes left out)."""
+    return "\n".join(line for line in text.splitlines() if line.startswith("|"))
+
+
+def _report_functions():
+    # the package's report formatting, public names only; imported here so that reading
+    # this file's help or a region's key needs no numba compile
+    from novelty.bench.exploration_summary import exploration_text
+    from novelty.bench.ranking import per_task_text, ranking_text
+
+    return ranking_text, per_task_text, exploration_text
+
+
+def table(suite: str, name: str, rows: list[dict]) -> str:
+    """The table ``name`` of ``suite`` from its rows, as markdown."""
+    ranking_text, per_task_text, exploration_text = _report_functions()
+    if name == "ranking":
+        return ranking_text(rows)
+    if name == "per-task":
+        return per_task_text(rows)
+    tasks = sorted({r["task"] for r in rows})
+    if name in tasks and any(r.get("policy") for r in rows):
+        return _table_lines(exploration_text([r for r in rows if r["task"] == name]))
+    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task'"
+                   + (f", or a task: {', '.join(tasks)}" if any(r.get("policy") for r in rows) else "") + ".")
+
+
+def _seeds_text(seeds: list[int]) -> str:
+    if seeds == list(range(seeds[0], seeds[-1] + 1)) and len(seeds) > 2:
+        return f"seeds {seeds[0]}-{seeds[-1]}"
+    return "seeds " + ", ".join(map(str, seeds))
+
+
+def caption(suite: str, rows: list[dict]) -> str:
+    """One line: how to regenerate, from which results, seeds, versions and revision."""
+    made = provenance(suite)
+    seeds = sorted({r["seed"] for r in rows})
+    versions = ", ".join(f"{k} {v}" for k, v in made["versions"].items() if k in CAPTION_VERSIONS)
+    return (f"*Generated by `{COMMAND}` from `benchmarks/results/{suite}/`: `{made['command']}`, "
+            f"{_seeds_text(seeds)}; {versions}; revision {made['revision'][:12]}, {made['date'][:10]}.*")
+
+
+def region_body(key: str, cache: dict | None = None) -> str:
+    """What the region ``<suite>/<table>`` holds: the caption, a blank line, the table."""
+    suite, name = key.split("/", 1)
+    cache = {} if cache is None else cache
+    if suite not in cache:
+        cache[suite] = committed_rows(suite)
+    rows = cache[suite]
+    return f"{caption(suite, rows)}\n\n{table(suite, name, rows)}\n"
+
+
+def regenerate(text: str, cache: dict | None = None) -> str:
+    """``text`` with every generated region rewritten from the committed results."""
+    cache = {} if cache is None else cache
+    return REGION.sub(lambda m: m.group(1) + region_body(m.group("key"), cache) + m.group(4), text)
+
+
+def documents() -> list[Path]:
+    """README.md and the markdown pages of docs/ (not the built site or the API pages)."""
+    pages = [p for p in sorted((ROOT / "docs").rglob("*.md"))
+             if not {"_build", "api"} & set(p.relative_to(ROOT / "docs").parts[:-1])]
+    return [ROOT / "README.md", *pages]
+
+
+def differences(paths=None) -> dict[Path, str]:
+    """``{document: unified diff}`` for every document whose regions differ from their results."""
+    cache: dict = {}
+    out = {}
+    for path in documents() if paths is None else paths:
+        text = path.read_text(encoding="utf-8")
+        new = regenerate(text, cache)
+        if new != text:
+            rel = _shown(path)
+            out[path] = "".join(difflib.unified_diff(text.splitlines(True), new.splitlines(True),
+                                                     f"{rel} (as written)", f"{rel} (from the results)"))
+    return out
+
+
+# ------------------------------------------------------------------ recording a run
+def _git_revision() -> str:
+    # the bench's own record of the code that runs (this checkout's commit, "+dirty" if modified)
+    from novelty.bench.results import provenance as run_provenance
+
+    return run_provenance()["git_revision"]
+
+
+def _versions() -> dict:
+    found = {"python": platform.python_version()}
+    for dist in VERSIONED:
+        try:
+            found[dist] = metadata.version(dist)
+        except metadata.PackageNotFoundError:
+            continue
+    return found
+
+
+def record(suite: str, out: Path, command: str, elapsed_s: float, jobs: int, revision: str | None = None) -> Path:
+    """Copy a run's ``results.csv`` into ``benchmarks/results/<suite>/`` with its provenance."""
+    target = RESULTS / suite
+    target.mkdir(parents=True, exist_ok=True)
+    with open(Path(out) / RESULTS_CSV, newline="", encoding="utf-8") as fh:
+        rows = list(csv.DictReader(fh))
+    # what every row repeats is said once, in provenance.json (a third of the file)
+    same = {c: rows[0][c] for c in RUN_COLUMNS if rows and c in rows[0] and len({r[c] for r in rows}) == 1}
+    with open(target / RESULTS_CSV, "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, [c for c in (rows[0] if rows else []) if c not in same])
+        writer.writeheader()
+        writer.writerows({c: v for c, v in row.items() if c not in same} for row in rows)
+    made = {
+        "command": command,
+        "suite": f"benchmarks/suites/{suite}.toml",
+        "revision": revision or _git_revision(),
+        "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "versions": _versions(),
+        "elapsed_s": round(elapsed_s),
+        "jobs": jobs,
+        "machine": f"{sys.platform}-{platform.machine()}, {os.cpu_count()} cores",
+        "rows": {c: (json.loads(v) if c == "versions" else v) for c, v in same.items()},
+    }
+    (target / PROVENANCE).write_text(json.dumps(made, indent=2) + "\n", encoding="utf-8")
+    return target
+
+
+def run(suite: str, jobs: int) -> Path:
+    """Run ``suite`` (plots and per-scan arrays in a temporary folder) and record its rows."""
+    data = "NOVELTY_DATA_DIR=/data/uci " if os.environ.get("NOVELTY_DATA_DIR") else ""  # where, not which machine
+    command = f"{data}novelty bench benchmarks/suites/{suite}.toml --out results/{suite} --jobs {jobs}"
+    with tempfile.TemporaryDirectory(prefix=f"bench-{suite}-") as out:
+        started = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "novelty.cli", "bench", str(SUITES / f"{suite}.toml"),
+                        "--out", out, "--jobs", str(jobs), "--no-plots"], cwd=ROOT, check=True)
+        return record(suite, Path(out), command, time.perf_counter() - started, jobs)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--check", action="store_true", help="compare only: exit 1 and print a diff")
+    parser.add_argument("--run", metavar="SUITE", help="run benchmarks/suites/SUITE.toml and record its rows first")
+    parser.add_argument("--jobs", type=int, default=2, help="cells run at once with --run (default 2)")
+    args = parser.parse_args(argv)
+    if args.run:
+        print(f"recorded {_shown(run(args.run, args.jobs))}")
+    diffs = differences()
+    if args.check:
+        for diff in diffs.values():
+            sys.stdout.write(diff)
+        return 1 if diffs else 0
+    for path in diffs:
+        path.write_text(regenerate(path.read_text(encoding="utf-8")), encoding="utf-8")
+        print(f"rewrote {_shown(path)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
