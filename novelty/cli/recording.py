@@ -23,8 +23,10 @@ def add_recording_options(parser) -> None:
                        help="the scans: a LaserScan or Range topic, several Range topics comma-separated "
                        "(one a sonar), or a CARMEN message (default FLASER, or a bag's only scan topic)")
     group.add_argument("--pose-topic", metavar="TOPIC",
-                       help="poses: an Odometry or PoseStamped topic, or ODOM in a CARMEN log "
+                       help="poses: an Odometry, PoseStamped or tf topic, or ODOM in a CARMEN log "
                        "(default: a CARMEN laser's own corrected pose)")
+    group.add_argument("--base-frame", default="base_link", metavar="FRAME",
+                       help="the robot's frame when --pose-topic is /tf (default base_link)")
     group.add_argument("--sectors", type=int, default=16, metavar="N",
                        help="laser beams reduced to N equal sectors (default 16, the paper's sonars)")
     group.add_argument("--reduce", default="min", metavar="HOW",
@@ -69,7 +71,7 @@ def recording_rings(args):
     try:
         rings = read_rings(args.data, topic, sectors=args.sectors, reduce=_reduce(args.reduce),
                            limits=_limits(args.limits), front=math.radians(args.front),
-                           pose_topic=args.pose_topic)
+                           pose_topic=args.pose_topic, base_frame=args.base_frame)
         for ring in rings:
             yield ring.time, preprocess(ring.ranges, threshold), ring.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback

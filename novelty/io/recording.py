@@ -13,7 +13,8 @@ by default, ``RLASER``, ``ROBOTLASER1``), whose messages carry the robot's
 pose; ``pose_topic="ODOM"`` takes the odometry instead. In a bag ``topic``
 is a ``LaserScan`` topic, a ``Range`` topic (all sonars on it, told apart
 by their frames) or several ``Range`` topics (one a sonar); ``pose_topic``
-an ``Odometry`` or ``PoseStamped`` topic, the latest pose before each ring.
+an ``Odometry``, ``PoseStamped`` or ``tf`` topic (the transforms of
+``base_frame``), the latest pose before each ring.
 """
 
 from __future__ import annotations
@@ -58,7 +59,7 @@ def is_recording(path) -> bool:
 
 def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int = 16, reduce="min",
                limits=None, front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
-               sensors=None, max_span: float | None = None) -> Iterator[Ring]:
+               sensors=None, max_span: float | None = None, base_frame: str = "base_link") -> Iterator[Ring]:
     """The recording's rings, one at a time (see the module docstring).
 
     Parameters
@@ -72,6 +73,8 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
         How a laser scan becomes a ring (:func:`novelty.io.scans.laser_ring`).
     pose_topic : str, optional
         Where poses come from (default: the scans' own, CARMEN's corrected poses).
+    base_frame : str, default="base_link"
+        The robot's frame, when ``pose_topic`` is a ``tf`` topic.
     sensors, max_span
         How sonar readings gather into rings (:func:`novelty.io.scans.sonar_rings`).
     """
@@ -84,7 +87,7 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
                              f"{', '.join(topics)} hold {', '.join(sorted(kinds))}.")
         if pose_topic is not None and topic_types(path, [pose_topic])[0] not in POSE_TYPES:
             raise ValueError(f"pose_topic {pose_topic} must hold poses: one of {', '.join(POSE_TYPES)}.")
-        messages = read_bag(path, topics + ([pose_topic] if pose_topic else []))
+        messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame)
         if kinds == {"sensor_msgs/msg/Range"}:
             yield from _sonar(messages, topics, sensors, max_span)
             return

@@ -13,7 +13,10 @@ Messages read, by type (ROS 1 and ROS 2 names alike), into the types of
   several topics are read (one topic a sonar) or the frame is empty;
 - ``nav_msgs/Odometry``, ``geometry_msgs/PoseStamped`` and
   ``geometry_msgs/PoseWithCovarianceStamped`` -> :class:`~novelty.io.messages.Pose`
-  (the heading is the yaw of the orientation quaternion).
+  (the heading is the yaw of the orientation quaternion);
+- ``tf2_msgs/TFMessage`` and ``tf/tfMessage`` (``/tf``) -> :class:`~novelty.io.messages.Pose`, one
+  for each transform whose child is the robot's ``base_frame`` (its pose in
+  the parent frame, odom or map, as that one transform says: no chains).
 
 A message's time is its header's stamp (s); a zero stamp (a driver that
 leaves it unset) takes the time the bag recorded the message. Messages come
@@ -41,7 +44,10 @@ __all__ = ["BagError", "bag_topics", "topic_types", "read_bag", "SUPPORTED_TYPES
 
 #: Message types read, by their ``rosbags`` names (``package/msg/Type``).
 SUPPORTED_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range", "nav_msgs/msg/Odometry",
-                   "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped")
+                   "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped",
+                   "tf2_msgs/msg/TFMessage", "tf/msg/tfMessage")
+#: The transforms' types (tf2's, and the older tf's of ROS 1 bags).
+TF_TYPES = SUPPORTED_TYPES[-2:]
 #: The types read as poses.
 POSE_TYPES = SUPPORTED_TYPES[2:]
 #: File names taken for bags: a ROS 1 bag, ROS 2 storage files (a ROS 2 bag folder too).
@@ -96,8 +102,12 @@ def bag_topics(path) -> dict[str, str]:
         reader.close()
 
 
-def read_bag(path, topics: str | Sequence[str]) -> Iterator[LaserScan | RangeReading | Pose]:
+def read_bag(path, topics: str | Sequence[str], base_frame: str = "base_link") -> Iterator[
+        LaserScan | RangeReading | Pose]:
     """The messages of ``topics``, in the bag's order, converted (see the module docstring).
+
+    ``base_frame`` is the robot's frame whose transforms a ``tf`` topic's
+    messages give as poses.
 
     Raises :class:`BagError` (before anything is read) for a topic the bag
     does not hold, listing its topics and their types, or of a type not
@@ -109,14 +119,18 @@ def read_bag(path, topics: str | Sequence[str]) -> Iterator[LaserScan | RangeRea
     reader = _open(path)
     try:
         connections = _connections(reader, path, topics)
-        by_topic = len(topics) > 1
+        # several Range topics: one a sonar, named by its topic; one: the sonars told apart by frame
+        by_topic = len({c.topic for c in connections if c.msgtype == "sensor_msgs/msg/Range"}) > 1
         for connection, record_time, raw in reader.messages(connections=connections):
             try:
                 msg = reader.deserialize(raw, connection.msgtype)
             except Exception as exc:
                 raise BagError(f"{path}: a message on {connection.topic} cannot be decoded "
                                f"({type(exc).__name__}: {exc}).") from None
-            yield _convert(msg, connection.msgtype, connection.topic, record_time, by_topic)
+            if connection.msgtype in TF_TYPES:
+                yield from _tf_poses(msg, connection.topic, record_time, base_frame.strip("/"))
+            else:
+                yield _convert(msg, connection.msgtype, connection.topic, record_time, by_topic)
     finally:
         reader.close()
 
@@ -152,6 +166,14 @@ def _stamp(header, record_time: int) -> float:
 def _yaw(q) -> float:
     """The heading of a quaternion: its rotation about z (ZYX Euler angles' yaw)."""
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+
+
+def _tf_poses(msg, topic: str, record_time: int, base_frame: str) -> Iterator[Pose]:
+    """The transforms of ``base_frame`` from its parent (odom, map) as poses; the others are passed over."""
+    for t in msg.transforms:
+        if t.child_frame_id.strip("/") == base_frame:
+            yield Pose(_stamp(t.header, record_time), float(t.transform.translation.x),
+                       float(t.transform.translation.y), _yaw(t.transform.rotation), topic)
 
 
 def _convert(msg, msgtype: str, topic: str, record_time: int, by_topic: bool):

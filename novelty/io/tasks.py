@@ -212,7 +212,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
                    intervals=None, warmup: int = 1, name: str | None = None,
                    threshold: float = PAPER_THRESHOLD, sectors: int = 16, reduce="min", limits=None,
                    front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
-                   sensors=None, max_span: float | None = None) -> Dataset:
+                   sensors=None, max_span: float | None = None, base_frame: str = "base_link",
+                   seed: int = 0) -> Dataset:
     """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
 
     Parameters
@@ -220,8 +221,10 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     paths : str, Path or sequence of them
         Recordings (CARMEN logs or bags), in the order they were driven;
         each file is a run, split further by ``gap`` or ``intervals``.
-    topic, threshold, sectors, reduce, limits, front, clip, pose_topic, sensors, max_span
+    topic, threshold, sectors, reduce, limits, front, clip, pose_topic, sensors, max_span, base_frame
         As :func:`novelty.io.recording.read_recording`.
+    seed : int, default=0
+        Unused: a recording is what it is (the benchmark gives every task a seed).
     marks : str, Path or sequence of Mark, optional
         Tracked features: a CSV file (:func:`read_marks`) or the marks.
     places : float, optional
@@ -240,7 +243,7 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
         ``columns["time"]`` and ``metadata["sources"]``.
     """
     options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip,
-                   pose_topic=pose_topic, sensors=sensors, max_span=max_span)
+                   pose_topic=pose_topic, sensors=sensors, max_span=max_span, base_frame=base_frame)
     paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
     if marks is None and places is None:
         raise ValueError("Say what is tracked: marks= (a CSV of features) or places= (a grid cell in m).")

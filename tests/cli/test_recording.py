@@ -107,8 +107,8 @@ def test_the_rings_are_the_papers_inputs(tmp_path):
     # one FLASER of five beams at -90..90 degrees, 1..5 m; two sectors: min 1 m and 3 m -> 1 - r / 2 with T = 2
     path = tmp_path / "run.log"
     path.write_text(LOG)
-    args = argparse.Namespace(data=str(path), topic=None, pose_topic=None, sectors=2, reduce="min", front=0.0,
-                              limits=None, range_threshold=2.0)
+    args = argparse.Namespace(data=str(path), topic=None, pose_topic=None, base_frame="base_link", sectors=2,
+                              reduce="min", front=0.0, limits=None, range_threshold=2.0)
     ((time, x, pose),) = list(recording_rings(args))
     assert x.tolist() == [0.5, 0.0] and time == 10.5 and pose.tolist() == [0.5, 0.25, 0.125]
     # the front turned to the laser's left (+90 degrees): the beams at -180, -135, -90, -45, 0 degrees from

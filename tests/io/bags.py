@@ -18,7 +18,8 @@ SCAN_RANGES = [[1.0, math.inf, 2.0, 3.0], [math.nan, 1.5, -math.inf, 12.0]] + [[
 #: the three sonars' readings at each time (range 0.2..5), each frame in turn s2, s0, s1
 SONAR = [(1.0, "s2", 3.0), (1.01, "s0", 1.0), (1.02, "s1", math.inf), (1.1, "s2", 4.0), (1.11, "s0", 2.0),
          (1.12, "s1", 0.5), (6.0, "s2", 1.0), (6.01, "s0", 9.0), (6.02, "s1", 1.0)]
-#: odometry: x = t metres, heading 0.5 rad
+#: odometry: x = t metres, heading 0.5 rad; tf at the same times: base_link at x = t + 10 in odom
+#: (and a laser frame at x = 99, which is not the robot)
 ODOM_TIMES = (0.95, 1.15, 5.95)
 
 
@@ -62,7 +63,18 @@ def _messages(ts):
                                              linear=_make(ts, "geometry_msgs/msg/Vector3"),
                                              angular=_make(ts, "geometry_msgs/msg/Vector3"))))
         out.append((t, "/odom", "nav_msgs/msg/Odometry", odom))
+        out.append((t, "/tf", "tf2_msgs/msg/TFMessage", _tf(ts, t, quaternion)))
     return sorted(out, key=lambda m: m[0])
+
+
+def _tf(ts, t, quaternion):
+    def transform(child, x):
+        return _make(ts, "geometry_msgs/msg/TransformStamped", header=_header(ts, t, "odom"),
+                     child_frame_id=child, transform=_make(
+                         ts, "geometry_msgs/msg/Transform", rotation=quaternion,
+                         translation=_make(ts, "geometry_msgs/msg/Vector3", x=x)))
+
+    return _make(ts, "tf2_msgs/msg/TFMessage", transforms=[transform("laser", 99.0), transform("base_link", t + 10)])
 
 
 def write_bag(folder, kind: str):
@@ -70,10 +82,12 @@ def write_bag(folder, kind: str):
     from rosbags.rosbag1 import Writer as Writer1
     from rosbags.rosbag2 import StoragePlugin
     from rosbags.rosbag2 import Writer as Writer2
-    from rosbags.typesys import Stores, get_typestore
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     if kind == "ros1":
         ts = get_typestore(Stores.ROS1_NOETIC)
+        # ROS 1's own store lacks tf2_msgs: its one message, from its definition
+        ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
         path = folder / "run.bag"
         writer, serialize = Writer1(path), ts.serialize_ros1
     else:

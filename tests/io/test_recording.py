@@ -76,6 +76,10 @@ def test_sonar_rings_from_a_bag(bag):
     assert [round(r.time, 2) for r in rings] == [1.02, 1.12, 6.02]
     mounted = list(read_rings(bag, "/sonar", sensors={"s1": -1.0, "s2": 0.0, "s0": 1.0}))
     assert mounted[0].ranges.tolist() == [math.inf, 3.0, 1.0]
+    # with a pose topic the sonars are still told apart by their frames; tf gives base_link's pose
+    placed = list(read_rings(bag, "/sonar", pose_topic="/tf"))
+    assert [r.ranges.tolist() for r in placed] == [r.ranges.tolist() for r in rings]
+    assert [r.pose[0] for r in placed] == pytest.approx([10.95, 10.95, 15.95])   # rings at 1.02, 1.12, 6.02 s
 
 
 def test_a_bag_needs_its_topic_named(bag):

@@ -25,7 +25,7 @@ def bag(request, tmp_path_factory):
 
 def test_topics_and_types(bag):
     assert bag_topics(bag) == {"/odom": "nav_msgs/msg/Odometry", "/scan": "sensor_msgs/msg/LaserScan",
-                               "/sonar": "sensor_msgs/msg/Range"}
+                               "/sonar": "sensor_msgs/msg/Range", "/tf": "tf2_msgs/msg/TFMessage"}
 
 
 def test_laser_scans_with_header_stamps(bag):
@@ -43,13 +43,20 @@ def test_ranges_and_poses(bag):
     messages = list(read_bag(bag, ["/sonar", "/odom"]))
     sonar = [m for m in messages if isinstance(m, RangeReading)]
     poses = [m for m in messages if isinstance(m, Pose)]
-    # two topics read: each reading's sensor is its topic
-    assert {r.sensor for r in sonar} == {"/sonar"} and len(sonar) == len(SONAR)
+    # one Range topic (with another topic): each reading's sensor is its frame
+    assert [r.sensor for r in sonar][:3] == ["s2", "s0", "s1"] and len(sonar) == len(SONAR)
     assert [r.range for r in sonar] == [r for _, _, r in SONAR]
     assert [(p.x, p.source) for p in poses] == [(0.95, "/odom"), (1.15, "/odom"), (5.95, "/odom")]
     assert poses[0].theta == pytest.approx(0.5)
-    # one topic: each reading's sensor is its frame
     assert [r.sensor for r in read_bag(bag, "/sonar")][:3] == ["s2", "s0", "s1"]
+
+
+def test_tf_gives_the_robots_frame_only(bag):
+    poses = list(read_bag(bag, "/tf"))
+    assert [(p.x, p.source) for p in poses] == [(10.95, "/tf"), (11.15, "/tf"), (15.95, "/tf")]
+    assert poses[0].theta == pytest.approx(0.5)
+    assert [p.x for p in read_bag(bag, "/tf", base_frame="/laser")] == [99.0] * 3
+    assert list(read_bag(bag, "/tf", base_frame="base_footprint")) == []
 
 
 def test_reading_is_lazy(bag):
