@@ -10,7 +10,7 @@ are made ready first (compiled once per machine into numba's cache; see
 :mod:`novelty._kernels`), then every repetition times, in a fresh detector:
 
 - ``stream``: every scan scored, then learned, in order (the online policy);
-- ``cell``: :func:`novelty.bench.prequential.prequential` plus every metric of
+- ``cell``: :func:`novelty.bench.exploration.prequential.prequential` plus every metric of
   the exploration row (what a benchmark cell computes after loading its task).
 
 Prints the median over the repetitions. Not a unit test: the numbers depend on
@@ -27,7 +27,7 @@ import numpy as np
 
 import novelty
 from novelty import _kernels
-from novelty.bench.prequential import exploration_metrics, prequential
+from novelty.bench.exploration.prequential import exploration_metrics, prequential
 from novelty.exploration import open_door
 
 DETECTORS = ("hsom", "som-wang-hsu", "gwr-novelty", "gwr-explore", "gng-stanley")

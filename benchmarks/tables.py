@@ -121,8 +121,9 @@ def _table_lines(text: str) -> str:
 def _report_functions():
     # the package's report formatting, public names only; imported here so that reading
     # this file's help or a region's key needs no numba compile
-    from novelty.bench.exploration_summary import exploration_text
-    from novelty.bench.ranking import per_task_text, ranking_text
+    from novelty.bench.exploration.summary import exploration_text
+    from novelty.bench.holdout.summary import ranking_text
+    from novelty.bench.reports.ranking import per_task_text
 
     return ranking_text, per_task_text, exploration_text
 

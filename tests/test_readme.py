@@ -54,7 +54,7 @@ def test_readme_own_data_commands_run_as_written(tmp_path, monkeypatch):
     import shlex
     import shutil
 
-    from novelty.bench.suite import load_suite
+    from novelty.bench import load_suite
     from novelty.cli import main
 
     section = README.read_text(encoding="utf-8").split("## Your own data")[1].split("\n## ")[0]

@@ -8,11 +8,28 @@
 A run is a :class:`Suite` (read from TOML with :func:`load_suite`, or built in
 code or on the command line) executed by :func:`run_bench` into an output
 folder: ``results.jsonl``, ``results.csv``, ``summary.md`` and ``plots/``.
-Each cell is :func:`novelty.bench.cell.run_cell`; the metrics are in
-:mod:`novelty.bench.metrics`.
+
+The package by job:
+
+- what to run: :mod:`~novelty.bench.specs` (detectors, tasks, cells, seeds),
+  :mod:`~novelty.bench.suite` (a suite and its checks,
+  :mod:`~novelty.bench.spec_checks`), :mod:`~novelty.bench.suite_file`
+  (TOML);
+- the protocols, each one sub-package with its evaluation, metrics, summary
+  and plots behind one :class:`~novelty.bench.protocol.Protocol`:
+  :mod:`~novelty.bench.holdout` and :mod:`~novelty.bench.exploration`;
+- running cells: :mod:`~novelty.bench.cell`, :mod:`~novelty.bench.build`,
+  :mod:`~novelty.bench.backends`, :mod:`~novelty.bench.runner`,
+  :mod:`~novelty.bench.progress`, :mod:`~novelty.bench.results`,
+  :mod:`~novelty.bench.river`;
+- statistics: :mod:`~novelty.bench.stats`;
+- reports shared by the protocols (tables, summary, critical-difference
+  diagram): :mod:`~novelty.bench.reports`.
 """
 
-from .suite import Cell, DetectorSpec, Suite, SuiteError, TaskSpec, load_suite, quick_suite_path
+from .specs import Cell, DetectorSpec, SuiteError, TaskSpec, parse_seeds
+from .suite import Suite
+from .suite_file import load_suite, quick_suite_path, suite_from_dict
 
 __all__ = [
     "Cell",
@@ -21,7 +38,9 @@ __all__ = [
     "Suite",
     "SuiteError",
     "load_suite",
+    "suite_from_dict",
     "quick_suite_path",
+    "parse_seeds",
     "run_bench",
     "run_cell",
 ]

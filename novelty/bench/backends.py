@@ -31,7 +31,7 @@ from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, wait
 from typing import Iterable, Iterator
 
 from .cell import failed_row, run_cell
-from .suite import Cell
+from .specs import Cell
 
 __all__ = ["BACKENDS", "execute", "BackendError"]
 

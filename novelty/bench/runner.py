@@ -9,13 +9,14 @@ from typing import TextIO
 
 from .._atomic import write_atomically
 from .backends import execute
-from .exploration_plots import plot_exploration
-from .exploration_summary import exploration_markdown, exploration_text
-from .plots import matplotlib_missing, plot_run
 from .progress import Progress
+from .protocol import get_protocol
+from .reports.critical_difference import plot_critical_difference
+from .reports.figures import matplotlib_missing
+from .reports.statistics import paired_text
+from .reports.summary import summary_markdown
 from .results import ResultsStore, provenance
 from .suite import Suite
-from .summary import paired_text, ranking_text, summary_markdown
 
 __all__ = ["run_bench", "BenchReport"]
 
@@ -33,13 +34,13 @@ class BenchReport:
     files: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     reference: str | None = None        # the paired comparison's reference (None: the first ranked)
-    exploration: str = ""               # the exploration tables, for that protocol
+    protocol: str = "holdout"
 
     @property
     def table(self) -> str:
-        """The ranked table, then the paired comparison with the reference."""
+        """The protocol's table, then the paired comparison with the reference."""
         paired = paired_text(self.rows, self.reference)
-        return ranking_text(self.rows) + (f"\n\n{paired}" if paired else "")
+        return get_protocol(self.protocol).table(self.rows).rstrip() + (f"\n\n{paired}" if paired else "")
 
 
 def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, scheduler: str | None = None,
@@ -66,7 +67,9 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     cells = list({c.id: c for c in suite.cells()}.values())
     done = store.done()
     todo = [c for c in cells if c.id not in done]
-    report = BenchReport(store.out, [], skipped=len(cells) - len(todo), reference=suite.reference)
+    report = BenchReport(store.out, [], skipped=len(cells) - len(todo), reference=suite.reference,
+                         protocol=suite.protocol)
+    protocol = get_protocol(suite.protocol)
     stream = progress if progress is not None else sys.stderr
     if report.skipped and not quiet:
         print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
@@ -91,10 +94,7 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"
     text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference,
-                            {**stamp, "command": command})
-    if suite.protocol == "exploration":
-        text += "\n".join(exploration_markdown(report.rows)) + "\n"
-        report.exploration = exploration_text(report.rows)
+                            {**stamp, "command": command}, protocol.summary(report.rows))
     write_atomically(summary, lambda fh: fh.write(text), text=True)
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
@@ -102,6 +102,7 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
         if missing:
             report.notes.append(missing)
         else:
-            plotter = plot_exploration if suite.protocol == "exploration" else plot_run
-            report.files.extend(plotter(report.rows, store.arrays, store.out / "plots"))
+            folder = store.out / "plots"
+            report.files.extend(protocol.plots(report.rows, store.arrays, folder))
+            report.files.extend(plot_critical_difference(report.rows, folder))
     return report

@@ -6,15 +6,16 @@ from pathlib import Path
 from typing import Any
 
 from ..datasets import registry
-from ..registry import RegistryError, check_parameters, detectors
-from . import river
-from .prequential import check_policy, default_policy
-from .specs import _FILE_OPTIONS, FILES_TASK, DetectorSpec, SuiteError, TaskSpec
+from ..registry import RegistryError, check_parameters
+from .build import build_detector
+from .exploration.prequential import check_policy, default_policy
+from .specs import FILE_OPTIONS, FILES_TASK, DetectorSpec, SuiteError, TaskSpec
 
-__all__ = ["check_detector", "check_task"]
+__all__ = ["check_detector", "check_task", "check_threshold", "with_policy"]
 
 
-def _check_threshold(rule: Any) -> None:
+def check_threshold(rule: Any) -> None:
+    """Refuse an alarm-threshold rule other than ``"max"`` or a quantile in (0, 1]."""
     if rule == "max":
         return
     if isinstance(rule, (int, float)) and not isinstance(rule, bool) and 0 < rule <= 1:
@@ -25,8 +26,7 @@ def _check_threshold(rule: Any) -> None:
 def check_detector(spec: DetectorSpec):
     """Build the detector once: the registry refuses unknown names and parameters."""
     try:
-        make = river.make if river.is_river(spec.name) else detectors.make
-        det = make(spec.name, **spec.params)
+        det = build_detector(spec)
         _validate_tree(det)
     except RegistryError as exc:
         raise SuiteError(str(exc)) from None
@@ -54,7 +54,7 @@ def _validate_tree(component) -> None:
                 _validate_tree(value)
 
 
-def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
+def with_policy(spec: DetectorSpec, det) -> DetectorSpec:
     """The spec with its policy checked; a batch-only detector's default shown in its label."""
     if spec.policy:
         check_policy(spec.policy, det)
@@ -62,11 +62,13 @@ def _with_policy(spec: DetectorSpec, det) -> DetectorSpec:
     policy = default_policy(det)
     if policy == "online":
         return spec
-    return DetectorSpec(spec.name, spec.params, f"{spec.label} ({policy})", policy)
+    return DetectorSpec(spec.name, spec.params, f"{spec.label} ({policy})", policy, spec.instance)
 
 
 def check_task(spec: TaskSpec) -> None:
     """Check a task's name and option names without loading any data."""
+    if spec.data is not None:  # a task object of the Python API: nothing to look up
+        return
     try:
         valid = registry.parameters(spec.name)
         if valid is not None:
@@ -76,6 +78,6 @@ def check_task(spec: TaskSpec) -> None:
     if spec.name == FILES_TASK:
         if "path" not in spec.options:
             raise SuiteError(f"Task {spec.label!r}: the {FILES_TASK!r} task needs path= (a .csv or .npz file).")
-        for key in _FILE_OPTIONS:
+        for key in FILE_OPTIONS:
             if key in spec.options and not Path(str(spec.options[key])).is_file():
                 raise SuiteError(f"Task {spec.label!r}: data file not found: {spec.options[key]}")

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
+from .protocol import PROTOCOL_NAMES
+
 __all__ = [
     "SuiteError",
     "DetectorSpec",
@@ -25,12 +27,19 @@ __all__ = [
     "parse_assignments",
     "detector_from_text",
     "task_from_text",
+    "parse_seeds",
+    "format_value",
+    "resolve_files",
+    "FILES_TASK",
+    "FILE_OPTIONS",
+    "HARNESS_VERSION",
+    "PROTOCOLS",
 ]
 
 #: bumped when a change of the harness changes what a cell computes
 HARNESS_VERSION = 1
-#: how a cell trains and scores: see :mod:`novelty.bench.cell` and :mod:`novelty.bench.prequential`
-PROTOCOLS = ("holdout", "exploration")
+#: how a cell trains and scores: :mod:`novelty.bench.holdout` and :mod:`novelty.bench.exploration`
+PROTOCOLS = PROTOCOL_NAMES
 
 
 class SuiteError(ValueError):
@@ -40,7 +49,7 @@ class SuiteError(ValueError):
 #: the task made from the user's own files (:func:`novelty.datasets.files.files`)
 FILES_TASK = "files"
 #: its options that name files, read relative to the suite file
-_FILE_OPTIONS = ("path", "test_path")
+FILE_OPTIONS = ("path", "test_path")
 
 
 # ------------------------------------------------------------------ values
@@ -62,6 +71,40 @@ def parse_value(text: str) -> Any:
         return text
 
 
+def parse_seeds(value: Any, where: str = "seeds") -> list[int]:
+    """The seeds of a run from a count, a list, or the command line's text.
+
+    A count ``n >= 1`` (an int, or text like ``"3"``) means seeds ``0 .. n-1``;
+    a list of non-negative ints, or text with commas (``"0,1,2"``; ``"5,"``
+    for seed 5 alone), names them. Every way of giving seeds (a suite file,
+    the command line, :func:`novelty.bench.run`) goes through here.
+
+    >>> parse_seeds(3), parse_seeds([4, 7]), parse_seeds("0,2"), parse_seeds("5,")
+    ([0, 1, 2], [4, 7], [0, 2], [5])
+    """
+    if isinstance(value, str):
+        words = [w.strip() for w in value.split(",")]
+        if not all(w.isdigit() for w in words if w) or not any(words):
+            raise SuiteError(f"{where} must be a count like 3 (seeds 0, 1, 2) or a list like 0,1,2 "
+                             f"(one seed: '5,'); got {value!r}.")
+        value = [int(w) for w in words if w] if len(words) > 1 else int(words[0])
+    if isinstance(value, int) and not isinstance(value, bool):
+        if value < 1:
+            raise SuiteError(f"{where} = {value} is a count of seeds and must be at least 1 "
+                             "(for seed 0 alone, give the list [0], or '0,' on the command line).")
+        return list(range(value))
+    if isinstance(value, range):
+        value = list(value)
+    if not isinstance(value, (list, tuple)) or not value:
+        raise SuiteError(f"{where} must be a non-empty list of integers or a count; got {value!r}.")
+    for seed in value:
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise SuiteError(f"Seeds must be non-negative integers; got {seed!r}.")
+    if len(set(value)) != len(value):
+        raise SuiteError(f"{where} names a seed twice: {list(value)!r}.")
+    return list(value)
+
+
 def parse_assignments(items: Iterable[str], what: str = "parameter") -> dict[str, Any]:
     """``["k=v", ...]`` -> ``{k: parse_value(v)}``; a bad item is a :class:`SuiteError`."""
     out: dict[str, Any] = {}
@@ -78,7 +121,8 @@ def _canonical(value: Any) -> str:
     return json.dumps(value, sort_keys=True, separators=(",", ":"), default=str)
 
 
-def _format_value(value: Any) -> str:
+def format_value(value: Any) -> str:
+    """A parameter value as a label shows it: a string as is, anything else as compact JSON."""
     return value if isinstance(value, str) else _canonical(value)
 
 
@@ -91,8 +135,11 @@ class DetectorSpec:
     params: Mapping[str, Any] = field(default_factory=dict)
     label: str = ""
     #: how the detector learns under the exploration protocol
-    #: (:mod:`novelty.bench.prequential`); "" for its default
+    #: (:mod:`novelty.bench.exploration.prequential`); "" for its default
     policy: str = ""
+    #: a detector object given to :func:`novelty.bench.run` instead of a registry
+    #: name; each cell runs an unfitted copy of it (``sklearn.base.clone``)
+    instance: Any = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "params", dict(self.params))
@@ -113,6 +160,9 @@ class TaskSpec:
     name: str
     options: Mapping[str, Any] = field(default_factory=dict)
     label: str = ""
+    #: a task object (a Dataset) given to :func:`novelty.bench.run` instead of a
+    #: registry name; every seed runs on it as it is
+    data: Any = field(default=None, repr=False, compare=False)
 
     def __post_init__(self):
         object.__setattr__(self, "options", dict(self.options))
@@ -137,7 +187,7 @@ class Cell:
     seed: int
     threshold: Any = "max"
     memory: bool = True
-    #: "holdout" (train, freeze, score) or "exploration" (:mod:`novelty.bench.prequential`)
+    #: "holdout" (train, freeze, score) or "exploration" (:mod:`novelty.bench.exploration`)
     protocol: str = "holdout"
     #: seconds the cell may run (None: no limit); not part of what it computes, nor of its id
     timeout: float | None = None
@@ -164,11 +214,11 @@ class Cell:
         return hashlib.sha256(_canonical(self.key).encode()).hexdigest()[:16]
 
 
-def _resolved(options: dict, base: Path | None) -> dict:
+def resolve_files(options: dict, base: Path | None) -> dict:
     """File options made absolute against the suite's folder (a suite runs from anywhere)."""
     if base is None:
         return options
-    return {k: str(base / v) if k in _FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
+    return {k: str(base / v) if k in FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
 
 
 # ------------------------------------------------------------ command line
@@ -186,7 +236,16 @@ def detector_from_text(text: str) -> DetectorSpec:
 
 
 def task_from_text(text: str) -> TaskSpec:
-    """``"inspection-easy n_scans=200"`` -> a :class:`TaskSpec` (command line)."""
+    """``"inspection-easy n_scans=200"`` -> a :class:`TaskSpec` (command line).
+
+    ``name=`` is the task's name in every table, file and plot (default: the
+    registry name; for ``files``, the file's name without its extension).
+
+    >>> task_from_text("files path=/data/lab-a.csv label=novel").label
+    'lab-a'
+    >>> task_from_text("files path=/data/a.csv name=corridor").label
+    'corridor'
+    """
     try:
         words = shlex.split(text)
     except ValueError as exc:
@@ -194,6 +253,11 @@ def task_from_text(text: str) -> TaskSpec:
     if not words:
         raise SuiteError("An empty --task was given.")
     options = parse_assignments(words[1:], "task option")
+    label = options.pop("name", None)
+    if label is not None and (not isinstance(label, str) or not label.strip()):
+        raise SuiteError(f"Task {text!r}: name= must be a non-empty text; got {label!r}.")
     if words[0] == FILES_TASK:
-        options = _resolved(options, Path.cwd())
-    return TaskSpec(words[0], options)
+        if label is None and isinstance(options.get("path"), str):
+            label = Path(options["path"]).stem
+        options = resolve_files(options, Path.cwd())
+    return TaskSpec(words[0], options, label or "")

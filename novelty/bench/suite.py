@@ -15,7 +15,7 @@ The TOML form::
     reference = "parzen"   # optional: the detector (label) of the paired comparison;
                            # default: the detector ranked first
     protocol = "holdout"   # or "exploration": every scan scored, then learned, in order
-                           # (novelty.bench.prequential)
+                           # (novelty.bench.exploration)
     cell_timeout = 600     # optional: seconds a cell may run before it is stopped and
                            # recorded as failed (cells then run in worker processes)
 
@@ -42,35 +42,19 @@ the label of each then carries its grid values, ``hsom-5x5[alpha=1.2]``.
 
 The parts of a suite are in :mod:`novelty.bench.specs`, their checks against
 the registries in :mod:`novelty.bench.spec_checks`, and the reading of a
-file's entries in :mod:`novelty.bench.suite_file`; their public names are
-importable from here too.
+suite file in :mod:`novelty.bench.suite_file` (:func:`~novelty.bench.load_suite`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
-from ..datasets import registry as datasets
-from ..registry import detectors as detector_registry, of_kind
-from .spec_checks import _check_threshold, _with_policy, check_detector, check_task  # noqa: F401
-from .specs import (FILES_TASK, HARNESS_VERSION, PROTOCOLS, Cell, DetectorSpec, SuiteError,  # noqa: F401
-                    TaskSpec, _resolved, detector_from_text, parse_assignments, parse_value, task_from_text)
-from .suite_file import (_available, _entries, _expand_detector, _files_task, _known_keys, _label,
-                         _read_toml, _table)
+from ..registry import of_kind
+from .spec_checks import check_detector, check_task, check_threshold, with_policy
+from .specs import PROTOCOLS, Cell, DetectorSpec, SuiteError, TaskSpec, parse_seeds
 
-__all__ = [
-    "SuiteError",
-    "DetectorSpec",
-    "TaskSpec",
-    "Cell",
-    "Suite",
-    "parse_value",
-    "parse_assignments",
-    "load_suite",
-    "quick_suite_path",
-]
+__all__ = ["Suite"]
 
 
 @dataclass
@@ -105,12 +89,8 @@ class Suite:
             raise SuiteError(f"Suite {self.name!r} has no detectors.")
         if not self.tasks:
             raise SuiteError(f"Suite {self.name!r} has no tasks.")
-        if not self.seeds:
-            raise SuiteError(f"Suite {self.name!r} has no seeds.")
-        for seed in self.seeds:
-            if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-                raise SuiteError(f"Seeds must be non-negative integers; got {seed!r}.")
-        _check_threshold(self.threshold)
+        self.seeds = parse_seeds(self.seeds, f"The seeds of suite {self.name!r}")
+        check_threshold(self.threshold)
         if self.protocol not in PROTOCOLS:
             raise SuiteError(f"Unknown protocol {self.protocol!r}; expected one of {', '.join(PROTOCOLS)}.")
         timeout = self.cell_timeout
@@ -127,95 +107,36 @@ class Suite:
                 raise SuiteError(f"Detector {spec.label!r} has a policy; policies are for "
                                  "protocol = \"exploration\".")
             if self.protocol == "exploration":
-                self.detectors[i] = _with_policy(spec, det)
+                self.detectors[i] = with_policy(spec, det)
         labels = [d.label for d in self.detectors]  # with their policies
         if self.reference is not None and self.reference not in labels:
             raise SuiteError(f"The reference {self.reference!r} is not a detector of suite {self.name!r}; "
                              f"expected one of {', '.join(labels)}.")
+        tasks = [t.label for t in self.tasks]
+        twice = sorted({x for x in tasks if tasks.count(x) > 1})
+        if twice:
+            raise SuiteError(f"Two tasks are named {twice[0]!r}; give each its own name "
+                             "(name=... on the command line, label = \"...\" in a suite file).")
         for spec in self.tasks:
             check_task(spec)
         return self
 
 
-def _resolve_components(suite: Suite) -> tuple:
+def _resolve_components(suite: "Suite") -> tuple:
     """The registered objects a suite names, for worker processes to register.
 
     Names registered at run time in this process (a script's own detector, a
     test's task) are unknown to a fresh worker; the cell carries the objects
     (pickled by reference) and the worker registers what it lacks.
     """
-    wanted = [("detector", d.name) for d in suite.detectors]
+    wanted = [("detector", d.name) for d in suite.detectors if d.instance is None]
     for d in suite.detectors:
         for part in ("clusterer", "synapse"):
             if isinstance(d.params.get(part), str):
                 wanted.append((part, d.params[part]))
-    wanted += [("dataset", t.name) for t in suite.tasks]
+    wanted += [("dataset", t.name) for t in suite.tasks if t.data is None]
     found = []
     for kind, name in dict.fromkeys(wanted):
         if name in of_kind(kind):
             found.append((kind, name, of_kind(kind).get(name)))
     return tuple(found)
-
-
-def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None) -> Suite:
-    """Build and check a :class:`Suite` from parsed TOML (file paths relative to ``base``)."""
-    _known_keys(data, {"suite", "detectors", "tasks"}, source)
-    head = _table(data.get("suite"), f"{source}: [suite]")
-    _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference",
-                       "protocol", "cell_timeout"},
-                f"{source}: [suite]")
-    seeds = head.get("seeds", [0])
-    if isinstance(seeds, int) and not isinstance(seeds, bool):
-        if seeds < 1:
-            raise SuiteError(f"{source}: seeds = {seeds} is a count of seeds and must be at least 1 "
-                             "(for seed 0 alone, write seeds = [0]).")
-        seeds = list(range(seeds))
-    if not isinstance(seeds, list):
-        raise SuiteError(f"{source}: seeds must be an array of integers or a count.")
-    detectors: list[DetectorSpec] = []
-    skipped: list[str] = []
-    for i, entry in enumerate(_entries(data, "detectors", source)):
-        where = f"{source}: detectors[{i}]"
-        if entry.get("optional") and isinstance(entry.get("name"), str) \
-                and not _available(entry["name"], detector_registry):
-            skipped.append(entry["name"])
-            continue
-        detectors.extend(_expand_detector(entry, where))
-    tasks: list[TaskSpec] = []
-    for i, entry in enumerate(_entries(data, "tasks", source)):
-        where = f"{source}: tasks[{i}]"
-        _known_keys(entry, {"name", "options", "label", "optional", "path"}, where)
-        if "path" in entry:
-            tasks.append(_files_task(entry, where, base))
-            continue
-        name = entry.get("name")
-        if not isinstance(name, str) or not name:
-            raise SuiteError(f"{where}: every task needs a 'name' (a dataset registry name) or a 'path'.")
-        if entry.get("optional") and name not in datasets:
-            skipped.append(name)
-            continue
-        options = _table(entry.get("options"), f"{where}: options")
-        if name == FILES_TASK:
-            options = _resolved(options, base)
-        tasks.append(TaskSpec(name, options, _label(entry, name, where)))
-    memory = head.get("memory", True)
-    if not isinstance(memory, bool) and memory != "first-seed":
-        raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")
-    reference = head.get("reference")
-    if reference is not None and not isinstance(reference, str):
-        raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
-    suite = Suite(detectors, tasks, list(seeds), str(head.get("name", source)),
-                  head.get("threshold", "max"), memory, skipped, reference,
-                  head.get("protocol", "holdout"), head.get("cell_timeout"))
-    return suite.check()
-
-
-def load_suite(path) -> Suite:
-    """Read and check a suite file."""
-    path = Path(path)
-    return suite_from_dict(_read_toml(path), source=path.name, base=path.parent.resolve())
-
-
-def quick_suite_path() -> Path:
-    """The embedded default suite of ``novelty bench --quick``."""
-    return Path(__file__).with_name("suites") / "quick.toml"

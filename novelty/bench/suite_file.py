@@ -1,7 +1,7 @@
-"""Reading a suite file: TOML, and its detector and task entries as specifications.
+"""Reading a suite file: TOML into a checked :class:`~novelty.bench.suite.Suite`.
 
-:func:`novelty.bench.suite.suite_from_dict` assembles the suite from these
-entries; the file's form is described in :mod:`novelty.bench.suite`.
+:func:`load_suite` reads a file, :func:`suite_from_dict` parsed TOML; the
+file's form is described in :mod:`novelty.bench.suite`.
 """
 
 from __future__ import annotations
@@ -11,8 +11,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..datasets import registry as datasets
+from ..registry import detectors as detector_registry
 from . import river
-from .specs import FILES_TASK, DetectorSpec, SuiteError, TaskSpec, _format_value, _resolved
+from .specs import FILES_TASK, DetectorSpec, SuiteError, TaskSpec, format_value, parse_seeds, resolve_files
+from .suite import Suite
+
+__all__ = ["load_suite", "suite_from_dict", "quick_suite_path"]
 
 
 def _read_toml(path: Path) -> dict:
@@ -88,7 +93,7 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     specs = []
     for combo in itertools.product(*(grid[k] for k in keys)):
         values = dict(zip(keys, combo))
-        suffix = ",".join(f"{k}={_format_value(v)}" for k, v in values.items())
+        suffix = ",".join(f"{k}={format_value(v)}" for k, v in values.items())
         specs.append(DetectorSpec(name, {**params, **values}, f"{label}[{suffix}]", policy))
     return specs
 
@@ -108,5 +113,62 @@ def _files_task(entry: dict, where: str, base: Path | None) -> TaskSpec:
     options = _table(entry.get("options"), f"{where}: options")
     if "path" in options:
         raise SuiteError(f"{where}: give the path once (path = ..., not also in options).")
-    return TaskSpec(FILES_TASK, _resolved({"path": path, **options}, base),
+    return TaskSpec(FILES_TASK, resolve_files({"path": path, **options}, base),
                     entry.get("label", Path(path).stem))
+
+
+def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None) -> Suite:
+    """Build and check a :class:`Suite` from parsed TOML (file paths relative to ``base``)."""
+    _known_keys(data, {"suite", "detectors", "tasks"}, source)
+    head = _table(data.get("suite"), f"{source}: [suite]")
+    _known_keys(head, {"name", "seeds", "threshold", "memory", "description", "reference",
+                       "protocol", "cell_timeout"},
+                f"{source}: [suite]")
+    seeds = parse_seeds(head.get("seeds", [0]), f"{source}: seeds")
+    detectors: list[DetectorSpec] = []
+    skipped: list[str] = []
+    for i, entry in enumerate(_entries(data, "detectors", source)):
+        where = f"{source}: detectors[{i}]"
+        if entry.get("optional") and isinstance(entry.get("name"), str) \
+                and not _available(entry["name"], detector_registry):
+            skipped.append(entry["name"])
+            continue
+        detectors.extend(_expand_detector(entry, where))
+    tasks: list[TaskSpec] = []
+    for i, entry in enumerate(_entries(data, "tasks", source)):
+        where = f"{source}: tasks[{i}]"
+        _known_keys(entry, {"name", "options", "label", "optional", "path"}, where)
+        if "path" in entry:
+            tasks.append(_files_task(entry, where, base))
+            continue
+        name = entry.get("name")
+        if not isinstance(name, str) or not name:
+            raise SuiteError(f"{where}: every task needs a 'name' (a dataset registry name) or a 'path'.")
+        if entry.get("optional") and name not in datasets:
+            skipped.append(name)
+            continue
+        options = _table(entry.get("options"), f"{where}: options")
+        if name == FILES_TASK:
+            options = resolve_files(options, base)
+        tasks.append(TaskSpec(name, options, _label(entry, name, where)))
+    memory = head.get("memory", True)
+    if not isinstance(memory, bool) and memory != "first-seed":
+        raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")
+    reference = head.get("reference")
+    if reference is not None and not isinstance(reference, str):
+        raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
+    suite = Suite(detectors, tasks, seeds, str(head.get("name", source)),
+                  head.get("threshold", "max"), memory, skipped, reference,
+                  head.get("protocol", "holdout"), head.get("cell_timeout"))
+    return suite.check()
+
+
+def load_suite(path) -> Suite:
+    """Read and check a suite file."""
+    path = Path(path)
+    return suite_from_dict(_read_toml(path), source=path.name, base=path.parent.resolve())
+
+
+def quick_suite_path() -> Path:
+    """The embedded default suite of ``novelty bench --quick``."""
+    return Path(__file__).with_name("suites") / "quick.toml"

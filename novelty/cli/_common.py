@@ -31,7 +31,7 @@ def user_errors() -> tuple[type[BaseException], ...]:
     """Exceptions that mean the input was wrong, not the program."""
     # deferred: the benchmark and the model files import scikit-learn (2-3 s); `novelty --help` does not
     from ..bench.backends import BackendError
-    from ..bench.suite import SuiteError
+    from ..bench.specs import SuiteError
     from ..persistence import ModelFileError
 
     return (UserError, SuiteError, RegistryError, ModelFileError, BackendError, OSError, ValueError)
@@ -57,7 +57,7 @@ def add_command(subparsers, name: str, summary: str, description: str, examples:
 def parse_params(items: Sequence[str] | None) -> dict[str, Any]:
     """``["k=v", ...]`` to a dict with JSON-ish values (``5``, ``1.2``, ``true``, ``som``)."""
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
-    from ..bench.suite import SuiteError, parse_assignments
+    from ..bench.specs import SuiteError, parse_assignments
 
     try:
         return parse_assignments(items or [])

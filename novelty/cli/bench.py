@@ -83,25 +83,11 @@ def add_parser(subparsers):
     return parser
 
 
-def _seeds(text: str) -> list[int]:
-    """``3`` is a count (seeds 0, 1, 2); ``0,1,2`` or ``5,`` (a comma) name the seeds."""
-    words = [w.strip() for w in text.split(",")]
-    if not all(w.isdigit() for w in words if w) or not any(words):
-        raise UserError(f"--seeds must be a count like 3 (seeds 0, 1, 2) or a list like 0,1,2 "
-                        f"(one seed: '5,'); got {text!r}.")
-    if len(words) > 1:
-        return [int(w) for w in words if w]
-    if int(words[0]) < 1:
-        raise UserError(f"--seeds {text} is a count of seeds and must be at least 1 "
-                        "(for seed 0 alone, write '0,').")
-    return list(range(int(words[0])))
-
-
 def build_suite(args):
     """The suite the options describe (file, --quick, and command-line overrides)."""
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
-    from ..bench.suite import (Suite, detector_from_text, load_suite, parse_value, quick_suite_path,
-                               task_from_text)
+    from ..bench import Suite, load_suite, quick_suite_path
+    from ..bench.specs import detector_from_text, parse_seeds, parse_value, task_from_text
 
     if args.suite and args.quick:
         raise UserError("Give either a suite file or --quick, not both.")
@@ -116,7 +102,7 @@ def build_suite(args):
     if args.task:
         suite.tasks = [task_from_text(t) for t in args.task]
     if args.seeds:
-        suite.seeds = _seeds(args.seeds)
+        suite.seeds = parse_seeds(args.seeds, "--seeds")
     if args.threshold:
         suite.threshold = parse_value(args.threshold)
     if args.protocol:
@@ -132,8 +118,8 @@ def build_suite(args):
 
 def run(args) -> int:
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
+    from ..bench.reports.statistics import statistics_line
     from ..bench.runner import run_bench
-    from ..bench.summary import statistics_line
 
     if args.jobs < 1:
         raise UserError(f"--jobs must be at least 1; got {args.jobs}.")
@@ -149,8 +135,8 @@ def run(args) -> int:
     report = run_bench(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
                        plots=not args.no_plots, quiet=args.quiet,
                        command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
-    print(report.exploration or report.table)
-    if report.rows and not report.exploration:
+    print(report.table)
+    if report.rows:
         print("\n" + statistics_line(report.rows))
     for note in report.notes:
         print(note)

@@ -38,12 +38,12 @@ def add_parser(subparsers):
 
 def _pyplot():
     # deferred: the plots import scikit-learn and matplotlib; `novelty --help` does not
-    from ..bench.plots import _pyplot, matplotlib_missing
+    from ..bench.reports.figures import matplotlib_missing, pyplot
 
     missing = matplotlib_missing()
     if missing:
         raise UserError("novelty plot needs matplotlib: pip install 'novelty-habituation[plot]'.")
-    return _pyplot()
+    return pyplot()
 
 
 def _bench_folder(path: Path) -> Path | None:
@@ -82,7 +82,7 @@ def _read_run_output(path: Path) -> dict:
 
 def _plot_bench(folder: Path, args, plt):
     # deferred: plotting imports matplotlib; `novelty --help` does not
-    from ..bench.plots import plot_route
+    from ..bench.holdout.plots import plot_route
     from ..bench.results import ResultsStore
 
     store = ResultsStore(folder)
@@ -119,7 +119,7 @@ def _plot_bench(folder: Path, args, plt):
 def _plot_path(data: dict, path: Path, plt):
     """The robot's path coloured by novelty, and the novelty scan by scan below it."""
     # deferred: plotting imports matplotlib; `novelty --help` does not
-    from ..bench.plots import plot_route
+    from ..bench.holdout.plots import plot_route
     from ..io.plotting import plot_path
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8), gridspec_kw={"height_ratios": [3, 1]})
@@ -143,7 +143,7 @@ def run(args) -> int:
     elif path.is_dir():
         raise UserError(f"{path} is not a benchmark output folder (no results.jsonl).")
     else:
-        from ..bench.plots import plot_route
+        from ..bench.holdout.plots import plot_route
 
         data = _read_run_output(path)
         if "x" in data:

@@ -144,8 +144,8 @@ def _check_matplotlib() -> None:
 
 def _experiments(args) -> int:
     # deferred: the experiments import the simulator and scikit-learn; `novelty --help` does not
-    from .. import experiments
-    from ..experiments import report
+    from ..reproduce import experiments
+    from ..reproduce.experiments import report
 
     known = experiments.names()
     if args.experiment != "all" and args.experiment not in known:

@@ -71,7 +71,8 @@ def add_parser(subparsers):
 
 def run(args) -> int:
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
-    from ..bench.suite import DetectorSpec, check_detector
+    from ..bench.spec_checks import check_detector
+    from ..bench.specs import DetectorSpec
 
     if args.passes < 1:
         raise UserError(f"--passes must be at least 1; got {args.passes}.")

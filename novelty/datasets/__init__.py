@@ -16,7 +16,7 @@ Built in:
   ``inspection-hard`` (``seed=0, n_novelties=2, train_runs=3, test_runs=1,
   length=15.0``);
 - exploration tasks, runs in order with every scan's tracked feature and its
-  exposure count (:mod:`novelty.exploration`): ``exploration-tour``,
+  exposure count (:mod:`novelty.datasets.exploration`): ``exploration-tour``,
   ``exploration-open-door``, ``exploration-patrol``;
 - real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,

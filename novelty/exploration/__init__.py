@@ -1,22 +1,21 @@
-"""The exploration tasks: features met for the first time, then again and again.
+"""Explorations: build one from your own runs, or take a named one.
 
-- :mod:`~novelty.exploration.tasks`: exploration tasks (runs in order, every
-  scan labelled with the tracked feature it perceives and its exposure count);
-- :mod:`~novelty.exploration.objects`: tasks of objects that come and go
-  (irregular recurrence, a long absence, a move);
-- :mod:`~novelty.exploration.runs`: the runs they are built from.
+The exploration tasks are datasets (:mod:`novelty.datasets.exploration`;
+``novelty.datasets.load("exploration-tour")``); their evaluation, every scan
+scored then learned in order, is the benchmark's exploration protocol
+(:mod:`novelty.bench.exploration`; ``novelty.bench.run(..., protocol="exploration")``).
+This package keeps the short names a script uses:
 
-Their evaluation is the benchmark's: :mod:`novelty.bench.prequential` scores
-each scan before learning it (``[suite] protocol = "exploration"`` runs it
-from a suite file), with the metrics of
-:mod:`novelty.bench.exploration_metrics` (first-encounter detection,
-habituation over exposures, false alarms, re-detection, integrated novelty
-per run), summarised by :mod:`novelty.bench.exploration_summary` and drawn by
-:mod:`novelty.bench.exploration_plots`.
+>>> import numpy as np
+>>> from novelty.exploration import from_runs
+>>> runs = [np.random.default_rng(i).random((20, 4)) for i in range(3)]
+>>> task = from_runs(runs, [[None] * 20, [None] * 15 + ["box"] * 5, ["box"] * 5 + [None] * 15])
+>>> int(task.y.sum())
+5
 """
 
-from .objects import irregular, moving, returning
-from .tasks import FAMILIAR, Leg, exposures, from_runs, open_door, paper_tour, patrol, simulate_exploration
+from ..datasets.exploration import (FAMILIAR, Leg, exposures, from_runs, irregular, moving, open_door,
+                                    paper_tour, patrol, returning, simulate_exploration)
 
 __all__ = ["FAMILIAR", "Leg", "exposures", "from_runs", "open_door", "paper_tour", "patrol",
            "simulate_exploration", "irregular", "returning", "moving"]

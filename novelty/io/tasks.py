@@ -27,7 +27,7 @@ from typing import Sequence
 import numpy as np
 
 from ..data import Dataset
-from ..exploration.runs import from_runs
+from ..datasets.exploration.runs import from_runs
 from ..sonar.preprocessing import PAPER_THRESHOLD
 from .recording import read_recording
 

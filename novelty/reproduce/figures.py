@@ -14,7 +14,7 @@ _MARKS = {"door": ("#a0522d", "door"), "opening": ("#d62728", "open door"), "cra
 _ROUTE = (0.0, 10.0)
 
 
-def _pyplot():
+def pyplot():
     try:
         # optional dependency, imported only to draw
         import matplotlib
@@ -73,7 +73,7 @@ def _panel(ax, trial: Trial, top: bool, bottom: bool, ymax: float) -> None:
 
 
 def _columns(fig_title: str, columns: list[tuple[str, list[Trial]]], path, seed_note: str = ""):
-    plt = _pyplot()
+    plt = pyplot()
     rows = max(len(trials) for _, trials in columns)
     # inches: titles and feature names; axis label; each trial (smaller when A needed many pairs)
     top, bottom, panel = 0.85, 0.6, (1.0 if rows <= 8 else 0.6)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from novelty.bench import river
-from novelty.bench.suite import SuiteError, suite_from_dict
+from novelty.bench import SuiteError, suite_from_dict
 
 anomaly = pytest.importorskip("river.anomaly", reason="river is not installed (pip install 'novelty-habituation[river]')")
 

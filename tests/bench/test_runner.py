@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from novelty.bench import DetectorSpec, Suite, TaskSpec
-from novelty.bench.cell import METRIC_COLUMNS, run_cell
+from novelty.bench.cell import run_cell
+from novelty.bench.holdout.evaluate import METRIC_COLUMNS
 from novelty.bench.runner import run_bench
 
 KEY = ("detector", "task", "seed")

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from novelty.bench.suite import Suite, SuiteError, load_suite, quick_suite_path
+from novelty.bench import Suite, SuiteError, load_suite, quick_suite_path
 
 
 def write(tmp_path, text, name="suite.toml"):

@@ -9,7 +9,7 @@ import pytest
 import novelty
 from novelty.cli import main
 from novelty.cli._common import UserError
-from novelty.cli.bench import EXAMPLES, _seeds
+from novelty.cli.bench import EXAMPLES
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "bench"))
 import toy  # noqa: E402
@@ -59,21 +59,6 @@ def test_a_bench_where_every_cell_fails_exits_1(toy_task, tmp_path, capsys):
     err = capsys.readouterr().err
     assert "every cell failed (1 of 1), nothing was measured" in err
     assert "FloatingPointError: this detector always fails" in err
-
-
-@pytest.mark.parametrize("text, seeds", [("3", [0, 1, 2]), ("1", [0]), ("0,1,2", [0, 1, 2]), ("5,", [5]),
-                                         ("0,", [0]), (" 2 , 7 ", [2, 7])])
-def test_seeds_are_a_count_or_a_list_with_commas(text, seeds):
-    assert _seeds(text) == seeds
-
-
-@pytest.mark.parametrize("text, message", [
-    ("0", "--seeds 0 is a count of seeds and must be at least 1 (for seed 0 alone, write '0,')"),
-    ("a,b", "--seeds must be a count like 3"), ("-1", "--seeds must be a count like 3"), (",", "count like 3"),
-])
-def test_zero_or_malformed_seeds_are_refused(text, message):
-    with pytest.raises(UserError, match=re.escape(message)):
-        _seeds(text)
 
 
 def test_zero_seeds_from_the_command_line_is_one_clear_error(capsys):

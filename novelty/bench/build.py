@@ -1,0 +1,120 @@
+"""A cell's task and detector, built the same way by every protocol and backend.
+
+- :func:`load_task`: the task's dataset with the cell's seed (cached per
+  process: datasets are immutable);
+- :func:`make_detector`: the detector of the registry (or a River adapter),
+  seeded with the cell's seed unless the suite set one;
+- :func:`train_detector`: train as a robot does (stream the training scans,
+  or ``fit`` a batch-only detector);
+- :func:`resting_novelty`, :func:`n_units`: what the detector became;
+- :func:`check_finite`: a NaN or infinite score fails the cell
+  (:class:`CellError`).
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import json
+
+import numpy as np
+from sklearn.base import clone
+
+from .._validation import pass_timestamps
+from ..datasets import load, registry
+from ..registry import detectors, of_kind
+from . import river
+from .specs import Cell, DetectorSpec
+
+__all__ = ["load_task", "build_detector", "make_detector", "train_detector", "resting_novelty", "n_units", "check_finite",
+           "ensure_registered", "CellError"]
+
+
+class CellError(ValueError):
+    """A cell that ran but whose result cannot be used (reported without a source location)."""
+
+
+def ensure_registered(components) -> None:
+    """Register, in this (worker) process, the objects the parent resolved."""
+    for kind, name, obj in components:
+        kind_registry = of_kind(kind)
+        try:
+            if name in kind_registry and kind_registry.get(name) is obj:
+                continue
+        except Exception:  # noqa: BLE001 - a broken entry is replaced below
+            pass
+        kind_registry.register(name, obj, replace=True)
+
+
+@functools.lru_cache(maxsize=16)  # a suite cycles through its seeds task by task
+def _load_task_cached(name: str, options_json: str, seed: int):
+    options = json.loads(options_json)
+    valid = registry.parameters(name)
+    if "seed" not in options and (valid is None or "seed" in valid):
+        options["seed"] = seed
+    return load(name, **options)
+
+
+def load_task(cell: Cell):
+    """The cell's task (cached per process: datasets are immutable)."""
+    if cell.task.data is not None:  # a task object given to the Python API, not registered
+        return cell.task.data
+    return _load_task_cached(cell.task.name, json.dumps(cell.task.options, sort_keys=True), cell.seed)
+
+
+def build_detector(spec: DetectorSpec):
+    """A new, unfitted detector as ``spec`` describes it (registry name, River adapter or object)."""
+    if spec.instance is not None:
+        return clone(spec.instance)
+    make = river.make if river.is_river(spec.name) else detectors.make
+    return make(spec.name, **spec.params)
+
+
+def make_detector(cell: Cell):
+    """The cell's detector, seeded with the cell's seed unless the suite set one."""
+    det = build_detector(cell.detector)
+    if "random_state" not in cell.detector.params and hasattr(det, "get_params") \
+            and "random_state" in det.get_params(deep=False):
+        det.set_params(random_state=cell.seed)
+    return det
+
+
+def train_detector(det, X: np.ndarray, passes: int = 1, timestamps=None):
+    """Train as the robot does: stream ``X`` ``passes`` times, or ``fit`` a batch-only detector.
+
+    With ``timestamps`` (a task's time column), an online detector that takes
+    them is given them; each further pass continues the clock, one typical
+    step after the previous pass ended, as a robot driving the route again.
+    """
+    if not getattr(det, "supports_online", True):
+        return det.fit(X)
+    if timestamps is not None and "timestamps" not in inspect.signature(det.partial_fit).parameters:
+        timestamps = None
+    for k in range(passes):
+        det.partial_fit(X, timestamps=None if timestamps is None else pass_timestamps(timestamps, k))
+    return det
+
+
+def resting_novelty(det) -> float:
+    """The detector's resting novelty (0 for a detector without one)."""
+    try:
+        value = getattr(det, "resting_novelty", None)
+    except Exception:  # noqa: BLE001 - a detector without a defined resting level
+        value = None
+    return 0.0 if value is None else float(value)
+
+
+def n_units(det) -> float:
+    """The number of units of the detector's network (NaN for a detector without units)."""
+    for owner in (getattr(det, "clusterer_", None), det):
+        n = getattr(owner, "n_units_", None) if owner is not None else None
+        if n is not None:
+            return int(n)
+    return float("nan")
+
+
+def check_finite(scores: np.ndarray, what: str) -> None:
+    """A NaN or infinite score ranks nowhere: the cell fails rather than count on its other scans."""
+    bad = int(np.count_nonzero(~np.isfinite(scores)))
+    if bad:
+        raise CellError(f"the detector scored {bad} of {scores.size} {what} NaN or infinite")

@@ -1,0 +1,212 @@
+"""Scores of an exploration: is a new feature flagged, and does it become familiar?
+
+Every function takes the novelty of every scan of an exploration, in order
+(each scored before it was learned), and the labels of
+:mod:`novelty.datasets.exploration`: the run of each scan, its tracked
+``feature`` (``""`` for a familiar scan) and its ``exposure`` count (0 at
+the feature's first encounter). Warm-up runs (``run < warmup``) are never
+scored. Definitions:
+
+- **familiar level** of a run: the mean novelty of its familiar scans (of
+  every scored run's familiar scans when the run has none, as in the open
+  control area tracked as a whole);
+- **excess** of a feature at its k-th exposure (k = 1, 2, ...): the mean
+  novelty of its scans in the run of that exposure minus that run's familiar
+  level;
+- **first-encounter detection**: ROC AUC of the scans at a feature's first
+  exposure (positives) against the familiar scans of the runs holding a first
+  encounter (negatives);
+- **habituation ratio**: over the *recurring* features (met at least three
+  times), the mean excess at the 3rd exposure divided by the mean excess at the
+  1st; at most 0.25 is what this project calls habituated;
+- **exposures to habituate** of a feature: the first exposure k at which its
+  excess is at most ``tolerance`` (default 0.25, the same quarter) times its
+  first-exposure excess; ``nan`` if that never happens within its exposures or
+  the first exposure was not above the familiar level;
+- **false-alarm rate**: the share of the familiar scans of the scored runs
+  whose novelty is strictly above a threshold set from the last warm-up run
+  (:func:`novelty.bench.holdout.metrics.training_threshold` of its novelty);
+- **re-detection**: for a feature that replaced an earlier one at the same
+  place (``changes``), the ROC AUC of its first-exposure scans against the
+  familiar scans of the same run;
+- **integrated novelty per run**: the paper's Table 1 measure,
+  ``sum (novelty - resting)`` over each run (Marsland et al., 2000).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...data import FAMILIAR
+from ..holdout import metrics as bench_metrics
+
+__all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
+           "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
+           "integrated_per_run", "warmup_threshold", "recurring", "HABITUATED", "FLAGS_FIRST", "RECURRING"]
+
+#: An excess at most this share of the first-exposure excess counts as habituated.
+HABITUATED = 0.25
+#: A first-encounter ROC AUC at least this flags first encounters.
+FLAGS_FIRST = 0.85
+#: A feature is recurring when it is met at least this many times.
+RECURRING = 3
+
+
+def _arrays(novelty, run, feature, exposure=None):
+    novelty = np.asarray(novelty, dtype=np.float64)
+    run = np.asarray(run)
+    feature = np.asarray(feature).astype(str)
+    n = novelty.shape[0]
+    for name, a in (("run", run), ("feature", feature)) + ((("exposure", np.asarray(exposure)),)
+                                                            if exposure is not None else ()):
+        if a.shape != (n,):
+            raise ValueError(f"{name} has shape {a.shape}; expected ({n},), one value a scan.")
+    return novelty, run, feature
+
+
+def familiar_levels(novelty, run, feature, warmup: int) -> dict[int, float]:
+    """``{run: familiar level}`` of every scored run (see the module docstring)."""
+    novelty, run, feature = _arrays(novelty, run, feature)
+    scored = run >= warmup
+    familiar = scored & (feature == FAMILIAR)
+    overall = float(novelty[familiar].mean()) if familiar.any() else float("nan")
+    levels = {}
+    for r in np.unique(run[scored]).tolist():
+        here = familiar & (run == r)
+        levels[r] = float(novelty[here].mean()) if here.any() else overall
+    return levels
+
+
+def exposure_curves(novelty, run, feature, exposure, warmup: int) -> dict[str, dict[str, np.ndarray]]:
+    """Per tracked feature, its novelty, familiar level and excess at each exposure.
+
+    Returns ``{feature: {"novelty": a, "familiar": b, "excess": a - b, "run": runs}}``,
+    index k - 1 for the k-th exposure.
+
+    >>> nov = [0.9, 0.1, 0.5, 0.1, 0.2, 0.1]
+    >>> c = exposure_curves(nov, [1, 1, 2, 2, 3, 3], ["d", "", "d", "", "d", ""], [0, -1, 1, -1, 2, -1], 1)
+    >>> np.round(c["d"]["excess"], 2).tolist()
+    [0.8, 0.4, 0.1]
+    """
+    novelty, run, feature = _arrays(novelty, run, feature, exposure)
+    exposure = np.asarray(exposure)
+    levels = familiar_levels(novelty, run, feature, warmup)
+    curves = {}
+    scored = run >= warmup
+    for f in sorted(set(feature[scored & (feature != FAMILIAR)].tolist())):
+        mine = scored & (feature == f)
+        ks = np.unique(exposure[mine])
+        nov, fam, runs = [], [], []
+        for k in ks.tolist():
+            here = mine & (exposure == k)
+            r = int(run[here][0])
+            nov.append(float(novelty[here].mean()))
+            fam.append(levels[r])
+            runs.append(r)
+        nov, fam = np.array(nov), np.array(fam)
+        curves[f] = {"novelty": nov, "familiar": fam, "excess": nov - fam, "run": np.array(runs),
+                     "exposure": ks + 1}
+    return curves
+
+
+def first_encounter_auc(novelty, run, feature, exposure, warmup: int) -> float:
+    """ROC AUC of first-exposure scans against familiar scans of the same runs.
+
+    >>> first_encounter_auc([0.9, 0.2, 0.4, 0.3], [1, 1, 2, 2], ["d", "", "d", ""], [0, -1, 1, -1], 1)
+    1.0
+    """
+    novelty, run, feature = _arrays(novelty, run, feature, exposure)
+    exposure = np.asarray(exposure)
+    scored = run >= warmup
+    first = scored & (exposure == 0) & (feature != FAMILIAR)
+    runs = np.unique(run[first])
+    familiar = scored & (feature == FAMILIAR) & np.isin(run, runs)
+    keep = first | familiar
+    return bench_metrics.roc_auc(novelty[keep], first[keep])
+
+
+def recurring(curves: dict, min_exposures: int = RECURRING) -> list[str]:
+    return [f for f, c in curves.items() if c["excess"].size >= min_exposures
+            and np.array_equal(c["exposure"][:min_exposures], np.arange(1, min_exposures + 1))]
+
+
+def excess_at(curves: dict, k: int, min_exposures: int = RECURRING) -> float:
+    """Mean excess at the k-th exposure over the recurring features (``nan`` if none)."""
+    values = [curves[f]["excess"][k - 1] for f in recurring(curves, min_exposures)
+              if curves[f]["excess"].size >= k]
+    return float(np.mean(values)) if values else float("nan")
+
+
+def habituation_ratio(curves: dict, k: int = RECURRING) -> float:
+    """Mean excess at the k-th exposure over the mean at the first, recurring features only.
+
+    ``nan`` when no feature recurs or the first exposures were not above the
+    familiar level on average.
+    """
+    first, later = excess_at(curves, 1, k), excess_at(curves, k, k)
+    if math.isnan(first) or first <= 0:
+        return float("nan")
+    return later / first
+
+
+def exposures_to_habituate(excess, tolerance: float = HABITUATED) -> float:
+    """First exposure (1-based) whose excess is at most ``tolerance`` x the first one's.
+
+    >>> exposures_to_habituate([0.8, 0.4, 0.1])
+    3.0
+    >>> exposures_to_habituate([0.8, 0.7, 0.6])
+    nan
+    """
+    excess = np.asarray(excess, dtype=np.float64)
+    if excess.size == 0 or not excess[0] > 0:
+        return float("nan")
+    hit = np.flatnonzero(excess <= tolerance * excess[0])
+    return float(hit[0] + 1) if hit.size else float("nan")
+
+
+def warmup_threshold(novelty, run, warmup: int, rule="max") -> float:
+    """The alarm threshold from the novelty of the last warm-up run (its max, or a quantile)."""
+    novelty = np.asarray(novelty, dtype=np.float64)
+    return bench_metrics.training_threshold(novelty[np.asarray(run) == warmup - 1], rule)
+
+
+def false_alarm_rate(novelty, run, feature, warmup: int, threshold: float) -> tuple[float, int]:
+    """(rate, count) of familiar scans of the scored runs above ``threshold``.
+
+    >>> false_alarm_rate([0.9, 0.1, 0.5, 0.7], [0, 1, 1, 1], ["", "", "", "d"], 1, 0.4)
+    (0.5, 1)
+    """
+    novelty, run, feature = _arrays(novelty, run, feature)
+    familiar = (run >= warmup) & (feature == FAMILIAR)
+    count = bench_metrics.count_alarms(novelty[familiar], threshold)
+    return (float(count / familiar.sum()) if familiar.any() else float("nan")), count
+
+
+def redetection_auc(novelty, run, feature, exposure, changes: dict) -> float:
+    """Mean over changed features of the ROC AUC of their first exposure against familiar scans of that run."""
+    novelty, run, feature = _arrays(novelty, run, feature, exposure)
+    exposure = np.asarray(exposure)
+    values = []
+    for new in sorted(changes):
+        first = (feature == new) & (exposure == 0)
+        if not first.any():
+            continue
+        r = run[first][0]
+        keep = first | ((run == r) & (feature == FAMILIAR))
+        values.append(bench_metrics.roc_auc(novelty[keep], first[keep]))
+    values = [v for v in values if not math.isnan(v)]
+    return float(np.mean(values)) if values else float("nan")
+
+
+def integrated_per_run(novelty, run, resting: float = 0.0) -> np.ndarray:
+    """The paper's integrated novelty of every run, in run order.
+
+    >>> integrated_per_run([1.0, 0.5, 0.2, 0.2], [0, 0, 1, 1], resting=0.1).round(2).tolist()
+    [1.3, 0.2]
+    """
+    novelty = np.asarray(novelty, dtype=np.float64)
+    run = np.asarray(run)
+    return np.array([bench_metrics.integrated_novelty(novelty[run == r], resting)
+                     for r in np.unique(run)])

@@ -1,0 +1,141 @@
+"""Plots of an exploration run (matplotlib, optional).
+
+- ``exploration-route-<task>.png``: novelty along the whole exploration, one
+  panel a detector, runs separated and named, scans of a tracked feature
+  marked (first exposure red, later exposures orange), the warm-up shaded;
+  the lowest seed.
+- ``exploration-exposure-<task>.png``: novelty against exposure count, one
+  panel a detector, one line a recurring feature, the familiar level of the
+  same runs dashed; mean over seeds.
+- ``exploration-learning-<task>.png``: integrated novelty per run (the
+  paper's Table 1 measure) as a learning curve, one line a detector; mean
+  over seeds.
+
+Each figure's title says which seed(s) it shows.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from pathlib import Path
+from typing import Callable, Sequence
+
+import numpy as np
+
+from ..reports.figures import grid, pyplot, save, slug
+
+__all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves"]
+
+
+def _cells(rows: Sequence[dict]) -> dict[str, dict[str, list[dict]]]:
+    """``{task: {detector: [rows, by seed]}}`` of the successful exploration cells."""
+    out: dict[str, dict[str, list[dict]]] = defaultdict(lambda: defaultdict(list))
+    for row in sorted(rows, key=lambda r: (r["seed"], r["cell_id"])):
+        if row.get("status") == "ok" and row.get("policy"):
+            out[row["task"]][row["detector"]].append(row)
+    return out
+
+
+def _seeds(cells: dict[str, list[dict]]) -> str:
+    seeds = sorted({r["seed"] for rows in cells.values() for r in rows})
+    return f"seed {seeds[0]}" if len(seeds) == 1 else f"mean over seeds {', '.join(map(str, seeds))}"
+
+
+def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) -> Path | None:
+    """Novelty along the whole exploration, one panel a detector (lowest seed)."""
+    plt = pyplot()
+    first = {d: rows[0] for d, rows in cells.items()}
+    seed = min(r["seed"] for r in first.values())
+    fig, axes = plt.subplots(len(first), 1, figsize=(11, 1.6 * len(first) + 0.8), squeeze=False, sharex=True)
+    for ax, (detector, row) in zip(axes[:, 0], first.items()):
+        a = arrays(row["cell_id"])
+        if a is None:
+            continue
+        x = np.arange(a["novelty"].size)
+        ax.plot(x, a["novelty"], linewidth=0.7, color="tab:blue")
+        tracked = a["exposure"] >= 0
+        for mask, colour, label in ((tracked & (a["exposure"] == 0), "tab:red", "first exposure"),
+                                    (a["exposure"] > 0, "tab:orange", "later exposures")):
+            ax.scatter(x[mask], a["novelty"][mask], s=4, color=colour, label=label, zorder=3)
+        starts = np.r_[0, np.flatnonzero(np.diff(a["run"])) + 1]
+        for k, s in enumerate(starts):
+            ax.axvline(s, color="0.8", linewidth=0.6)
+            if ax is axes[0, 0]:
+                ax.text(s + 2, 1.02, str(a["environment"][s]), fontsize=6, transform=ax.get_xaxis_transform())
+        ax.axvspan(0, starts[int(a["warmup"])] if int(a["warmup"]) < starts.size else x[-1],
+                   color="0.9", zorder=0)
+        if np.isfinite(float(a["threshold"])):
+            ax.axhline(float(a["threshold"]), color="k", linestyle="--", linewidth=0.6)
+        ax.set_title(f"{detector} (seed {row['seed']})", fontsize=8, loc="left")
+        ax.set_ylabel("novelty", fontsize=7)
+    axes[0, 0].legend(fontsize=6, loc="upper right")
+    axes[-1, 0].set_xlabel("scan (runs in order; grey: warm-up; dashed: threshold from the warm-up)")
+    fig.suptitle(f"{task}: novelty of every scan before it is learned, seed {seed}", fontsize=10)
+    return save(fig, out / f"exploration-route-{slug(task)}.png")
+
+
+def plot_exposure_curves(task: str, cells: dict, arrays: Callable, out: Path) -> Path | None:
+    """Novelty against exposure count, one panel a detector; familiar level dashed; mean over seeds."""
+    plt = pyplot()
+    n_rows, n_cols = grid(len(cells))
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(4 * n_cols, 3.1 * n_rows), squeeze=False)
+    for ax, (detector, rows) in zip(axes.flat, cells.items()):
+        novelty, familiar = defaultdict(list), defaultdict(list)
+        for row in rows:
+            a = arrays(row["cell_id"])
+            if a is None:
+                continue
+            for i, f in enumerate(a["curve_features"].tolist()):
+                novelty[f].append(a["curve_novelty"][i])
+                familiar[f].append(a["curve_familiar"][i])
+        for k, f in enumerate(sorted(novelty)):
+            width = min(len(v) for v in novelty[f])
+            nov = np.nanmean([v[:width] for v in novelty[f]], axis=0)
+            fam = np.nanmean([v[:width] for v in familiar[f]], axis=0)
+            if np.sum(np.isfinite(nov)) < 2:
+                continue  # met once: no curve
+            ks = np.arange(1, width + 1)
+            line, = ax.plot(ks, nov, marker="o", markersize=3, linewidth=1, label=f)
+            ax.plot(ks, fam, linestyle="--", linewidth=0.8, color=line.get_color())
+        ax.set_title(detector, fontsize=8, loc="left")
+        ax.set_xlabel("exposure", fontsize=7)
+        ax.set_ylabel("mean novelty", fontsize=7)
+        ax.legend(fontsize=5)
+    for ax in list(axes.flat)[len(cells):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{task}: novelty of each recurring feature at each exposure (dashed: familiar scans "
+                 f"of the same runs), {_seeds(cells)}", fontsize=9)
+    return save(fig, out / f"exploration-exposure-{slug(task)}.png")
+
+
+def plot_learning_curves(task: str, cells: dict, out: Path) -> Path | None:
+    """Integrated novelty per run, one line a detector (mean over seeds)."""
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(8, 4.2))
+    warmup = 0
+    for detector, rows in cells.items():
+        curves = [json.loads(r["integrated_per_run"]) for r in rows if r.get("integrated_per_run")]
+        if not curves:
+            continue
+        width = min(len(c) for c in curves)
+        ax.plot(np.arange(width), np.mean([c[:width] for c in curves], axis=0), marker=".", label=detector)
+        warmup = int(rows[0].get("warmup_runs") or 0)
+    if warmup:
+        ax.axvspan(-0.5, warmup - 0.5, color="0.9", zorder=0)
+    ax.set(xlabel="run (grey: warm-up)", ylabel="integrated novelty (resting subtracted)")
+    ax.set_title(f"{task}: integrated novelty per run, {_seeds(cells)}", fontsize=9)
+    ax.legend(fontsize=6, ncols=2)
+    return save(fig, out / f"exploration-learning-{slug(task)}.png")
+
+
+def plot_exploration(rows: Sequence[dict], arrays: Callable[[str], dict | None], out) -> list[Path]:
+    """Every exploration plot of a run into ``out``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for task, cells in _cells(rows).items():
+        paths += [plot_exploration_route(task, cells, arrays, out),
+                  plot_exposure_curves(task, cells, arrays, out),
+                  plot_learning_curves(task, cells, out)]
+    return [p for p in paths if p is not None]

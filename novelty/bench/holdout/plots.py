@@ -1,0 +1,164 @@
+"""Plots of a hold-out run (matplotlib, optional): ROC curves, novelty along the route,
+ROC AUC per task and boxplots over seeds.
+
+Every function returns the paths it wrote, and every figure says which seeds
+it shows (ROC curves and routes: the lowest seed of each task) or aggregates.
+The critical-difference diagram, shared by the protocols, is
+:mod:`novelty.bench.reports.critical_difference`.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from pathlib import Path
+from typing import Callable, Sequence
+
+import numpy as np
+
+from ..reports.figures import grid, pyplot, save, seeds_text, slug
+from ..reports.ranking import detector_order, per_task
+from ..stats import across_tasks as stats
+from . import metrics
+
+__all__ = ["plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route", "plot_boxplots"]
+
+
+def _first_seed_cells(rows: Sequence[dict]) -> dict[str, dict[str, dict]]:
+    """``{task: {detector: row}}`` for the lowest seed of each successful (task, detector)."""
+    chosen: dict[str, dict[str, dict]] = defaultdict(dict)
+    for row in sorted(rows, key=lambda r: r["seed"]):
+        if row.get("status") == "ok" and row["detector"] not in chosen[row["task"]]:
+            chosen[row["task"]][row["detector"]] = row
+    return chosen
+
+
+def _seeds(rows: Sequence[dict]) -> str:
+    return seeds_text([r["seed"] for r in rows if r.get("status") == "ok"])
+
+
+def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:
+    """One panel a task, one ROC curve a detector (lowest seed)."""
+    plt = pyplot()
+    chosen = _first_seed_cells(rows)
+    if not chosen:
+        return []
+    n_rows, n_cols = grid(len(chosen))
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(4.2 * n_cols, 4 * n_rows), squeeze=False)
+    for ax, (task, cells) in zip(axes.flat, chosen.items()):
+        seed = min(row["seed"] for row in cells.values())
+        for detector, row in cells.items():
+            a = arrays(row["cell_id"])
+            if a is None or not 0 < a["y"].sum() < a["y"].size:
+                continue
+            fpr, tpr, _ = metrics.roc_points(a["novelty"], a["y"])
+            ax.plot(fpr, tpr, drawstyle="steps-post", label=f"{detector} ({row['roc_auc']:.2f})")
+        ax.plot([0, 1], [0, 1], color="0.7", linewidth=0.8, linestyle=":")
+        ax.set(title=f"{task} (seed {seed})", xlabel="false-positive rate", ylabel="true-positive rate",
+               xlim=(0, 1), ylim=(0, 1.01))
+        ax.legend(fontsize=7, loc="lower right")
+    for ax in list(axes.flat)[len(chosen):]:
+        ax.set_visible(False)
+    fig.suptitle("ROC curves of the lowest seed of each task (ROC AUC of that seed in brackets)", fontsize=10)
+    path = save(fig, out / "roc.png")
+    return [path]
+
+
+def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, resting=None) -> str:
+    """Novelty along the route on ``ax``, novel scans shaded, threshold dashed; returns the x axis' name."""
+    novelty = np.asarray(novelty, dtype=float)
+    x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
+    along = "scan" if distance is None else "distance (m)"
+    if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
+        x, along = np.arange(novelty.size), "scan (several runs)"
+    if y is not None and np.any(y):
+        ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
+        ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
+                        step="mid", linewidth=0, label="novel scans")
+    ax.plot(x, novelty, linewidth=1.0, label=label)
+    if threshold is not None and np.isfinite(threshold):
+        ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8, label="threshold")
+    if resting:
+        ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting")
+    return along
+
+
+def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:
+    """One figure a task: the test novelty along the route, one panel a detector."""
+    plt = pyplot()
+    paths = []
+    for task, cells in _first_seed_cells(rows).items():
+        fig, axes = plt.subplots(len(cells), 1, figsize=(9, 1.7 * len(cells) + 0.6), squeeze=False,
+                                 sharex=True)
+        for ax, (detector, row) in zip(axes[:, 0], cells.items()):
+            a = arrays(row["cell_id"])
+            if a is None:
+                continue
+            has_distance = bool(np.any(a["distance"] != np.arange(a["distance"].size)))
+            plot_route(ax, a["novelty"], a["y"], a["distance"] if has_distance else None,
+                       float(a["threshold"]), resting=float(a["resting"]))
+            ax.set_ylabel("novelty", fontsize=8)
+            ax.set_title(detector, fontsize=9, loc="left")
+        axes[-1, 0].set_xlabel("distance along the route (m) or scan")
+        seed = min(row["seed"] for row in cells.values())
+        fig.suptitle(f"{task}, seed {seed} (the lowest): novelty of the test scans (shaded: novel)",
+                     fontsize=10)
+        path = save(fig, out / f"route-{slug(task)}.png")
+        paths.append(path)
+    return paths
+
+
+def plot_ranking(rows: Sequence[dict], out: Path) -> list[Path]:
+    """Mean ROC AUC per task and detector, with the spread over seeds."""
+    plt = pyplot()
+    order = detector_order(rows)
+    table = per_task(rows)
+    tasks = list(dict.fromkeys(r["task"] for r in rows))
+    if not order or not tasks:
+        return []
+    fig, ax = plt.subplots(figsize=(max(6, 1.1 * len(order) + 3), 4.5))
+    width = 0.8 / len(tasks)
+    for j, task in enumerate(tasks):
+        means = [table.get(d, {}).get(task, (np.nan, np.nan))[0] for d in order]
+        sds = [table.get(d, {}).get(task, (np.nan, np.nan))[1] for d in order]
+        xs = np.arange(len(order)) + (j - (len(tasks) - 1) / 2) * width
+        ax.bar(xs, means, width, yerr=np.nan_to_num(sds), capsize=2, label=task)
+    ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+    ax.set_xticks(np.arange(len(order)), order, rotation=30, ha="right", fontsize=8)
+    ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05),
+           title=f"Detectors ranked by mean ROC AUC ({_seeds(rows)})")
+    ax.legend(fontsize=7, ncols=min(len(tasks), 4))
+    path = save(fig, out / "ranking.png")
+    return [path]
+
+
+def plot_boxplots(rows: Sequence[dict], out: Path) -> list[Path]:
+    """One panel a task: the ROC AUC of each detector over the seeds, a box and the seeds' points."""
+    plt = pyplot()
+    order = detector_order(rows)
+    table = stats.cell_table(rows, detectors=order)
+    tasks = list(dict.fromkeys(task for task, _ in table.cells))
+    if not tasks:
+        return []
+    fig, axes = plt.subplots(len(tasks), 1, figsize=(max(6, 0.7 * len(order) + 2), 3.2 * len(tasks)),
+                             squeeze=False)
+    for ax, task in zip(axes[:, 0], tasks):
+        columns = [j for j, (name, _) in enumerate(table.cells) if name == task]
+        values = [v[columns][~np.isnan(v[columns])] for v in table.values]
+        positions = np.arange(1, len(order) + 1)
+        ax.boxplot(values, positions=positions, widths=0.6, showfliers=False)
+        for x, v in zip(positions, values):
+            ax.plot(np.full(v.size, x), v, "o", color="tab:blue", markersize=3, alpha=0.7)
+        ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+        ax.set_xticks(positions, order, rotation=30, ha="right", fontsize=8)
+        ax.set(ylabel="ROC AUC", ylim=(0, 1.02),
+               title=f"{task}: ROC AUC over {_seeds([r for r in rows if r['task'] == task])}")
+    path = save(fig, out / "boxplot-roc-auc.png")
+    return [path]
+
+
+def plot_run(rows: Sequence[dict], arrays: Callable[[str], dict | None], out) -> list[Path]:
+    """Every plot of a run into ``out``."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    return (plot_roc(rows, arrays, out) + plot_routes(rows, arrays, out) + plot_ranking(rows, out)
+            + plot_boxplots(rows, out))

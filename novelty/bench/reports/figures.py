@@ -1,0 +1,72 @@
+"""What every plot of the harness shares: matplotlib on demand, file names, grids, saving.
+
+matplotlib is optional: :func:`matplotlib_missing` says in one line what to
+install when it is absent, and :func:`pyplot` imports it (with the
+non-interactive Agg backend) only when a plot is drawn.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+from typing import Sequence
+
+__all__ = ["matplotlib_missing", "pyplot", "slug", "grid", "save", "seeds_text", "DPI"]
+
+#: resolution of every saved figure
+DPI = 110
+
+
+def matplotlib_missing() -> str | None:
+    """``None`` if matplotlib is importable, else the line to tell the user."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return "Plots skipped: matplotlib is not installed (pip install 'novelty-habituation[plot]')."
+    return None
+
+
+def pyplot():
+    """``matplotlib.pyplot`` on the Agg backend (optional dependency, imported only to draw)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def slug(text: str) -> str:
+    """``text`` as a safe part of a file name.
+
+    >>> slug("lab a/b.csv")
+    'lab-a-b.csv'
+    """
+    return re.sub(r"[^A-Za-z0-9_.-]+", "-", text).strip("-") or "task"
+
+
+def grid(n: int) -> tuple[int, int]:
+    """Rows and columns (at most 3) for ``n`` panels."""
+    cols = min(n, 3)
+    return math.ceil(n / cols), cols
+
+
+def save(fig, path: Path, tight: bool = True) -> Path:
+    """Lay out (unless ``tight`` is false: a figure placed by hand), write and close ``fig``; return ``path``."""
+    plt = pyplot()
+    if tight:
+        fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return path
+
+
+def seeds_text(seeds: Sequence[int]) -> str:
+    """``"seed 3"`` or ``"seeds 0, 1, 2"``.
+
+    >>> seeds_text([2, 0, 1]), seeds_text([3])
+    ('seeds 0, 1, 2', 'seed 3')
+    """
+    seeds = sorted(set(int(s) for s in seeds))
+    return ("seed " if len(seeds) == 1 else "seeds ") + ", ".join(map(str, seeds))

@@ -1,0 +1,7 @@
+"""Statistics of a benchmark: aggregates over seeds and comparisons of detectors.
+
+- :mod:`~novelty.bench.stats.aggregate`: result rows as numbers, means and
+  spreads;
+- :mod:`~novelty.bench.stats.across_tasks`: ranks, Friedman's test,
+  Wilcoxon-Holm pairs and the critical-difference groups (Demsar 2006).
+"""

@@ -1,0 +1,86 @@
+"""Exploration metrics against hand-computed values."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from novelty.bench.exploration.prequential import exploration_metrics
+from novelty.bench.exploration import metrics as xm
+
+# run 0 warm-up; runs 1-3 each: 2 familiar scans, 1 scan of the door "d" (exposures 0, 1, 2);
+# run 2 also meets a box "b" for the first time
+NOVELTY = np.array([1.0, 0.8, 0.2, 0.2, 0.9, 0.1, 0.3, 0.5, 0.7, 0.2, 0.2, 0.3])
+RUN = np.array([0, 0, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3])
+FEATURE = np.array(["", "", "", "", "d", "", "", "d", "b", "", "", "d"])
+EXPOSURE = np.array([-1, -1, -1, -1, 0, -1, -1, 1, 0, -1, -1, 2])
+
+
+def test_exposure_curves_by_hand():
+    curves = xm.exposure_curves(NOVELTY, RUN, FEATURE, EXPOSURE, warmup=1)
+    assert sorted(curves) == ["b", "d"]
+    d = curves["d"]
+    np.testing.assert_allclose(d["novelty"], [0.9, 0.5, 0.3])
+    np.testing.assert_allclose(d["familiar"], [0.2, 0.2, 0.2])
+    np.testing.assert_allclose(d["excess"], [0.7, 0.3, 0.1])
+    assert d["run"].tolist() == [1, 2, 3] and d["exposure"].tolist() == [1, 2, 3]
+    np.testing.assert_allclose(curves["b"]["excess"], [0.5])
+
+
+def test_first_encounter_auc_by_hand():
+    # positives 0.9 (d, run 1) and 0.7 (b, run 2); negatives the familiar scans of runs 1-2:
+    # 0.2, 0.2, 0.1, 0.3: every positive above every negative
+    assert xm.first_encounter_auc(NOVELTY, RUN, FEATURE, EXPOSURE, 1) == 1.0
+    low = NOVELTY.copy()
+    low[8] = 0.2  # b ties two negatives and beats one, loses to 0.3: (1 + 0.5 * 2) / 4
+    assert xm.first_encounter_auc(low, RUN, FEATURE, EXPOSURE, 1) == pytest.approx((4 + 2) / 8)
+
+
+def test_habituation_by_hand():
+    curves = xm.exposure_curves(NOVELTY, RUN, FEATURE, EXPOSURE, warmup=1)
+    assert xm.excess_at(curves, 1) == pytest.approx(0.7)   # only d recurs three times
+    assert xm.excess_at(curves, 3) == pytest.approx(0.1)
+    assert xm.habituation_ratio(curves) == pytest.approx(0.1 / 0.7)
+    assert xm.exposures_to_habituate(curves["d"]["excess"]) == 3.0
+    assert xm.exposures_to_habituate(curves["d"]["excess"], tolerance=0.5) == 2.0
+    assert math.isnan(xm.exposures_to_habituate([-0.1, -0.2]))  # never flagged, never habituated
+
+
+def test_false_alarms_and_threshold_from_the_last_warmup_run():
+    threshold = xm.warmup_threshold(NOVELTY, RUN, 1)
+    assert threshold == 1.0
+    assert xm.warmup_threshold(NOVELTY, RUN, 1, rule=0.5) == pytest.approx(0.9)
+    rate, count = xm.false_alarm_rate(NOVELTY, RUN, FEATURE, 1, 0.25)
+    assert (rate, count) == (1 / 6, 1)
+
+
+def test_redetection_by_hand():
+    feature = FEATURE.astype("U2")
+    feature[11] = "d2"  # in run 3 the door changes again
+    exposure = EXPOSURE.copy()
+    exposure[11] = 0
+    assert xm.redetection_auc(NOVELTY, RUN, feature, exposure, {"d2": "d"}) == 1.0
+    assert math.isnan(xm.redetection_auc(NOVELTY, RUN, FEATURE, EXPOSURE, {"d2": "d"}))
+
+
+def test_integrated_per_run_is_the_papers_measure():
+    np.testing.assert_allclose(xm.integrated_per_run(NOVELTY, RUN, resting=0.1),
+                               [1.6, 1.0, 1.2, 0.4])
+
+
+def test_the_row_of_a_cell():
+    row = exploration_metrics(NOVELTY, RUN, FEATURE, EXPOSURE, 1, {}, resting=0.1)
+    assert row["first_encounter_auc"] == row["roc_auc"] == 1.0
+    assert row["n_first"] == 2 and row["n_recurring"] == 1
+    assert row["flags_first"] and row["habituates"]
+    assert row["exposures_to_habituate"] == 3.0 and row["habituated_fraction"] == 1.0
+    assert json.loads(row["integrated_per_run"]) == pytest.approx([1.6, 1.0, 1.2, 0.4])
+    assert json.loads(row["exposure_curve"]) == pytest.approx([0.7, 0.3, 0.1])
+    assert row["integrated_novelty"] == pytest.approx(2.6)
+    assert row["max_novelty"] == 0.9 and row["false_alarms"] == 0
+
+
+def test_mismatched_lengths_are_refused():
+    with pytest.raises(ValueError, match="one value a scan"):
+        xm.exposure_curves(NOVELTY, RUN[:-1], FEATURE, EXPOSURE, 1)
