@@ -11,7 +11,7 @@ travelled of every scan.
 Which messages: in a CARMEN log ``topic`` is a laser message (``FLASER``
 by default, ``RLASER``, ``ROBOTLASER1``), whose messages carry the robot's
 pose; ``pose_topic="ODOM"`` takes the odometry instead. In a bag ``topic``
-is a ``LaserScan`` topic, a ``Range`` topic (all sonars on it, told apart
+is a ``LaserScan`` or ``PointCloud2`` topic, a ``Range`` topic (all sonars on it, told apart
 by their frames) or several ``Range`` topics (one a sonar); ``pose_topic``
 an ``Odometry``, ``PoseStamped`` or ``tf`` topic (the transforms of
 ``base_frame``), the latest pose before each ring.
@@ -31,7 +31,7 @@ from ..data import Dataset
 from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from .carmen import CarmenLog
 from .messages import LaserScan, Pose, RangeReading
-from .rosbag import POSE_TYPES, bag_topics, is_bag, read_bag, topic_types
+from .rosbag import POSE_TYPES, SCAN_TYPES, bag_topics, is_bag, read_bag, topic_types
 from .scans import laser_ring, sector_index, clean_ranges, reduce_sectors, sonar_rings
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
@@ -82,9 +82,9 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
     if is_bag(path):
         topics = _bag_scan_topics(path, topic)
         kinds = set(topic_types(path, topics))
-        if len(kinds) > 1 or kinds & set(POSE_TYPES):
-            raise ValueError(f"The scans' topics must be LaserScan or Range topics, all of one type; "
-                             f"{', '.join(topics)} hold {', '.join(sorted(kinds))}.")
+        if len(kinds) > 1 or not kinds <= set(SCAN_TYPES):
+            raise ValueError(f"The scans' topics must be LaserScan, PointCloud2 or Range topics, all of one "
+                             f"type; {', '.join(topics)} hold {', '.join(sorted(kinds))}.")
         if pose_topic is not None and topic_types(path, [pose_topic])[0] not in POSE_TYPES:
             raise ValueError(f"pose_topic {pose_topic} must hold poses: one of {', '.join(POSE_TYPES)}.")
         messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame)
@@ -103,7 +103,7 @@ def _bag_scan_topics(path, topic) -> list[str]:
     if topic is not None:
         return [topic] if isinstance(topic, str) else list(topic)
     scans = [t for t, kind in bag_topics(path).items()
-             if kind in ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range")]
+             if kind in SCAN_TYPES]
     if len(scans) != 1:
         listing = ", ".join(f"{t} ({k})" for t, k in bag_topics(path).items()) or "none"
         raise ValueError(f"Name the scans' topic of {path} (topic=, --topic); its topics: {listing}.")

@@ -11,6 +11,9 @@ Messages read, by type (ROS 1 and ROS 2 names alike), into the types of
 - ``sensor_msgs/Range`` -> :class:`~novelty.io.messages.RangeReading`, its
   sensor the message's frame (one topic for all sonars), or its topic when
   several topics are read (one topic a sonar) or the frame is empty;
+- ``sensor_msgs/PointCloud2`` -> :class:`~novelty.io.messages.LaserScan`:
+  the points (fields x, y, z) flattened into 360 one-degree beams all round,
+  each the nearest point's horizontal range (:func:`novelty.io.scans.cloud_scan`);
 - ``nav_msgs/Odometry``, ``geometry_msgs/PoseStamped`` and
   ``geometry_msgs/PoseWithCovarianceStamped`` -> :class:`~novelty.io.messages.Pose`
   (the heading is the yaw of the orientation quaternion);
@@ -39,17 +42,21 @@ from typing import Iterator, Sequence
 import numpy as np
 
 from .messages import LaserScan, Pose, RangeReading
+from .scans import cloud_scan
 
-__all__ = ["BagError", "bag_topics", "topic_types", "read_bag", "SUPPORTED_TYPES", "POSE_TYPES", "BAG_SUFFIXES", "is_bag"]
+__all__ = ["BagError", "bag_topics", "topic_types", "read_bag", "SUPPORTED_TYPES", "SCAN_TYPES", "POSE_TYPES", "BAG_SUFFIXES", "is_bag"]
 
 #: Message types read, by their ``rosbags`` names (``package/msg/Type``).
-SUPPORTED_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range", "nav_msgs/msg/Odometry",
+SUPPORTED_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range", "sensor_msgs/msg/PointCloud2",
+                   "nav_msgs/msg/Odometry",
                    "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped",
                    "tf2_msgs/msg/TFMessage", "tf/msg/tfMessage")
 #: The transforms' types (tf2's, and the older tf's of ROS 1 bags).
 TF_TYPES = SUPPORTED_TYPES[-2:]
+#: The types read as scans.
+SCAN_TYPES = SUPPORTED_TYPES[:3]
 #: The types read as poses.
-POSE_TYPES = SUPPORTED_TYPES[2:]
+POSE_TYPES = SUPPORTED_TYPES[3:]
 #: File names taken for bags: a ROS 1 bag, ROS 2 storage files (a ROS 2 bag folder too).
 BAG_SUFFIXES = (".bag", ".db3", ".mcap")
 
@@ -168,6 +175,25 @@ def _yaw(q) -> float:
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+#: PointField datatypes (sensor_msgs/PointField) as numpy's
+_POINT_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
+
+
+def _cloud_points(msg, topic: str) -> np.ndarray:
+    """The (x, y, z) of every point of a PointCloud2, whatever its layout."""
+    fields = {f.name: f for f in msg.fields}
+    if not {"x", "y", "z"} <= set(fields):
+        raise BagError(f"The point clouds on {topic} have fields {sorted(fields)}; x, y and z are needed.")
+    order = ">" if msg.is_bigendian else "<"
+    dtype = np.dtype({"names": ["x", "y", "z"],
+                      "formats": [order + _POINT_TYPES[fields[k].datatype] for k in "xyz"],
+                      "offsets": [fields[k].offset for k in "xyz"], "itemsize": msg.point_step})
+    data = np.asarray(msg.data, dtype=np.uint8).reshape(msg.height, msg.row_step)
+    rows = data[:, :msg.width * msg.point_step].copy()   # a row may be padded beyond its points
+    points = rows.view(dtype).reshape(-1)
+    return np.column_stack([points[k].astype(np.float64) for k in "xyz"])
+
+
 def _tf_poses(msg, topic: str, record_time: int, base_frame: str) -> Iterator[Pose]:
     """The transforms of ``base_frame`` from its parent (odom, map) as poses; the others are passed over."""
     for t in msg.transforms:
@@ -182,6 +208,8 @@ def _convert(msg, msgtype: str, topic: str, record_time: int, by_topic: bool):
         return LaserScan(stamp, np.asarray(msg.ranges, dtype=np.float64), float(msg.angle_min),
                          float(msg.angle_increment), float(msg.range_min), float(msg.range_max),
                          source=topic)
+    if msgtype == "sensor_msgs/msg/PointCloud2":
+        return cloud_scan(_cloud_points(msg, topic), stamp, source=topic)
     if msgtype == "sensor_msgs/msg/Range":
         sensor = topic if by_topic or not msg.header.frame_id else msg.header.frame_id
         return RangeReading(stamp, float(msg.range), sensor, float(msg.min_range), float(msg.max_range),

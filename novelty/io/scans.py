@@ -54,7 +54,8 @@ import numpy as np
 
 from .messages import LaserScan, RangeReading
 
-__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "sonar_rings", "REDUCTIONS"]
+__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "sonar_rings", "cloud_scan",
+           "REDUCTIONS"]
 
 #: Named ways to reduce a sector's beams to one range (a number q is the q-th percentile).
 REDUCTIONS = ("min", "mean", "median")
@@ -206,6 +207,34 @@ def laser_ring(scan: LaserScan, n_sectors: int, reduce="min", limits=None, front
     index = sector_index(scan.angles, n_sectors, limits, front)
     ranges = clean_ranges(scan.ranges, scan.range_min, scan.range_max)
     return reduce_sectors(ranges, index, n_sectors, reduce, clip)
+
+
+def cloud_scan(points, stamp: float, resolution: float = math.pi / 180, z_limits=None,
+               source: str = "") -> LaserScan:
+    """A point cloud flattened into a planar scan all round: each beam the nearest point in its angle.
+
+    The points' angles about the sensor's z axis are cut into beams of
+    ``resolution`` radians from -pi; a beam's range is the horizontal
+    distance of its nearest point, ``+inf`` where no point falls (no
+    return). Points with a non-finite coordinate, and outside ``z_limits``
+    (m, e.g. to leave out the floor), are dropped.
+
+    Examples
+    --------
+    >>> scan = cloud_scan([[1.0, 0.0, 0.0], [2.0, 0.0, 0.5], [0.0, -3.0, 0.0]], 0.0, resolution=np.pi / 2)
+    >>> np.rad2deg(scan.angles).tolist(), scan.ranges.tolist()
+    ([-180.0, -90.0, 0.0, 90.0], [inf, 3.0, 1.0, inf])
+    """
+    p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    keep = np.all(np.isfinite(p), axis=1)
+    if z_limits is not None:
+        keep &= (p[:, 2] >= z_limits[0]) & (p[:, 2] <= z_limits[1])
+    p = p[keep]
+    n = int(round(2 * math.pi / resolution))
+    beam = np.floor((np.arctan2(p[:, 1], p[:, 0]) + math.pi) / resolution).astype(np.intp) % n
+    ranges = np.full(n, np.inf)
+    np.minimum.at(ranges, beam, np.hypot(p[:, 0], p[:, 1]))
+    return LaserScan(stamp, ranges, angle_min=-math.pi, angle_increment=2 * math.pi / n, source=source)
 
 
 # ------------------------------------------------------------------ sonar rings

@@ -63,9 +63,9 @@ def test_a_bag_streams_its_laser_with_odometry(bag, tmp_path, capsys):
 def test_a_bag_refuses_a_wrong_topic_naming_what_exists(bag, capsys):
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/laser"]) == 2
     err = capsys.readouterr().err
-    assert "no topic '/laser'; its topics: /odom (nav_msgs/msg/Odometry), /scan" in err
+    assert "no topic '/laser'; its topics: /cloud (sensor_msgs/msg/PointCloud2), /odom (nav_msgs" in err
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/odom"]) == 2
-    assert "must be LaserScan or Range topics" in capsys.readouterr().err
+    assert "must be LaserScan, PointCloud2 or Range topics" in capsys.readouterr().err
 
 
 def test_a_file_that_is_not_a_bag(tmp_path, capsys):

@@ -48,6 +48,7 @@ def _messages(ts):
             ts, "sensor_msgs/msg/LaserScan", header=_header(ts, t, "laser"), angle_min=-math.pi / 2,
             angle_max=math.pi / 2, angle_increment=math.pi / 3, range_min=0.1, range_max=10.0,
             ranges=np.array(ranges, dtype=np.float32), intensities=np.zeros(0, np.float32))))
+    out.append((1.05, "/cloud", "sensor_msgs/msg/PointCloud2", _cloud(ts, 1.05)))
     for t, frame, r in SONAR:
         out.append((t, "/sonar", "sensor_msgs/msg/Range", _make(
             ts, "sensor_msgs/msg/Range", header=_header(ts, t, frame), field_of_view=0.5, min_range=0.2,
@@ -65,6 +66,21 @@ def _messages(ts):
         out.append((t, "/odom", "nav_msgs/msg/Odometry", odom))
         out.append((t, "/tf", "tf2_msgs/msg/TFMessage", _tf(ts, t, quaternion)))
     return sorted(out, key=lambda m: m[0])
+
+
+#: a point cloud at 1.05 s: x, y, z as float32, 16 bytes a point, its row padded by 4 bytes
+CLOUD = [(1.0, 0.0, 0.0), (0.0, 2.0, 0.1), (math.nan, math.nan, math.nan), (0.0, 1.5, -0.2)]
+
+
+def _cloud(ts, t):
+    rows = np.zeros((len(CLOUD), 4), dtype="<f4")
+    rows[:, :3] = CLOUD
+    data = np.concatenate([rows.view(np.uint8).ravel(), np.zeros(4, np.uint8)])
+    fields = [_make(ts, "sensor_msgs/msg/PointField", name=k, offset=4 * i, datatype=7, count=1)
+              for i, k in enumerate("xyz")]
+    return _make(ts, "sensor_msgs/msg/PointCloud2", header=_header(ts, t, "lidar"), height=1, width=len(CLOUD),
+                 fields=fields, is_bigendian=False, point_step=16, row_step=16 * len(CLOUD) + 4, data=data,
+                 is_dense=False)
 
 
 def _tf(ts, t, quaternion):

@@ -82,6 +82,13 @@ def test_sonar_rings_from_a_bag(bag):
     assert [r.pose[0] for r in placed] == pytest.approx([10.95, 10.95, 15.95])   # rings at 1.02, 1.12, 6.02 s
 
 
+def test_point_cloud_rings_from_a_bag(bag):
+    # the cloud's beams: 1 m at 0 degrees, 1.5 m at 90; four sectors all round from -180: back-right,
+    # front-right (-90..0), front-left (0..90, holding the 0-degree beam), back-left (90.., the 90-degree beam)
+    (ring,) = list(read_rings(bag, "/cloud", sectors=4))
+    assert ring.ranges.tolist() == [math.inf, math.inf, 1.0, 1.5]
+
+
 def test_a_bag_needs_its_topic_named(bag):
     with pytest.raises(ValueError, match=r"Name the scans' topic.*/odom \(nav_msgs/msg/Odometry\)"):
         list(read_rings(bag))

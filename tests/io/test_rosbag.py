@@ -24,7 +24,8 @@ def bag(request, tmp_path_factory):
 
 
 def test_topics_and_types(bag):
-    assert bag_topics(bag) == {"/odom": "nav_msgs/msg/Odometry", "/scan": "sensor_msgs/msg/LaserScan",
+    assert bag_topics(bag) == {"/cloud": "sensor_msgs/msg/PointCloud2", "/odom": "nav_msgs/msg/Odometry",
+                               "/scan": "sensor_msgs/msg/LaserScan",
                                "/sonar": "sensor_msgs/msg/Range", "/tf": "tf2_msgs/msg/TFMessage"}
 
 
@@ -59,6 +60,14 @@ def test_tf_gives_the_robots_frame_only(bag):
     assert list(read_bag(bag, "/tf", base_frame="base_footprint")) == []
 
 
+def test_a_point_cloud_flattened_into_a_scan_all_round(bag):
+    (scan,) = list(read_bag(bag, "/cloud"))
+    assert len(scan.ranges) == 360 and scan.angle_min == pytest.approx(-math.pi)
+    # (1, 0) at 0 degrees: beam 180; (0, 2) and (0, 1.5) at 90 degrees: beam 270, the nearer; NaN left out
+    seen = {int(i): float(r) for i, r in enumerate(scan.ranges) if np.isfinite(r)}
+    assert seen == {180: 1.0, 270: 1.5} and scan.stamp == pytest.approx(1.05)
+
+
 def test_reading_is_lazy(bag):
     first = next(read_bag(bag, "/scan"))
     assert first.stamp == 1.0   # the header's stamp, not the record time (1.000001)
@@ -66,8 +75,8 @@ def test_reading_is_lazy(bag):
 
 
 def test_a_missing_topic_lists_what_exists(bag):
-    with pytest.raises(BagError, match=r"no topic '/laser'; its topics: /odom \(nav_msgs/msg/Odometry\), "
-                                       r"/scan \(sensor_msgs/msg/LaserScan\), /sonar"):
+    with pytest.raises(BagError, match=r"no topic '/laser'; its topics: /cloud \(sensor_msgs/msg/PointCloud2\), "
+                                       r"/odom \(nav_msgs/msg/Odometry\), /scan \(sensor_msgs/msg/LaserScan\)"):
         next(read_bag(bag, "/laser"))
 
 
