@@ -9,7 +9,8 @@ A table in a document is a region between two markers::
 ``exploration`` is a suite (``benchmarks/suites/exploration.toml``, whose
 committed results are ``benchmarks/results/exploration/``) and the part after
 the slash is the table: ``ranking`` (the ranked table of ``novelty bench``),
-``per-task`` (ROC AUC per task), or, for a suite of the exploration protocol,
+``per-task`` (ROC AUC per task, mean ± sd over seeds), ``overview`` (the
+ranking's ROC AUC beside each task's mean), or, for a suite of the exploration protocol,
 a task's name (its table of first encounters and habituation). The region
 holds a one-line caption (the command, the suite, its seeds, the versions and
 revision that made the results) and the table, both formatted now from the
@@ -118,27 +119,36 @@ def _table_lines(text: str) -> str:
     return "\n".join(line for line in text.splitlines() if line.startswith("|"))
 
 
-def _report_functions():
+def overview_text(rows: list[dict]) -> str:
+    """Detectors in rank order: mean ROC AUC, then its mean on each task (the suite's order)."""
+    from novelty.bench.ranking import format_table, per_task, rank_detectors
+
+    tasks = list(dict.fromkeys(r["task"] for r in rows))
+    by_task = per_task(rows)
+    body = [[str(r["rank"]), f"`{r['detector']}`", f"{r['roc_auc']:.3f}",
+             *(f"{by_task[r['detector']][t][0]:.3f}" if t in by_task.get(r["detector"], {}) else "-" for t in tasks)]
+            for r in rank_detectors(rows)]
+    return format_table(["#", "detector", "ROC AUC", *tasks], body)
+
+
+def table(suite: str, name: str, rows: list[dict]) -> str:
+    """The table ``name`` of ``suite`` from its rows, as markdown."""
     # the package's report formatting, public names only; imported here so that reading
     # this file's help or a region's key needs no numba compile
     from novelty.bench.exploration.summary import exploration_text
     from novelty.bench.holdout.summary import ranking_text
     from novelty.bench.reports.ranking import per_task_text
 
-    return ranking_text, per_task_text, exploration_text
-
-
-def table(suite: str, name: str, rows: list[dict]) -> str:
-    """The table ``name`` of ``suite`` from its rows, as markdown."""
-    ranking_text, per_task_text, exploration_text = _report_functions()
     if name == "ranking":
         return ranking_text(rows)
     if name == "per-task":
         return per_task_text(rows)
+    if name == "overview":
+        return overview_text(rows)
     tasks = sorted({r["task"] for r in rows})
     if name in tasks and any(r.get("policy") for r in rows):
         return _table_lines(exploration_text([r for r in rows if r["task"] == name]))
-    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task'"
+    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview'"
                    + (f", or a task: {', '.join(tasks)}" if any(r.get("policy") for r in rows) else "") + ".")
 
 
