@@ -10,7 +10,8 @@ A table in a document is a region between two markers::
 committed results are ``benchmarks/results/exploration/``) and the part after
 the slash is the table: ``ranking`` (the ranked table of ``novelty bench``),
 ``per-task`` (ROC AUC per task, mean ± sd over seeds), ``overview`` (the
-ranking's ROC AUC beside each task's mean), or, for a suite of the exploration protocol,
+ranking's ROC AUC beside each task's mean), ``paired`` (each detector against
+the suite's reference), or, for a suite of the exploration protocol,
 a task's name (its table of first encounters and habituation). The region
 holds a one-line caption (the command, the suite, its seeds, the versions and
 revision that made the results) and the table, both formatted now from the
@@ -121,7 +122,8 @@ def _table_lines(text: str) -> str:
 
 def overview_text(rows: list[dict]) -> str:
     """Detectors in rank order: mean ROC AUC, then its mean on each task (the suite's order)."""
-    from novelty.bench.ranking import format_table, per_task, rank_detectors
+    from novelty.bench.reports.format import format_table
+    from novelty.bench.reports.ranking import per_task, rank_detectors
 
     tasks = list(dict.fromkeys(r["task"] for r in rows))
     by_task = per_task(rows)
@@ -131,6 +133,13 @@ def overview_text(rows: list[dict]) -> str:
     return format_table(["#", "detector", "ROC AUC", *tasks], body)
 
 
+def _reference(suite: str) -> str | None:
+    """The suite's reference detector (``reference`` in its [suite] table), as its summary pairs with."""
+    from novelty.bench import load_suite
+
+    return load_suite(SUITES / f"{suite}.toml").reference if (SUITES / f"{suite}.toml").exists() else None
+
+
 def table(suite: str, name: str, rows: list[dict]) -> str:
     """The table ``name`` of ``suite`` from its rows, as markdown."""
     # the package's report formatting, public names only; imported here so that reading
@@ -138,17 +147,20 @@ def table(suite: str, name: str, rows: list[dict]) -> str:
     from novelty.bench.exploration.summary import exploration_text
     from novelty.bench.holdout.summary import ranking_text
     from novelty.bench.reports.ranking import per_task_text
+    from novelty.bench.reports.statistics import paired_text
 
     if name == "ranking":
         return ranking_text(rows)
     if name == "per-task":
         return per_task_text(rows)
+    if name == "paired":
+        return _table_lines(paired_text(rows, _reference(suite)))
     if name == "overview":
         return overview_text(rows)
     tasks = sorted({r["task"] for r in rows})
     if name in tasks and any(r.get("policy") for r in rows):
         return _table_lines(exploration_text([r for r in rows if r["task"] == name]))
-    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview'"
+    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview', 'paired'"
                    + (f", or a task: {', '.join(tasks)}" if any(r.get("policy") for r in rows) else "") + ".")
 
 

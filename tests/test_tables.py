@@ -93,7 +93,7 @@ def test_check_reports_an_edited_table_with_a_diff(results):
 
 
 def test_unknown_tables_and_suites_are_named(results):
-    with pytest.raises(KeyError, match="no table 'roc'; tables: 'ranking', 'per-task', 'overview'"):
+    with pytest.raises(KeyError, match="no table 'roc'; tables: 'ranking', 'per-task', 'overview', 'paired'"):
         tables.region_body("toy/roc")
     with pytest.raises(FileNotFoundError, match="No committed results for suite 'nope'.*--run nope"):
         tables.region_body("nope/ranking")
