@@ -45,6 +45,7 @@ __all__ = [
     "SOM",
     "StanleySynapse",
     "ModelFileError",
+    "ScanRangeWarning",
 ]
 
 _LAZY = {
@@ -58,6 +59,7 @@ _LAZY = {
     "SOM": "novelty.clusterers.som",
     "StanleySynapse": "novelty.habituation.stanley",
     "ModelFileError": "novelty.persistence",
+    "ScanRangeWarning": "novelty.filter",
 }
 
 

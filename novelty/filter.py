@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import difflib
 import numbers
+import warnings
 
 import numpy as np
 
@@ -37,7 +38,7 @@ from .habituation.base import Synapse
 from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
 from .registry import InvalidParameterError, build, check_parameters, of_kind
 
-__all__ = ["HabituatingFilter", "learn_stream", "hsom"]
+__all__ = ["HabituatingFilter", "ScanRangeWarning", "learn_stream", "hsom"]
 
 
 def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.ndarray,
@@ -70,6 +71,15 @@ def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.n
                 novelty[i] = synapse.efficacy_[-1]
                 synapse.fire(synapse.n_units_ - 1, stimulus, dt[i])
     return novelty
+
+
+class ScanRangeWarning(UserWarning):
+    """Scans far outside the range a detector's parameters assume.
+
+    The range is the clusterer's
+    :meth:`~novelty.clusterers.base.Clusterer.assumed_range`; silence it with
+    ``warnings.filterwarnings("ignore", category=novelty.ScanRangeWarning)``.
+    """
 
 
 class HabituatingFilter(NoveltyDetector):
@@ -278,6 +288,32 @@ class HabituatingFilter(NoveltyDetector):
         self._rebuild_scratch()
         if clusterer.uses_match_scale:
             clusterer.calibrate(self.match_scale_)
+        self._warn_outside_assumed_range(X)
+
+    def _warn_outside_assumed_range(self, X: np.ndarray) -> None:
+        """Warn, once, of scans far outside the range the clusterer's parameters assume.
+
+        "Far": beyond the range by more than its width ([-1, 2] for [0, 1]).
+        The paper's detector on standardised scans (StandardScaler) learns
+        little and flags nothing, silently; this says why.
+        """
+        if getattr(self, "_warned_range", False):
+            return
+        assumed = self.clusterer_.assumed_range()
+        if assumed is None:
+            return
+        low, high = assumed
+        width = high - low
+        least, most = float(X.min()), float(X.max())
+        if least >= low - width and most <= high + width:
+            return
+        self._warned_range = True
+        warnings.warn(
+            f"{type(self).__name__}: its clusterer {type(self.clusterer_).__name__} starts its units uniformly "
+            f"in [{low:g}, {high:g}] (init='uniform'), the range its parameters assume (the paper's "
+            f"preprocessed sonar readings); these scans lie far outside it (from {least:.3g} to {most:.3g}). "
+            f"Scale them into [{low:g}, {high:g}] (MinMaxScaler; preprocess='paper' for ranges in metres), "
+            "or set init_range to their range, or init='sample'.", ScanRangeWarning, stacklevel=2)
 
     def _rebuild_scratch(self) -> None:
         if not hasattr(self, "match_scale_"):  # a model file written before the scale existed
@@ -293,6 +329,8 @@ class HabituatingFilter(NoveltyDetector):
         return self.match_scale if isinstance(self.match_scale, str) else None
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        if X.shape[0] > 1:  # a batch; one scan at a time is checked at the start only (its hot path)
+            self._warn_outside_assumed_range(X)
         calibration = self._calibration
         if calibration is None or calibration.full:
             return self._learn_block(X, dt)

@@ -117,6 +117,20 @@ class Clusterer(Component):
         scale (:mod:`novelty.match_scale`) when :attr:`uses_match_scale`.
         """
 
+    def assumed_range(self) -> tuple[float, float] | None:
+        """The range of input values the network's parameters assume; None: any.
+
+        A network whose units start uniformly in ``init_range``
+        (``init="uniform"``, the convention of the built-in networks) assumes
+        inputs in that range: on scans far outside it the units start far from
+        every scan. The habituating filter warns when its scans lie far
+        outside this range. A network with other assumptions says so here.
+        """
+        if getattr(self, "init", None) == "uniform" and getattr(self, "init_range", None) is not None:
+            low, high = self.init_range
+            return float(low), float(high)
+        return None
+
     def grows_for(self, rows: np.ndarray, distances: np.ndarray) -> np.ndarray | None:
         """Which inputs would be given a new unit of their own if they were learned now.
 

@@ -6,6 +6,8 @@ import pytest
 
 import novelty
 from novelty.clusterers.base import NO_UNITS, Growth, Match
+from novelty.clusterers.gwr import GrowWhenRequired
+from novelty.clusterers.som import SOM
 from novelty.persistence import ModelFileError
 
 REST = 1 - 1 / 1.05
@@ -136,3 +138,11 @@ def test_save_load_round_trip(tmp_path, name, corridor, traversals):
         assert type(back.clusterer_.firing_) is type(det.clusterer_.firing_)
         np.testing.assert_array_equal(back.clusterer_.firing_.efficacy_, det.clusterer_.firing_.efficacy_)
         np.testing.assert_array_equal(back.clusterer_.edge_ages_, det.clusterer_.edge_ages_)
+
+
+def test_the_range_a_network_assumes_is_its_uniform_init_range():
+    assert SOM().assumed_range() == (0.0, 1.0)
+    assert SOM(init_range=(-2, 3)).assumed_range() == (-2.0, 3.0)
+    assert SOM(init="sample").assumed_range() is None
+    assert GrowWhenRequired().assumed_range() is None  # its units start on scans
+    assert GrowWhenRequired(init="uniform").assumed_range() == (0.0, 1.0)
