@@ -219,8 +219,9 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     Parameters
     ----------
     paths : str, Path or sequence of them
-        Recordings (CARMEN logs or bags), in the order they were driven;
-        each file is a run, split further by ``gap`` or ``intervals``.
+        Recordings (CARMEN logs or bags), in the order they were driven
+        (a str may list them comma-separated); each file is a run, split
+        further by ``gap`` or ``intervals``.
     topic, threshold, sectors, reduce, limits, front, clip, pose_topic, sensors, max_span, base_frame
         As :func:`novelty.io.recording.read_recording`.
     seed : int, default=0
@@ -244,6 +245,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     """
     options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip,
                    pose_topic=pose_topic, sensors=sensors, max_span=max_span, base_frame=base_frame)
+    if isinstance(paths, str) and "," in paths and not Path(paths).exists():
+        paths = paths.split(",")   # as the command line gives a list: paths=monday.bag,tuesday.bag
     paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
     if marks is None and places is None:
         raise ValueError("Say what is tracked: marks= (a CSV of features) or places= (a grid cell in m).")

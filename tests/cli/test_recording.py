@@ -116,3 +116,23 @@ def test_the_rings_are_the_papers_inputs(tmp_path):
     args.front, args.limits, args.reduce, args.range_threshold = 90.0, "-90,90", "mean", 10.0
     ((_, x, _),) = list(recording_rings(args))
     assert x.tolist() == pytest.approx([1 - 3.5 / 10, 1 - 5 / 10])
+
+
+def test_bench_runs_an_exploration_task_from_recordings(tmp_path, monkeypatch):
+    # three drives a day apart along a corridor; a box 1 m ahead 10-14 s into the second and third
+    monkeypatch.chdir(tmp_path)
+    for k in range(3):
+        with open(f"drive{k}.log", "w") as fh:
+            for t in 86400.0 * k + np.arange(0.0, 30.0, 0.5):
+                near = k >= 1 and 86400 * k + 10 <= t <= 86400 * k + 14
+                r = " ".join(["1.0" if near else "3.0"] * 4)
+                fh.write(f"FLASER 4 {r} {t % 86400} 0 0 {t % 86400} 0 0 {t} robot {t}\n")
+    (tmp_path / "marks.csv").write_text("feature,start,end\nbox,86410,86414\nbox,172810,172814\n")
+    assert main(["bench", "--protocol", "exploration", "--detector", "hsom", "--task",
+                 "recording paths=drive0.log,drive1.log,drive2.log marks=marks.csv sectors=4",
+                 "--out", "out"]) == 0
+    (row,) = table((tmp_path / "out" / "results.csv").read_text())
+    # the box's 9 scans of the second drive are its first encounter (the first drive is the warm-up)
+    assert (row["status"], row["n_runs"], row["warmup_runs"], row["n_first"]) == ("ok", "3", "1", "9")
+    # the box's scans are the only novel ones to a map that learned the empty corridor
+    assert float(row["first_encounter_auc"]) == 1.0
