@@ -64,13 +64,14 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
             if ax is axes[0, 0]:
                 ax.text(s + 2, 1.02, str(a["environment"][s]), fontsize=6, transform=ax.get_xaxis_transform())
         ax.axvspan(0, starts[int(a["warmup"])] if int(a["warmup"]) < starts.size else x[-1],
-                   color="0.9", zorder=0)
+                   color="0.9", zorder=0, label="warm-up runs")
         if np.isfinite(float(a["threshold"])):
-            ax.axhline(float(a["threshold"]), color="k", linestyle="--", linewidth=0.6)
+            ax.axhline(float(a["threshold"]), color="k", linestyle="--", linewidth=0.6,
+                       label="alarm threshold (from the last warm-up run)")
         ax.set_title(f"{detector} (seed {row['seed']})", fontsize=8, loc="left")
         ax.set_ylabel("novelty", fontsize=7)
-    axes[0, 0].legend(fontsize=6, loc="upper right")
-    axes[-1, 0].set_xlabel("scan (runs in order; grey: warm-up; dashed: threshold from the warm-up)")
+    axes[0, 0].legend(fontsize=6, loc="upper right", ncols=2)
+    axes[-1, 0].set_xlabel("scan, runs in order (vertical lines: run starts, named by environment)")
     fig.suptitle(f"{task}: novelty of every scan before it is learned, seed {seed}", fontsize=10)
     return save(fig, out / f"exploration-route-{slug(task)}.png")
 
@@ -98,8 +99,9 @@ def plot_exposure_curves(task: str, cells: dict, arrays: Callable, out: Path) ->
             ks = np.arange(1, width + 1)
             line, = ax.plot(ks, nov, marker="o", markersize=3, linewidth=1, label=f)
             ax.plot(ks, fam, linestyle="--", linewidth=0.8, color=line.get_color())
+        ax.plot([], [], linestyle="--", linewidth=0.8, color="0.3", label="familiar scans, same runs")
         ax.set_title(detector, fontsize=8, loc="left")
-        ax.set_xlabel("exposure", fontsize=7)
+        ax.set_xlabel("exposure (1 = first encounter)", fontsize=7)
         ax.set_ylabel("mean novelty", fontsize=7)
         ax.legend(fontsize=5)
     for ax in list(axes.flat)[len(cells):]:

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..reports.figures import grid, pyplot, save, seeds_text, slug
 from ..reports.ranking import detector_order, per_task
-from ..stats import across_tasks as stats
+from ..stats.aggregate import as_float
 from . import metrics
 
 __all__ = ["plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route", "plot_boxplots"]
@@ -58,7 +58,8 @@ def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Pa
         ax.legend(fontsize=7, loc="lower right")
     for ax in list(axes.flat)[len(chosen):]:
         ax.set_visible(False)
-    fig.suptitle("ROC curves of the lowest seed of each task (ROC AUC of that seed in brackets)", fontsize=10)
+    fig.suptitle("ROC curves of one seed of each task, named in each panel (that seed's ROC AUC in "
+                 "brackets; dotted: chance)", fontsize=10)
     path = save(fig, out / "roc.png")
     return [path]
 
@@ -67,18 +68,19 @@ def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, r
     """Novelty along the route on ``ax``, novel scans shaded, threshold dashed; returns the x axis' name."""
     novelty = np.asarray(novelty, dtype=float)
     x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
-    along = "scan" if distance is None else "distance (m)"
+    along = "test scan" if distance is None else "distance along the route (m)"
     if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
-        x, along = np.arange(novelty.size), "scan (several runs)"
+        x, along = np.arange(novelty.size), "test scan (runs one after another)"
     if y is not None and np.any(y):
         ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
         ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
                         step="mid", linewidth=0, label="novel scans")
     ax.plot(x, novelty, linewidth=1.0, label=label)
     if threshold is not None and np.isfinite(threshold):
-        ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8, label="threshold")
+        ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8,
+                   label="alarm threshold (from the training scans)")
     if resting:
-        ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting")
+        ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting novelty")
     return along
 
 
@@ -89,19 +91,22 @@ def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out:
     for task, cells in _first_seed_cells(rows).items():
         fig, axes = plt.subplots(len(cells), 1, figsize=(9, 1.7 * len(cells) + 0.6), squeeze=False,
                                  sharex=True)
+        along = "scan"
         for ax, (detector, row) in zip(axes[:, 0], cells.items()):
             a = arrays(row["cell_id"])
             if a is None:
                 continue
             has_distance = bool(np.any(a["distance"] != np.arange(a["distance"].size)))
-            plot_route(ax, a["novelty"], a["y"], a["distance"] if has_distance else None,
-                       float(a["threshold"]), resting=float(a["resting"]))
+            along = plot_route(ax, a["novelty"], a["y"], a["distance"] if has_distance else None,
+                               float(a["threshold"]), label="novelty", resting=float(a["resting"]))
             ax.set_ylabel("novelty", fontsize=8)
             ax.set_title(detector, fontsize=9, loc="left")
-        axes[-1, 0].set_xlabel("distance along the route (m) or scan")
+        handles, labels = axes[0, 0].get_legend_handles_labels()
+        if handles:
+            axes[0, 0].legend(handles, labels, fontsize=7, loc="upper right", ncols=len(handles))
+        axes[-1, 0].set_xlabel(along)
         seed = min(row["seed"] for row in cells.values())
-        fig.suptitle(f"{task}, seed {seed} (the lowest): novelty of the test scans (shaded: novel)",
-                     fontsize=10)
+        fig.suptitle(f"{task}, seed {seed}: novelty of the test scans (shaded: novel scans)", fontsize=10)
         path = save(fig, out / f"route-{slug(task)}.png")
         paths.append(path)
     return paths
@@ -122,7 +127,7 @@ def plot_ranking(rows: Sequence[dict], out: Path) -> list[Path]:
         sds = [table.get(d, {}).get(task, (np.nan, np.nan))[1] for d in order]
         xs = np.arange(len(order)) + (j - (len(tasks) - 1) / 2) * width
         ax.bar(xs, means, width, yerr=np.nan_to_num(sds), capsize=2, label=task)
-    ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+    ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8, label="chance (0.5)")
     ax.set_xticks(np.arange(len(order)), order, rotation=30, ha="right", fontsize=8)
     ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05),
            title=f"Detectors ranked by mean ROC AUC ({_seeds(rows)})")
@@ -135,20 +140,21 @@ def plot_boxplots(rows: Sequence[dict], out: Path) -> list[Path]:
     """One panel a task: the ROC AUC of each detector over the seeds, a box and the seeds' points."""
     plt = pyplot()
     order = detector_order(rows)
-    table = stats.cell_table(rows, detectors=order)
-    tasks = list(dict.fromkeys(task for task, _ in table.cells))
+    tasks = list(dict.fromkeys(r["task"] for r in rows if r.get("status") == "ok"))
     if not tasks:
         return []
     fig, axes = plt.subplots(len(tasks), 1, figsize=(max(6, 0.7 * len(order) + 2), 3.2 * len(tasks)),
                              squeeze=False)
     for ax, task in zip(axes[:, 0], tasks):
-        columns = [j for j, (name, _) in enumerate(table.cells) if name == task]
-        values = [v[columns][~np.isnan(v[columns])] for v in table.values]
+        values = [np.array([as_float(r.get("roc_auc")) for r in rows if r["task"] == task
+                            and r["detector"] == d and r.get("status") == "ok"]) for d in order]
+        values = [v[~np.isnan(v)] for v in values]
         positions = np.arange(1, len(order) + 1)
         ax.boxplot(values, positions=positions, widths=0.6, showfliers=False)
         for x, v in zip(positions, values):
             ax.plot(np.full(v.size, x), v, "o", color="tab:blue", markersize=3, alpha=0.7)
-        ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8)
+        ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8, label="chance (0.5)")
+        ax.legend(fontsize=7, loc="lower right")
         ax.set_xticks(positions, order, rotation=30, ha="right", fontsize=8)
         ax.set(ylabel="ROC AUC", ylim=(0, 1.02),
                title=f"{task}: ROC AUC over {_seeds([r for r in rows if r['task'] == task])}")

@@ -12,6 +12,7 @@ from typing import Sequence
 import numpy as np
 
 from ..stats import across_tasks as stats
+from ..stats.aggregate import task_table
 from .figures import pyplot, save, seeds_text
 from .ranking import detector_order
 from .statistics import ALPHA
@@ -55,17 +56,17 @@ def draw_critical_difference(ax, names: Sequence[str], mean_ranks: Sequence[floa
 
 
 def plot_critical_difference(rows: Sequence[dict], out: Path, alpha: float = ALPHA) -> list[Path]:
-    """``critical-difference.png``: average ranks over the complete cells, Wilcoxon-Holm groups.
+    """``critical-difference.png``: average ranks over the complete tasks, Wilcoxon-Holm groups.
 
     Groups come from the Wilcoxon signed-rank test of each pair with Holm's
     correction (Benavoli, Corani & Mangili 2016), not from Nemenyi's critical
     difference, whose verdict on a pair depends on the other detectors in the
     comparison; the caption gives Nemenyi's CD beside Friedman's p-value.
     Nothing is written when Friedman's test cannot apply (fewer than three
-    detectors or two complete cells).
+    detectors or two complete tasks).
     """
     order = detector_order(rows)
-    table = stats.cell_table(rows, detectors=order)
+    table = task_table(rows, detectors=order)
     result = stats.friedman(table)
     if result is None:
         return []
@@ -77,10 +78,12 @@ def plot_critical_difference(rows: Sequence[dict], out: Path, alpha: float = ALP
     fig, ax = plt.subplots(figsize=(9, 1.2 + 0.3 * ((k + 1) // 2) + 0.12 * len(groups)))
     fig.subplots_adjust(left=0.27, right=0.73, top=0.8, bottom=0.02)
     draw_critical_difference(ax, order, result.mean_ranks, groups)
-    complete = set(table.complete().cells)
-    seeds = seeds_text([r["seed"] for r in rows if (r["task"], int(r["seed"])) in complete])
-    fig.suptitle(f"Average rank of ROC AUC over {result.n_cells} cells (tasks x {seeds}); "
-                 f"Friedman p = {result.pvalue:.2g}, Nemenyi CD = "
-                 f"{stats.nemenyi_cd(result.k, result.n_cells, alpha):.2f}\n"
-                 f"bars: no significant difference (Wilcoxon signed-rank, Holm, alpha = {alpha})", fontsize=9)
+    complete = set(table.complete().tasks)
+    seeds = seeds_text([r["seed"] for r in rows if r["task"] in complete and r.get("status") == "ok"])
+    friedman_text = (f"Friedman p = {result.pvalue:.2g}" if result.min_pvalue <= alpha else
+                     f"too few tasks for any test at alpha = {alpha}")
+    fig.suptitle(f"Average rank of ROC AUC over {result.n_tasks} tasks (each the mean over {seeds}); "
+                 f"{friedman_text}, Nemenyi CD = {stats.nemenyi_cd(result.k, result.n_tasks, alpha):.2f}\n"
+                 f"bars: no significant difference (exact Wilcoxon signed-rank over tasks, Holm, "
+                 f"alpha = {alpha})", fontsize=9)
     return [save(fig, out / "critical-difference.png", tight=False)]

@@ -12,8 +12,9 @@ from __future__ import annotations
 import json
 from typing import Sequence
 
-from .ranking import per_task_text, reference_of
-from .statistics import paired_text, statistics_markdown, task_ranks_text
+from ..stats.bayesian import ROPE
+from .ranking import reference_of
+from .statistics import paired_text, seeds_text, statistics_markdown, task_ranks_text
 
 __all__ = ["summary_markdown"]
 
@@ -43,14 +44,15 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "",
         "## ROC AUC per task",
         "",
-        "Mean ± standard deviation over seeds.",
+        "Unit: the seed within a task. Mean over seeds and its 95% confidence interval (Student t over "
+        "the seeds); '1 value' where the seeds repeated one measurement.",
         "",
-        per_task_text(rows),
+        seeds_text(rows),
         "",
         "## Ranks per task",
         "",
-        "Rank of each detector on each task by its mean ROC AUC over seeds (1 = best, ties share the "
-        "average rank), and the average over tasks.",
+        "Unit: the task. Rank of each detector on each task by its mean ROC AUC over seeds (1 = best, "
+        "ties share the average rank), and the average over tasks.",
         "",
         task_ranks_text(rows),
         "",
@@ -77,10 +79,13 @@ def _paired_section(rows: Sequence[dict], reference: str | None) -> list[str]:
         "",
         f"## Paired comparison with {chosen}",
         "",
-        f"Each detector's ROC AUC minus {chosen}'s on the same cell (same task, same seed), over "
-        f"the cells both completed: mean ± standard error of the differences (positive: better "
-        f"than {chosen}), the cells won, tied and lost, and the Holm-adjusted p-value of the "
-        f"Wilcoxon signed-rank test of the pair (see Statistics). The reference is {how}",
+        f"Unit: the task. Each detector's ROC AUC minus {chosen}'s on the same task (each the mean "
+        f"over its seeds), over the tasks both completed: mean ± standard error of the differences "
+        f"(positive: better than {chosen}), the tasks won, tied and lost, the Holm-adjusted p-value "
+        f"of the exact Wilcoxon signed-rank test of the pair (see Statistics), and the Bayesian "
+        f"signed-rank test's probabilities that the detector is practically worse than, equivalent "
+        f"to or better than {chosen} (Benavoli et al. 2017; equivalent: within ± {ROPE} ROC AUC). "
+        f"The reference is {how}",
         "",
         paired_text(rows, chosen),
     ]

@@ -1,32 +1,31 @@
-"""Comparisons of detectors over the cells of a run: paired differences, ranks, tests.
+"""Comparisons of detectors over tasks: paired differences, ranks, tests.
 
-A *cell* here is a (task, seed) pair; two detectors are compared on the cells
-that both completed with a ROC AUC, so that every difference is paired: same
-scans, same seed.
+The unit is the task. The seeds of a task are aggregated first (their mean,
+:func:`novelty.bench.stats.aggregate.task_table`): they share the task's
+data or split, so they are repeated measurements of one task, not
+independent data sets (Demsar 2006 takes the data set as the unit). Two
+detectors are compared on the tasks both completed.
 
 - :func:`paired_comparison`: each detector against a reference detector, the
-  mean and standard error of the per-cell difference of ROC AUC, and the
-  number of cells it wins, ties and loses.
-- :func:`task_ranks`: the rank of each detector on each task (by its mean ROC
-  AUC over seeds, 1 = best, ties share the average rank), and the average
-  rank over tasks.
-- :func:`friedman`: Friedman's test that all detectors perform alike, over
-  the cells every detector completed (Friedman 1937; Demsar 2006, section 3.2.2),
-  with the Iman-Davenport F form Demsar recommends.
-- :func:`pairwise_wilcoxon`: the Wilcoxon signed-rank test for every pair of
-  detectors over their shared cells, with Holm's correction for the family of
-  pairs (Holm 1979; Benavoli, Corani & Mangili 2016).
-- :func:`cliques`: the groups a critical-difference diagram joins with a bar.
-- :func:`nemenyi_cd`: Nemenyi's critical difference of average ranks
-  (Demsar 2006, section 3.2.2), reported beside the Wilcoxon-Holm groups.
-
-The seeds of one task are not independent samples of a population of tasks
-(they share the task's generator), so a p-value over (task, seed) cells
-speaks of these tasks, not of sonar tasks in general.
-
-The module is a little over 300 lines and kept whole: every test reads the
-same cell table and ranks, and a reader checks them all against Demsar (2006)
-in one place.
+  mean and standard error of the per-task difference, and the tasks won,
+  tied and lost.
+- :func:`task_ranks`: the rank of each detector on each task (1 = best, ties
+  share the average rank).
+- :func:`friedman`: Friedman's test that all detectors perform alike, over the
+  tasks every detector completed (Friedman 1937; Demsar 2006, section 3.2.2),
+  with the Iman-Davenport F form Demsar recommends. Its p-value is exact:
+  the rankings of each task permuted at random (a fixed seed), since the
+  chi-square and F approximations fail on few tasks (with two tasks and
+  every ranking alike, F is infinite).
+- :func:`wilcoxon`: the exact Wilcoxon signed-rank test of a pair, zero
+  differences split between the signs (Demsar 2006, section 3.1.3);
+  :func:`pairwise_wilcoxon` every pair with Holm's correction for the family
+  (Holm 1979; Benavoli, Corani & Mangili 2016).
+- :func:`wilcoxon_min_p` and :func:`friedman_min_p`: the smallest p-value a
+  test can give with so few tasks; when it is above the level, the test can
+  say nothing and the summary says so instead of printing a p-value.
+- :func:`cliques`: the groups a critical-difference diagram joins with a bar;
+  :func:`nemenyi_cd`: Nemenyi's critical difference of average ranks.
 
 References
 ----------
@@ -46,15 +45,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Iterable, Sequence
+from typing import Sequence
 
 import numpy as np
 from scipy import stats as sps
 
+from .aggregate import TIE_TOLERANCE, TaskTable
+
 __all__ = [
-    "TIE_TOLERANCE",
-    "CellTable",
-    "cell_table",
     "paired_comparison",
     "ranks_within",
     "task_ranks",
@@ -66,67 +64,24 @@ __all__ = [
     "pairwise_wilcoxon",
     "nemenyi_cd",
     "cliques",
+    "wilcoxon_min_p",
+    "friedman_min_p",
+    "RANDOM_RANKINGS",
 ]
 
-#: two ROC AUCs closer than this are a tie (they are ratios of pair counts, so
-#: equal AUCs are equal up to rounding)
-TIE_TOLERANCE = 1e-12
+#: random rankings per task drawn for Friedman's exact p-value (seed 0)
+RANDOM_RANKINGS = 20_000
 
 
-def _value(row: dict, metric: str) -> float:
-    try:
-        value = float(row.get(metric))
-    except (TypeError, ValueError):
-        return float("nan")
-    return value
+def paired_comparison(table: TaskTable, reference: str) -> list[dict]:
+    """Each detector minus ``reference``, over the tasks both completed.
 
-
-@dataclass
-class CellTable:
-    """A metric per detector and cell: ``values[i, j]`` for ``detectors[i]`` on ``cells[j]``.
-
-    ``cells`` are ``(task, seed)`` pairs, tasks in their order of appearance;
-    a cell a detector did not complete (failed, missing, or an undefined
-    metric) is NaN.
-    """
-
-    detectors: list[str]
-    cells: list[tuple[str, int]]
-    values: np.ndarray
-
-    def row(self, detector: str) -> np.ndarray:
-        return self.values[self.detectors.index(detector)]
-
-    def complete(self) -> "CellTable":
-        """Only the cells every detector completed."""
-        keep = ~np.isnan(self.values).any(axis=0)
-        return CellTable(self.detectors, [c for c, k in zip(self.cells, keep) if k], self.values[:, keep])
-
-
-def cell_table(rows: Iterable[dict], metric: str = "roc_auc", detectors: Sequence[str] | None = None) -> CellTable:
-    """The ``metric`` of every successful row, as a :class:`CellTable`."""
-    rows = list(rows)
-    names = list(detectors) if detectors is not None else list(dict.fromkeys(r["detector"] for r in rows))
-    tasks = list(dict.fromkeys(r["task"] for r in rows))
-    cells = sorted({(r["task"], int(r["seed"])) for r in rows}, key=lambda c: (tasks.index(c[0]), c[1]))
-    values = np.full((len(names), len(cells)), np.nan)
-    where = {c: j for j, c in enumerate(cells)}
-    index = {d: i for i, d in enumerate(names)}
-    for r in rows:
-        if r.get("status") == "ok" and r["detector"] in index:
-            values[index[r["detector"]], where[(r["task"], int(r["seed"]))]] = _value(r, metric)
-    return CellTable(names, cells, values)
-
-
-def paired_comparison(table: CellTable, reference: str) -> list[dict]:
-    """Each detector minus ``reference``, over the cells both completed.
-
-    For detector ``a`` and reference ``r`` with ROC AUCs ``a_c`` and ``r_c``
-    on their shared cells ``c = 1..n``, ``d_c = a_c - r_c``:
+    For detector ``a`` and reference ``r`` with values ``a_c`` and ``r_c``
+    (means over seeds) on their shared tasks ``c = 1..n``, ``d_c = a_c - r_c``:
     ``mean = sum(d_c) / n``, ``se = sd(d_c) / sqrt(n)`` with the sample
     standard deviation (``ddof=1``; NaN for ``n < 2``), and ``wins``,
     ``ties``, ``losses`` count ``d_c > 0``, ``|d_c| <= TIE_TOLERANCE``,
-    ``d_c < 0``. The reference's own record has ``n`` its completed cells
+    ``d_c < 0``. The reference's own record has ``n`` its completed tasks
     and a zero difference. Records are in the order of ``table.detectors``.
     """
     if reference not in table.detectors:
@@ -157,63 +112,84 @@ def ranks_within(values: np.ndarray) -> np.ndarray:
     return np.apply_along_axis(lambda column: sps.rankdata(-column, method="average"), 0, values)
 
 
-def task_ranks(table: CellTable) -> tuple[list[str], np.ndarray]:
-    """Tasks, and ``ranks[i, t]`` of ``table.detectors[i]`` on task ``t``.
+def task_ranks(table: TaskTable) -> np.ndarray:
+    """``ranks[i, t]`` of ``table.detectors[i]`` on task ``t`` among the detectors with a value there.
 
-    A detector's score on a task is its mean ROC AUC over the seeds it
-    completed; detectors are ranked on each task among those with a score
-    (1 = best, ties averaged); a detector without a score there is NaN.
+    1 = best, ties averaged; a detector without a value on the task is NaN.
     """
-    tasks = list(dict.fromkeys(task for task, _ in table.cells))
-    ranks = np.full((len(table.detectors), len(tasks)), np.nan)
-    for t, task in enumerate(tasks):
-        columns = [j for j, (name, _) in enumerate(table.cells) if name == task]
-        scores = table.values[:, columns]
-        has = ~np.isnan(scores).all(axis=1)
+    ranks = np.full(table.values.shape, np.nan)
+    for t in range(table.values.shape[1]):
+        has = ~np.isnan(table.values[:, t])
         if has.any():
-            means = np.nanmean(scores[has], axis=1)
-            ranks[has, t] = sps.rankdata(-means, method="average")
-    return tasks, ranks
+            ranks[has, t] = sps.rankdata(-table.values[has, t], method="average")
+    return ranks
 
 
 # -------------------------------------------------------------------- tests
 @dataclass
 class Friedman:
-    """Friedman's test over ``n_cells`` complete cells and ``k`` detectors.
+    """Friedman's test over ``n_tasks`` complete tasks and ``k`` detectors.
 
-    ``statistic`` is scipy's chi-square (corrected for ties), ``f``/``f_pvalue``
-    the Iman-Davenport form ``F = (N - 1) chi2 / (N (k - 1) - chi2)`` with
-    ``(k - 1, (k - 1)(N - 1))`` degrees of freedom, ``mean_ranks`` the
-    average rank of each detector over the cells (1 = best).
+    ``statistic`` is the chi-square (scipy's, corrected for ties),
+    ``f`` the Iman-Davenport form ``F = (N - 1) chi2 / (N (k - 1) - chi2)``
+    (infinite when every task ranks the detectors alike), ``pvalue`` the
+    exact p-value by random rankings (:func:`friedman`), ``min_pvalue`` the
+    smallest p-value possible with these ``N`` and ``k`` (:func:`friedman_min_p`),
+    ``mean_ranks`` the average rank of each detector over the tasks (1 = best).
     """
 
-    n_cells: int
+    n_tasks: int
     k: int
     statistic: float
-    pvalue: float
     f: float
-    f_pvalue: float
+    pvalue: float
+    min_pvalue: float
     mean_ranks: np.ndarray
 
 
-def friedman(table: CellTable) -> Friedman | None:
-    """Friedman's test on the cells every detector completed; ``None`` if it cannot apply.
+def friedman_min_p(k: int, n: int) -> float:
+    """The smallest p-value of Friedman's exact test with ``k`` detectors and ``n`` tasks: ``(k!)^(1 - n)``.
 
-    It needs at least three detectors and two complete cells. When every
-    detector ties on every cell there is nothing to rank: statistic 0, p 1.
+    Under the null hypothesis each task ranks the detectors in one of ``k!``
+    orders at random; the statistic is largest only when all ``n`` tasks
+    rank them alike, which has probability ``k! / (k!)^n``.
+
+    >>> friedman_min_p(3, 2), friedman_min_p(4, 2)
+    (0.16666666666666666, 0.041666666666666664)
+    """
+    return float(math.exp((1 - n) * math.lgamma(k + 1)))
+
+
+def friedman(table: TaskTable, draws: int = RANDOM_RANKINGS, seed: int = 0) -> Friedman | None:
+    """Friedman's test on the tasks every detector completed; ``None`` if it cannot apply.
+
+    It needs at least three detectors and two complete tasks. The p-value is
+    a randomization test: each task's ranking is permuted at random ``draws``
+    times (``numpy`` generator seeded with ``seed``), and
+    ``p = (1 + #{chi2* >= chi2}) / (1 + draws)``, valid however few the tasks
+    (ties keep their tied ranks). When every detector ties on every task
+    there is nothing to rank: statistic 0, p 1.
     """
     complete = table.complete()
     k, n = complete.values.shape
     if k < 3 or n < 2:
         return None
-    mean_ranks = ranks_within(complete.values).mean(axis=1)
+    ranks = ranks_within(complete.values)
+    mean_ranks = ranks.mean(axis=1)
+    floor = friedman_min_p(k, n)
     if np.all(np.ptp(complete.values, axis=0) <= TIE_TOLERANCE):
-        return Friedman(n, k, 0.0, 1.0, 0.0, 1.0, mean_ranks)
-    chi2, p = sps.friedmanchisquare(*complete.values)
+        return Friedman(n, k, 0.0, 0.0, 1.0, floor, mean_ranks)
+    chi2 = float(sps.friedmanchisquare(*complete.values).statistic)
+    rng = np.random.default_rng(seed)
+    keys = rng.random((draws, k, n))
+    shuffled = np.take_along_axis(np.broadcast_to(ranks, (draws, k, n)), np.argsort(keys, axis=1), axis=1)
+    sums = shuffled.sum(axis=2)
+    # the statistic is an increasing function of the sum of squared rank sums (ties are per task, unchanged)
+    observed = float(np.sum(ranks.sum(axis=1) ** 2))
+    p = (1 + int(np.count_nonzero(np.sum(sums ** 2, axis=1) >= observed - 1e-9))) / (1 + draws)
     denominator = n * (k - 1) - chi2
-    f = (n - 1) * chi2 / denominator if denominator > 0 else math.inf
-    f_p = float(sps.f.sf(f, k - 1, (k - 1) * (n - 1))) if math.isfinite(f) else 0.0
-    return Friedman(n, k, float(chi2), float(p), float(f), f_p, mean_ranks)
+    f = (n - 1) * chi2 / denominator if denominator > 1e-12 else math.inf
+    return Friedman(n, k, chi2, float(f), float(max(p, floor)), floor, mean_ranks)
 
 
 def holm(pvalues: Sequence[float]) -> np.ndarray:
@@ -234,14 +210,45 @@ def holm(pvalues: Sequence[float]) -> np.ndarray:
     return out
 
 
+def wilcoxon_min_p(n: int) -> float:
+    """The smallest two-sided p-value of the exact Wilcoxon signed-rank test on ``n`` tasks: ``2 / 2^n``.
+
+    >>> wilcoxon_min_p(2), wilcoxon_min_p(8)
+    (0.5, 0.0078125)
+    """
+    return min(1.0, 2.0 ** (1 - n)) if n > 0 else float("nan")
+
+
+def _signed_rank_p(d: np.ndarray) -> float:
+    """Exact two-sided p of the signed-rank statistic, zeros split, by the distribution of random signs.
+
+    Ranks of ``|d|`` (averaged over ties) are halves at worst, so twice
+    them are integers; the null distribution of the positive rank sum of the
+    non-zero differences is counted by dynamic programming over them.
+    """
+    ranks = sps.rankdata(np.abs(d))
+    nonzero = d != 0
+    twice = np.rint(2 * ranks[nonzero]).astype(int)
+    counts = np.zeros(int(twice.sum()) + 1)
+    counts[0] = 1.0
+    for r in twice:
+        counts[r:] = counts[r:] + counts[:-r]
+    probs = counts / counts.sum()
+    observed = int(twice[d[nonzero] > 0].sum())
+    centre = twice.sum() / 2
+    totals = np.arange(counts.size)
+    return float(min(1.0, probs[np.abs(totals - centre) >= abs(observed - centre) - 1e-9].sum()))
+
+
 def wilcoxon(a: np.ndarray, b: np.ndarray) -> tuple[int, float, float]:
-    """``(n, statistic, p)``: the two-sided Wilcoxon signed-rank test of ``a - b`` over shared cells.
+    """``(n, statistic, p)``: the exact two-sided Wilcoxon signed-rank test of ``a - b`` over shared tasks.
 
     Zero differences are kept and their ranks split evenly between the two
-    sums, as Demsar (2006, section 3.1.3) recommends (scipy's
-    ``zero_method="zsplit"``); ``statistic`` is the smaller rank sum. With
-    no non-zero difference the test has nothing to say: p = 1. With no
-    shared cell: NaN.
+    sums, as Demsar (2006, section 3.1.3) recommends; ``statistic`` is the
+    smaller rank sum. The p-value is exact: under the null hypothesis each
+    non-zero difference is positive or negative with probability 1/2 (the
+    zeros' split ranks are fixed). With no non-zero difference the test has
+    nothing to say: p = 1. With no shared task: NaN.
     """
     shared = ~np.isnan(a) & ~np.isnan(b)
     d = a[shared] - b[shared]
@@ -250,8 +257,10 @@ def wilcoxon(a: np.ndarray, b: np.ndarray) -> tuple[int, float, float]:
         return 0, float("nan"), float("nan")
     if not np.any(d):
         return int(d.size), 0.0, 1.0
-    result = sps.wilcoxon(d, zero_method="zsplit")
-    return int(d.size), float(result.statistic), float(result.pvalue)
+    ranks = sps.rankdata(np.abs(d))
+    zeros = ranks[d == 0].sum() / 2
+    plus, minus = ranks[d > 0].sum() + zeros, ranks[d < 0].sum() + zeros
+    return int(d.size), float(min(plus, minus)), _signed_rank_p(d)
 
 
 @dataclass
@@ -260,7 +269,7 @@ class Pairwise:
 
     ``pvalue[i, j]`` and ``adjusted[i, j]`` (symmetric; NaN on the
     diagonal) for ``detectors[i]`` against ``detectors[j]``; ``n[i, j]`` the
-    cells both completed.
+    tasks both completed.
     """
 
     detectors: list[str]
@@ -273,7 +282,7 @@ class Pairwise:
         return ~np.isnan(self.adjusted) & (np.nan_to_num(self.adjusted) <= alpha)
 
 
-def pairwise_wilcoxon(table: CellTable) -> Pairwise:
+def pairwise_wilcoxon(table: TaskTable) -> Pairwise:
     """:func:`wilcoxon` for each of the ``k (k - 1) / 2`` pairs, then :func:`holm` over all of them."""
     k = len(table.detectors)
     n = np.zeros((k, k), dtype=int)

@@ -1,29 +1,39 @@
-"""The statistics of a run on a hand-made results table (tests.bench.hand_rows)."""
+"""The statistics of a run over tasks, on a hand-made results table (tests.bench.hand_rows)."""
 
-from novelty.bench.reports.statistics import paired_text, statistics_markdown, task_ranks_text
+from novelty.bench.reports.statistics import paired_text, seeds_text, statistics_markdown, task_ranks_text
 
 
-def test_the_paired_table_in_rank_order(rows):
+def test_the_paired_table_over_tasks_in_rank_order(rows):
     lines = paired_text(rows, "ref").splitlines()
-    assert "ΔROC AUC vs ref (mean ± se)" in lines[0]
+    assert "ΔROC AUC vs ref (mean ± se)" in lines[0] and "| tasks |" in lines[0]
     cells = [[c.strip() for c in line.strip("|").split("|")] for line in lines[2:]]
-    # b - ref: 4 of 4 positive, exact p = 2 / 2^4, times 3 pairs (Holm, the smallest p);
-    # a - ref: +0.1, 0, -0.1, the zero's rank split, R+ = R- = 3: p = 1
-    assert cells == [
-        ["b", "4", "+0.062 ± 0.013", "4", "0", "0", "0.375"],
-        ["ref", "4", "(reference)", "-", "-", "-", "-"],
-        ["a", "3", "+0.000 ± 0.058", "1", "1", "1", "1.000"],
+    # b - ref per task: +0.05, +0.075; a - ref: +0.05, -0.25. Two tasks: no p-value can reach 0.05,
+    # so none is shown; the Bayesian probabilities are
+    assert [c[:7] for c in cells] == [
+        ["b", "2", "+0.062 ± 0.012", "2", "0", "0", "-"],
+        ["ref", "2", "(reference)", "-", "-", "-", "-"],
+        ["a", "2", "-0.100 ± 0.150", "1", "0", "1", "-"],
     ]
+    assert cells[0][7].startswith("0.00, ")
 
 
-def test_the_statistics_section_by_hand(rows):
-    # complete cells t1/0, t1/1, t2/0; ranks (ref, a, b): (3, 1, 2), (2.5, 2.5, 1), (2, 3, 1)
+def test_with_two_tasks_the_statistics_say_why_there_is_no_claim(rows):
     text = "\n".join(statistics_markdown(rows))
-    assert text.startswith("Over the 3 cells (task, seed) that all 3 detectors completed: Friedman chi2 = ")
-    assert "| b        | 1.33         | A      |" in text
-    assert "| a        | 2.17         | A      |" in text
-    assert "| ref      | 2.50         | A      |" in text
-    assert "2 / 2^3 = 0.25; after Holm's correction over 3 pairs no pair can reach alpha = 0.05" in text
+    assert text.startswith("Unit: the task (the mean over its seeds).")
+    assert "Over the 2 tasks that all 3 detectors completed" in text
+    assert "no claim is possible" in text
+    assert "With 2 tasks no pair of detectors can differ significantly" in text
+    assert "2 / 2^2 = 0.5" in text and "(k!)^(1 - N) = 0.167" in text
+    assert "The pairwise p-values are not shown" in text
+
+
+def test_seeds_per_task_with_their_interval_or_one_value(rows):
+    rows = [r for r in rows if r["detector"] == "b"]
+    for r in rows:
+        if r["task"] == "t2":
+            r["roc_auc"] = 0.7
+    text = seeds_text(rows)
+    assert "| b        | 0.800 [0.165, 1.435] | 0.700 (1 value, 2 seeds) |" in text
 
 
 def test_ranks_per_task_average_over_tasks(rows):

@@ -1,4 +1,4 @@
-"""Ranks, Friedman, Wilcoxon-Holm, Nemenyi and cliques against hand-computed and published values."""
+"""Ranks, Friedman, Wilcoxon-Holm, Nemenyi and cliques over tasks against hand-computed and published values."""
 
 import math
 
@@ -7,6 +7,7 @@ import pytest
 from scipy import stats as sps
 
 from novelty.bench.stats import across_tasks as stats
+from novelty.bench.stats.aggregate import TaskTable, task_table
 
 from ..hand_rows import rows_of
 
@@ -21,10 +22,12 @@ DEMSAR = np.array([
 
 
 def table_of(values, names=None, tasks=None):
+    """A task table of one value a task (one seed each)."""
     values = np.asarray(values, dtype=float)
     names = names or [f"d{i}" for i in range(values.shape[0])]
-    tasks = tasks or [("t", s) for s in range(values.shape[1])]
-    return stats.CellTable(list(names), list(tasks), values)
+    tasks = tasks or [f"t{t}" for t in range(values.shape[1])]
+    ones = (~np.isnan(values)).astype(int)
+    return TaskTable(list(names), list(tasks), values, ones, ones, np.full(values.shape + (2,), np.nan))
 
 
 def test_ranks_within_a_cell_are_averaged_over_ties():
@@ -32,14 +35,9 @@ def test_ranks_within_a_cell_are_averaged_over_ties():
     np.testing.assert_array_equal(ranks, [[1.5, 1.5], [3.0, 1.5], [1.5, 3.0]])
 
 
-def test_task_ranks_use_the_mean_over_seeds():
-    cells = [("t1", 0), ("t1", 1), ("t2", 0), ("t2", 1)]
-    table = table_of([[0.9, 0.7, 0.6, np.nan],    # t1 mean 0.8, t2 0.6 (one seed)
-                      [0.8, 0.8, 0.5, 0.5],       # t1 mean 0.8, t2 0.5
-                      [0.6, 0.6, np.nan, np.nan]], tasks=cells)  # t1 0.6, t2 none
-    tasks, ranks = stats.task_ranks(table)
-    assert tasks == ["t1", "t2"]
-    np.testing.assert_array_equal(ranks, [[1.5, 1.0], [1.5, 2.0], [3.0, np.nan]])
+def test_task_ranks_rank_each_task_among_the_detectors_with_a_value():
+    table = table_of([[0.8, 0.6], [0.8, 0.5], [0.6, np.nan]])
+    np.testing.assert_array_equal(stats.task_ranks(table), [[1.5, 1.0], [1.5, 2.0], [3.0, np.nan]])
 
 
 def test_friedman_by_hand():
@@ -47,13 +45,32 @@ def test_friedman_by_hand():
     # chi2 = 12 / (N k (k+1)) * sum R^2 - 3 N (k+1) = 12/48 * 210 - 48 = 4.5; p = exp(-4.5/2) (2 df)
     table = table_of([[0.9, 0.8, 0.9, 0.6], [0.7, 0.6, 0.5, 0.7], [0.5, 0.4, 0.6, 0.3]])
     result = stats.friedman(table)
-    assert (result.n_cells, result.k) == (4, 3)
+    assert (result.n_tasks, result.k) == (4, 3)
     assert result.statistic == pytest.approx(4.5)
-    assert result.pvalue == pytest.approx(math.exp(-2.25))
     # Iman-Davenport: F = 3 * 4.5 / (4 * 2 - 4.5) = 27/7 on (2, 6) degrees of freedom
     assert result.f == pytest.approx(27 / 7)
-    assert result.f_pvalue == pytest.approx(sps.f.sf(27 / 7, 2, 6))
     np.testing.assert_allclose(result.mean_ranks, [5 / 4, 8 / 4, 11 / 4])
+    # exact p: of the 6^4 equally likely rankings, those with sum of squared rank sums >= 210;
+    # counted by brute force here, against the randomization estimate (20,000 draws: se about 0.003)
+    import itertools
+    perms = list(itertools.permutations([1, 2, 3]))
+    hits = sum(sum(sum(p[i] for p in combo) ** 2 for i in range(3)) >= 210
+               for combo in itertools.product(perms, repeat=4))
+    assert result.pvalue == pytest.approx(hits / 6 ** 4, abs=0.01)
+    assert result.min_pvalue == pytest.approx(6.0 ** -3)
+
+
+def test_friedman_with_two_tasks_ranked_alike_cannot_be_significant_with_three_detectors():
+    # the chi-square approximation said p = 0.018 and Iman-Davenport F = inf; the exact p is 1/6
+    result = stats.friedman(table_of([[0.9, 0.8], [0.7, 0.6], [0.5, 0.4]]))
+    assert math.isinf(result.f)
+    assert result.pvalue == pytest.approx(1 / 6, abs=0.01) and result.min_pvalue == pytest.approx(1 / 6)
+
+
+def test_minimum_attainable_p_values():
+    assert stats.wilcoxon_min_p(2) == 0.5 and stats.wilcoxon_min_p(8) == 2 / 256
+    assert stats.friedman_min_p(3, 2) == pytest.approx(1 / 6)
+    assert stats.friedman_min_p(4, 3) == pytest.approx(1 / 576)
 
 
 def test_friedman_on_demsars_example_uses_only_complete_cells():
@@ -61,7 +78,7 @@ def test_friedman_on_demsars_example_uses_only_complete_cells():
     # 1 - sum(t^3 - t) / (N k (k^2 - 1)): ties 4 (mushroom), 2+2+2+2 -> (60 + 4*6) / (14*4*15)
     values = np.c_[DEMSAR, [0.5, np.nan, 0.5, 0.5]]   # a 15th cell one detector did not complete
     result = stats.friedman(table_of(values))
-    assert result.n_cells == 14
+    assert result.n_tasks == 14
     ranks = stats.ranks_within(DEMSAR).mean(axis=1)
     uncorrected = 12 * 14 / (4 * 5) * (np.sum(ranks ** 2) - 4 * 25 / 4)
     assert result.statistic == pytest.approx(uncorrected / (1 - 84 / 840))
@@ -80,6 +97,17 @@ def test_wilcoxon_on_demsars_example():
     n, statistic, p = stats.wilcoxon(DEMSAR[1], DEMSAR[0])
     assert (n, statistic) == (14, 12.0)
     assert p < 0.05
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_exact_wilcoxon_equals_scipys_exact_test_without_ties(seed):
+    rng = np.random.default_rng(seed)
+    a, b = rng.random(9), rng.random(9)
+    assert stats.wilcoxon(a, b)[2] == pytest.approx(sps.wilcoxon(a - b, method="exact").pvalue)
+
+
+def test_the_exact_wilcoxon_with_two_tasks_cannot_go_below_one_half():
+    assert stats.wilcoxon(np.array([0.9, 0.8]), np.array([0.1, 0.2]))[2] == 0.5
 
 
 def test_wilcoxon_without_a_difference_or_a_shared_cell():
@@ -130,37 +158,34 @@ def test_cliques_of_a_constructed_example():
 
 # On the hand-made results table (tests.bench.hand_rows, the fixture rows)
 
-def test_the_cell_table_holds_nan_for_a_failed_cell(rows):
-    table = stats.cell_table(rows)
-    assert table.detectors == ["ref", "a", "b"]
-    assert table.cells == [("t1", 0), ("t1", 1), ("t2", 0), ("t2", 1)]
-    assert table.row("b").tolist() == [0.85, 0.75, 0.70, 0.95]
-    assert math.isnan(table.row("a")[3])
-    assert table.complete().cells == [("t1", 0), ("t1", 1), ("t2", 0)]
+def test_the_task_table_averages_the_seeds_first(rows):
+    table = task_table(rows)
+    assert table.detectors == ["ref", "a", "b"] and table.tasks == ["t1", "t2"]
+    np.testing.assert_allclose(table.row("b"), [0.80, 0.825])
+    np.testing.assert_allclose(table.row("a"), [0.80, 0.50])   # t2: its one completed seed
+    assert table.n_seeds.tolist() == [[2, 2], [2, 1], [2, 2]]
+    assert table.complete().tasks == ["t1", "t2"]
 
 
-def test_paired_differences_by_hand(rows):
-    records = {r["detector"]: r for r in stats.paired_comparison(stats.cell_table(rows), "ref")}
-    # a - ref on the three shared cells: +0.10, 0.00, -0.10 -> mean 0, sd 0.1, se 0.1 / sqrt(3)
-    a = records["a"]
-    assert a["n"] == 3 and (a["wins"], a["ties"], a["losses"]) == (1, 1, 1)
-    assert a["mean_diff"] == pytest.approx(0.0, abs=1e-12)
-    assert a["se"] == pytest.approx(0.1 / math.sqrt(3))
-    # b - ref: +0.05, +0.05, +0.10, +0.05 -> mean 0.0625, sd 0.025, se 0.0125
+def test_paired_differences_over_tasks_by_hand(rows):
+    records = {r["detector"]: r for r in stats.paired_comparison(task_table(rows), "ref")}
+    # b - ref per task: 0.80 - 0.75 = +0.05, 0.825 - 0.75 = +0.075 -> mean 0.0625, se 0.0125
     b = records["b"]
-    assert b["n"] == 4 and (b["wins"], b["ties"], b["losses"]) == (4, 0, 0)
+    assert b["n"] == 2 and (b["wins"], b["ties"], b["losses"]) == (2, 0, 0)
     assert b["mean_diff"] == pytest.approx(0.0625)
     assert b["se"] == pytest.approx(0.0125)
-    ref = records["ref"]
-    assert (ref["n"], ref["mean_diff"], ref["ties"]) == (4, 0.0, 4)
+    # a - ref: +0.05, -0.25
+    a = records["a"]
+    assert (a["wins"], a["losses"]) == (1, 1) and a["mean_diff"] == pytest.approx(-0.1)
+    assert records["ref"]["n"] == 2
 
 
-def test_a_single_shared_cell_has_no_standard_error():
+def test_a_single_shared_task_has_no_standard_error():
     rows = rows_of({"ref": {("t", 0): 0.5}, "a": {("t", 0): 0.75}})
-    (_, a) = stats.paired_comparison(stats.cell_table(rows), "ref")
+    (_, a) = stats.paired_comparison(task_table(rows), "ref")
     assert a["mean_diff"] == 0.25 and math.isnan(a["se"]) and a["wins"] == 1
 
 
 def test_an_unknown_reference_names_the_detectors(rows):
     with pytest.raises(ValueError, match="'parzen' is not in this run; expected one of ref, a, b"):
-        stats.paired_comparison(stats.cell_table(rows), "parzen")
+        stats.paired_comparison(task_table(rows), "parzen")
