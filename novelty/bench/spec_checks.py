@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..datasets import registry
+from ..datasets import load, registry
 from ..registry import RegistryError, check_parameters
 from .build import build_detector
 from .exploration.prequential import check_policy, default_policy
@@ -66,7 +66,15 @@ def with_policy(spec: DetectorSpec, det) -> DetectorSpec:
 
 
 def check_task(spec: TaskSpec) -> None:
-    """Check a task's name and option names without loading any data."""
+    """Check a task's name and option names; load a task that is the same in every cell.
+
+    A task read from files the suite names (``path``, ``test_path``) and the
+    same in every cell (it takes no seed) is loaded once here, so that a
+    wrong column, label or split is refused before the run, with the message
+    :func:`novelty.datasets.files.read_scans` gives (as ``novelty run``
+    prints it), rather than failing every cell. Generated tasks, and data
+    sets found through ``NOVELTY_DATA_DIR``, are built in the cells only.
+    """
     if spec.data is not None:  # a task object of the Python API: nothing to look up
         return
     try:
@@ -81,3 +89,8 @@ def check_task(spec: TaskSpec) -> None:
         for key in FILE_OPTIONS:
             if key in spec.options and not Path(str(spec.options[key])).is_file():
                 raise SuiteError(f"Task {spec.label!r}: data file not found: {spec.options[key]}")
+    if valid is not None and "seed" not in valid and any(key in spec.options for key in FILE_OPTIONS):
+        try:
+            load(spec.name, **spec.options)
+        except (ValueError, TypeError, OSError) as exc:
+            raise SuiteError(f"Task {spec.label!r}: {exc}") from None

@@ -175,6 +175,21 @@ def test_a_files_task_without_its_file_is_refused_before_running(tmp_path, task,
         load_suite(write(tmp_path, f'[[detectors]]\nname = "hsom"\n[[tasks]]\n{task}\n'))
 
 
+@pytest.mark.parametrize("options, message", [
+    ('label = "nove", train_rows = 2', r"Task 'scans': label: no column 'nove'; the file has a, novel\."),
+    ('label = "novel", columns = "b"', r"Task 'scans': columns: no column 'b'; the file has a, novel\."),
+    ('label = "novel", split = "part"', r"Task 'scans': split: no column 'part'"),
+    ('label = "novel"', r"Task 'scans': .*how are the scans split into training and test\?"),
+    ('label = "novel", train_rows = 9', r"Task 'scans': train_rows must leave scans on both sides: 1 to 3 of 4"),
+])
+def test_a_files_task_that_cannot_load_is_refused_before_running(tmp_path, options, message):
+    """The messages of read_scans (as novelty run prints them), with the task's label."""
+    (tmp_path / "scans.csv").write_text("a,novel\n0.1,0\n0.2,0\n0.3,0\n0.9,1\n")
+    with pytest.raises(SuiteError, match=message):
+        load_suite(write(tmp_path, f'[[detectors]]\nname = "hsom"\n[[tasks]]\npath = "scans.csv"\n'
+                                   f'options = {{ {options} }}\n'))
+
+
 @pytest.mark.parametrize("entry, message", [
     ('[[detectors]]\nname = "hsom"\nlabel = 5\n[[tasks]]\nname = "inspection-easy"\n',
      r"suite.toml: detectors\[0\]: label must be a non-empty string; got 5"),

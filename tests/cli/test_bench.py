@@ -61,6 +61,16 @@ def test_a_bench_where_every_cell_fails_exits_1(toy_task, tmp_path, capsys):
     assert "FloatingPointError: this detector always fails" in err
 
 
+def test_a_wrong_label_of_a_files_task_is_refused_before_any_cell_runs(tmp_path, capsys):
+    (tmp_path / "scans.csv").write_text("a,novel\n0.1,0\n0.2,0\n0.3,0\n0.9,1\n")
+    argv = ["bench", "--detector", "hsom", "--task", f"files path={tmp_path / 'scans.csv'} label=nove train_rows=2",
+            "--out", str(tmp_path / "b"), "--quiet"]
+    assert main(argv) == 2
+    assert ("novelty bench: error: Task 'scans': label: no column 'nove'; the file has a, novel."
+            in capsys.readouterr().err)
+    assert not (tmp_path / "b").exists()  # nothing ran
+
+
 def test_zero_seeds_from_the_command_line_is_one_clear_error(capsys):
     assert main(["bench", "--quick", "--seeds", "0", "--out", "unused"]) == 2
     assert "must be at least 1" in capsys.readouterr().err
