@@ -20,7 +20,6 @@ an ``Odometry``, ``PoseStamped`` or ``tf`` topic (the transforms of
 from __future__ import annotations
 
 import itertools
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterator, Sequence
@@ -32,7 +31,7 @@ from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from .carmen import CarmenLog
 from .messages import LaserScan, Pose, RangeReading
 from .rosbag import POSE_TYPES, SCAN_TYPES, bag_topics, is_bag, read_bag, topic_types
-from .scans import laser_ring, sector_index, clean_ranges, reduce_sectors, sonar_rings
+from .scans import clean_ranges, reduce_sectors, sector_index, sonar_rings
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
 
@@ -68,7 +67,7 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
         A CARMEN log (plain or gzipped) or a bag (``.bag``, ``.db3``, ``.mcap``).
     topic : str or sequence of str, optional
         The scans' topic or CARMEN message (default: ``FLASER``, or a bag's
-        only ``LaserScan``/``Range`` topic).
+        only ``LaserScan``, ``PointCloud2`` or ``Range`` topic).
     sectors, reduce, limits, front, clip
         How a laser scan becomes a ring (:func:`novelty.io.scans.laser_ring`).
     pose_topic : str, optional
