@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 DOCS = Path(__file__).resolve().parents[1] / "docs"
-PAGES = sorted(DOCS.glob("*.md"))
-BLOCKS = [(page.name, i, code) for page in PAGES
+PAGES = sorted(DOCS.glob("*.md")) + sorted(DOCS.glob("guide/*.md"))
+BLOCKS = [(page.relative_to(DOCS).as_posix(), i, code) for page in PAGES
           for i, code in enumerate(re.findall(r"```python\n(.*?)```", page.read_text(encoding="utf-8"), flags=re.S))]
 
 
@@ -29,5 +29,6 @@ def test_every_page_is_in_the_site():
     # A page missing from every toctree is a Sphinx warning, which fails the build.
     index = (DOCS / "index.md").read_text(encoding="utf-8")
     for page in PAGES:
-        if page.stem not in ("index", "api", "readme"):
-            assert re.search(rf"^{re.escape(page.stem)}$", index, flags=re.M), f"{page.name} is not in docs/index.md"
+        name = page.relative_to(DOCS).with_suffix("").as_posix()   # guide pages: guide/<page>
+        if name not in ("index", "api", "readme"):
+            assert re.search(rf"^{re.escape(name)}$", index, flags=re.M), f"{name}.md is not in docs/index.md"
