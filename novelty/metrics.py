@@ -23,9 +23,10 @@ The traps these scorers avoid:
   1 = novel the search then gets ``1 - AUC`` and picks the worst setting.
 - ``make_scorer(roc_auc_score)`` scores ``predict``'s -1/+1 (the same
   inversion, on two values); ``make_scorer(roc_auc_score,
-  response_method="decision_function")`` is ``scoring="roc_auc"``, and
-  ``greater_is_better=False`` negates the score, it does not turn the AUC
-  round: the search then prefers AUCs near 0, not near 1.
+  response_method="decision_function")`` is ``scoring="roc_auc"``. Adding
+  ``greater_is_better=False`` negates ``1 - AUC``: the search then ranks the
+  settings right but reports ``AUC - 1``, a negative score that reads as
+  the opposite of what it is.
 - Detectors have no ``score`` method, as scikit-learn's own outlier
   detectors (``IsolationForest``, ``OneClassSVM``): ``fit`` never sees a
   novel scan, so there is nothing to score without labels, and

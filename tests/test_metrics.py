@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 from sklearn.ensemble import IsolationForest
-from sklearn.metrics import average_precision_score, get_scorer, roc_auc_score
+from sklearn.metrics import average_precision_score, get_scorer, make_scorer, roc_auc_score
 from sklearn.model_selection import GridSearchCV
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import MinMaxScaler
@@ -126,3 +126,17 @@ def test_grid_search_without_scoring_is_refused_by_scikit_learn(door_split):
     X, y, split = door_split
     with pytest.raises(TypeError, match="'score' method"):
         GridSearchCV(novelty.make("hsom"), GRID, cv=split).fit(X, y)
+
+
+def test_make_scorer_traps_the_docstring_names(door_split):
+    """``make_scorer`` reads ``predict`` (-1 novel) or ``decision_function`` (higher = normal): both invert."""
+    X, y, split = door_split
+    train, test = split[0]
+    det = novelty.make("hsom").fit(X[train])
+    auc = novelty_roc_auc(det, X[test], y[test])
+    flagged = (det.predict(X[test]) == -1).astype(int)
+    assert make_scorer(roc_auc_score)(det, X[test], y[test]) == pytest.approx(1 - roc_auc_score(y[test], flagged))
+    by_decision = make_scorer(roc_auc_score, response_method="decision_function")
+    assert by_decision(det, X[test], y[test]) == pytest.approx(1 - auc)
+    negated = make_scorer(roc_auc_score, response_method="decision_function", greater_is_better=False)
+    assert negated(det, X[test], y[test]) == pytest.approx(auc - 1)   # the right order, a wrong-looking score
