@@ -91,8 +91,10 @@ def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = No
     n_sectors : int
     limits : (float, float), optional
         The angular span (rad, from the front, ``low < high``) cut into
-        sectors. Default: the scan's span, each beam owning an equal slice
-        of it (half a beam's spacing beyond the first and last beams).
+        sectors; a beam's angle counts within the turn from ``low``. Default:
+        the scan's span, each beam owning an equal slice of it (half a beam's
+        spacing beyond the first and last beams), so the ring starts at the
+        first beam.
     front : float, default=0.0
         The angle (rad) of the robot's front in the scan's frame.
 
@@ -107,14 +109,18 @@ def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = No
     if isinstance(n_sectors, bool) or not isinstance(n_sectors, numbers.Integral) or n_sectors < 1:
         raise ValueError(f"n_sectors must be an int >= 1; got {n_sectors!r}.")
     a = np.asarray(angles, dtype=np.float64) - front
-    a = (a + math.pi) % (2 * math.pi) - math.pi      # from the front, in [-pi, pi)
     if limits is None:
+        # the scan kept in one piece, turned by whole turns so that its middle is within half a
+        # turn of the front (a rear laser's beams, 90..270 degrees, cross +-180 and stay together)
+        centre = (float(a.min()) + float(a.max())) / 2
+        a = a + ((centre + math.pi) % (2 * math.pi) - math.pi - centre)
         half = abs(float(np.median(np.diff(a)))) / 2 if len(a) > 1 else math.pi
         low, high = float(a.min()) - half, float(a.max()) + half
     else:
         low, high = (float(v) for v in limits)
         if not (-2 * math.pi <= low < high <= 2 * math.pi):
             raise ValueError(f"limits must be (low, high) radians with low < high; got {limits!r}.")
+        a = low + np.mod(a - low, 2 * math.pi)     # each beam's angle within the turn from low
     k = np.floor((a - low) / (high - low) * n_sectors + 1e-9).astype(np.intp)
     # a beam on the high limit belongs to the last sector; beyond either limit to none
     k = np.where(np.isclose(a, high), n_sectors - 1, k)

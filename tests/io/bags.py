@@ -93,6 +93,22 @@ def _tf(ts, t, quaternion):
     return _make(ts, "tf2_msgs/msg/TFMessage", transforms=[transform("laser", 99.0), transform("base_link", t + 10)])
 
 
+def write_sonar_topics(path):
+    """A ROS 1 bag of two sonars, each on its own topic with an empty frame: /front and /back."""
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS1_NOETIC)
+    readings = [(1.0, "/front", 1.0), (1.1, "/back", 2.0), (1.2, "/front", 3.0), (1.3, "/back", 4.0)]
+    with Writer(path) as writer:
+        connections = {t: writer.add_connection(t, "sensor_msgs/msg/Range", typestore=ts) for t in ("/front", "/back")}
+        for t, topic, r in readings:
+            msg = _make(ts, "sensor_msgs/msg/Range", header=_header(ts, t, ""), min_range=0.2, max_range=5.0,
+                        range=r)
+            writer.write(connections[topic], int(t * 1e9), ts.serialize_ros1(msg, "sensor_msgs/msg/Range"))
+    return path
+
+
 def write_bag(folder, kind: str):
     """Write the test bag of ``kind`` ("ros1", "sqlite3", "mcap") under ``folder``; its path."""
     from rosbags.rosbag1 import Writer as Writer1

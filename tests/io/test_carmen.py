@@ -100,6 +100,16 @@ def test_binary_and_truncated_gzip_files(tmp_path, log):
         list(read_carmen(cut))
 
 
+def test_a_line_longer_than_any_log_line_is_refused(tmp_path, monkeypatch):
+    from novelty.io import carmen
+
+    monkeypatch.setattr(carmen, "MAX_LINE", 40)   # memory holds one line, of at most MAX_LINE characters
+    path = tmp_path / "long.log"
+    path.write_text("ODOM 1 2 3 0 0 0 5.0 h 5.0\nFLASER 9 " + "1.0 " * 30 + "\n")
+    with pytest.raises(CarmenError, match="line 2: longer than 40 characters"):
+        list(read_carmen(path))
+
+
 def test_an_unknown_message_choice_or_field_of_view_is_refused(log):
     with pytest.raises(ValueError, match="choose among FLASER, RLASER, ROBOTLASER1, ODOM"):
         CarmenLog(log, messages=["LASER5"])

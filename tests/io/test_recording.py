@@ -28,6 +28,9 @@ def test_carmen_rings_with_the_scans_own_poses(carmen):
     assert odom.pose.tolist() == [1.0, 2.0, 0.5]          # the odometry before the scan
     (robot,) = list(read_rings(carmen, "ROBOTLASER1", sectors=3))
     assert robot.ranges.tolist() == [1.5, 2.5, 3.5]
+    # the rear laser's beams at 90, 180, 270 degrees (through the back): one ring in one piece
+    (rear,) = list(read_rings(carmen, "RLASER", sectors=3))
+    assert rear.ranges.tolist() == [7.0, 8.0, 9.0]
 
 
 def test_carmen_without_the_laser_asked_for(tmp_path):
@@ -80,6 +83,16 @@ def test_sonar_rings_from_a_bag(bag):
     placed = list(read_rings(bag, "/sonar", pose_topic="/tf"))
     assert [r.ranges.tolist() for r in placed] == [r.ranges.tolist() for r in rings]
     assert [r.pose[0] for r in placed] == pytest.approx([10.95, 10.95, 15.95])   # rings at 1.02, 1.12, 6.02 s
+
+
+def test_one_topic_a_sonar(tmp_path):
+    pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra")
+    from .bags import write_sonar_topics
+
+    path = write_sonar_topics(tmp_path / "sonars.bag")
+    # the ring in the order the topics are given: front, back
+    rings = list(read_rings(path, ["/front", "/back"]))
+    assert [(round(r.time, 1), r.ranges.tolist()) for r in rings] == [(1.1, [1.0, 2.0]), (1.3, [3.0, 4.0])]
 
 
 def test_point_cloud_rings_from_a_bag(bag):

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from novelty.io.messages import LaserScan, RangeReading
@@ -36,11 +36,33 @@ def test_as_many_sectors_as_beams_gives_the_beams_back():
 
 
 def test_front_and_limits():
-    # beams every 90 degrees all round; the robot's front at the laser's 90 degrees
+    # beams every 90 degrees all round; the robot's front at the laser's 90 degrees: from the front the
+    # beams are at -90, 0, 90, 180; the ring starts at the first beam, or at the limits' low end
     angles = np.deg2rad([0, 90, 180, 270])
-    assert sector_index(angles, 4, front=math.pi / 2).tolist() == [1, 2, 3, 0]
+    assert sector_index(angles, 4, front=math.pi / 2).tolist() == [0, 1, 2, 3]
+    assert sector_index(angles, 4, limits=(-math.pi, math.pi), front=math.pi / 2).tolist() == [1, 2, 3, 0]
     # only the front half (-90..90 from the front), in two sectors: right, left
     assert sector_index(angles, 2, limits=(-math.pi / 2, math.pi / 2), front=math.pi / 2).tolist() == [0, 1, 1, -1]
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(2, 400), st.integers(1, 32), st.floats(-7.0, 7.0), st.floats(0.1, 2 * math.pi))
+def test_sectors_are_contiguous_and_in_angle_order(n_beams, n_sectors, front, span):
+    # a scan of any span (up to a whole turn) centred on the robot's front, the front anywhere
+    assume(n_sectors <= n_beams)
+    angles = -span / 2 + span / (n_beams - 1) * np.arange(n_beams)
+    k = sector_index(angles + front, n_sectors, front=front)
+    # every beam in a sector, the sectors in angle order, each one a run of neighbouring beams
+    assert k.min() == 0 and k.max() == n_sectors - 1 and np.all(np.diff(k) >= 0)
+    assert np.all(np.diff(k) <= 1)
+
+
+def test_a_rear_laser_stays_in_one_piece():
+    # a rear laser's beams from 90 to 270 degrees (through 180): two sectors, left-back then right-back
+    angles = np.deg2rad(np.arange(90, 271, 45))
+    assert sector_index(angles, 2).tolist() == [0, 0, 1, 1, 1]
+    scan = LaserScan(0.0, np.array([1.0, 2.0, 3.0, 4.0, 5.0]), angle_min=math.pi / 2, angle_increment=math.pi / 4)
+    assert laser_ring(scan, 5).tolist() == [1.0, 2.0, 3.0, 4.0, 5.0]
 
 
 def test_sectors_without_a_beam_are_refused():

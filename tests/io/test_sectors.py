@@ -23,8 +23,9 @@ def test_by_hand_with_invalid_readings():
 def test_geometry_front_and_names():
     X = np.array([[1.0, 2.0, 3.0, 4.0]])
     # beams at 0, 90, 180, 270 degrees, the front at 90: from the front they are at -90, 0, 90, -180,
-    # so the ring runs counter-clockwise from the back: back, right, front, left
-    sectors = LaserSectors(n_sectors=4, angle_min=0.0, angle_increment=math.pi / 2, front=math.pi / 2).fit(X)
+    # so the ring from -180 degrees runs counter-clockwise: back, right, front, left
+    sectors = LaserSectors(n_sectors=4, angle_min=0.0, angle_increment=math.pi / 2, front=math.pi / 2,
+                           limits=(-math.pi, math.pi)).fit(X)
     assert sectors.sector_of_beam_.tolist() == [1, 2, 3, 0]
     assert sectors.transform(X).tolist() == [[4.0, 1.0, 2.0, 3.0]]
     assert sectors.get_feature_names_out().tolist() == ["sector0", "sector1", "sector2", "sector3"]
