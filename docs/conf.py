@@ -14,6 +14,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.abspath(".."))  # document the checkout, not an installed copy
+sys.path.insert(0, os.path.abspath("_ext"))  # the site's own extension: the command-line pages
 
 import novelty  # noqa: E402  (after the path is set)
 
@@ -30,11 +31,12 @@ extensions = [
     "sphinx.ext.mathjax",
     "sphinx.ext.viewcode",
     "myst_parser",
+    "cli_pages",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 # docs/reproduction/ holds the tables that docs/reproduction.md includes; not pages of their own
-exclude_patterns = ["_build", "Thumbs.db", ".DS_Store", "reproduction/*.md"]
+exclude_patterns = ["_build", "_ext", "Thumbs.db", ".DS_Store", "reproduction/*.md"]
 templates_path = ["_templates"]
 
 # API reference: one page per public module, generated at build time.
@@ -54,11 +56,13 @@ napoleon_use_ivar = True  # Attributes as fields: a NamedTuple's fields are not 
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 3
 
-# The math renderer is bundled offline only when the theme is; MathJax is
-# loaded by the reader's browser, nothing is fetched at build time.
-html_theme = "alabaster"
+# Furo: a maintained theme whose content column fits code and parameter
+# tables. MathJax is loaded by the reader's browser; nothing is fetched at
+# build time.
+html_theme = "furo"
 html_title = f"novelty {release}"
-html_static_path = []
+html_static_path = ["_static"]
+html_css_files = ["novelty.css"]
 
 # Cross-references to the Python objects that Sphinx cannot resolve offline
 # (numpy, scikit-learn) are written as plain literals; nitpicky mode is off.
