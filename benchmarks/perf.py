@@ -402,7 +402,7 @@ _PAUSE_S = 0.2
 #: busy time after the pause, before the timed run. A process that has slept for
 #: the pause starts slowly: a fixed cost of about a millisecond, which a run of a
 #: few milliseconds feels and a run of a tenth of a second does not. Measured on
-#: the 2-core machine of the README's table (15 repetitions, medians, the three
+#: the 2-core machine of the table of docs/guide/performance.md (15 repetitions, medians, the three
 #: ways interleaved): the hsom stream of 5,000 scans 2.16 ms with no pause, 3.28 ms
 #: right after the pause, 2.35 ms after the pause and 0.1 s of this; gng-stanley on
 #: 1,000 scans 4.81 / 8.93 / 4.89 ms; MiniSom's online loop 120.5 / 148.1 / 122.8 ms.

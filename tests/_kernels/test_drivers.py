@@ -1,4 +1,4 @@
-"""The drivers compose a plugin's steps: the README's new synapse (``fading.py``) runs compiled
+"""The drivers compose a plugin's steps: the guide's new synapse (``fading.py``) runs compiled
 inside hsom's map, as the reference does."""
 
 from __future__ import annotations
@@ -18,11 +18,11 @@ from .kernel_helpers import assert_same_filter, corridor, reference_only
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+EXTENDING = Path(__file__).resolve().parents[2] / "docs" / "guide" / "extending.md"
 
 
-def test_the_readme_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatch):
-    block = next(b for b in re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"),
+def test_the_guide_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatch):
+    block = next(b for b in re.findall(r"```python\n(.*?)```", EXTENDING.read_text(encoding="utf-8"),
                                        flags=re.S) if b.startswith("# fading.py\n"))
     (tmp_path / "fading.py").write_text(block, encoding="utf-8")
     monkeypatch.syspath_prepend(str(tmp_path))

@@ -57,8 +57,7 @@ def test_reproduce_command_user_errors_are_one_line(argv, message, tmp_path, cap
     assert len(err.splitlines()) == 1 and "Traceback" not in err and message in err
 
 
-def test_readme_shows_the_table_the_command_prints():
-    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
-    section = readme.split("## Reproducing the paper", 1)[1].split("\n## ", 1)[0]
+def test_the_guide_shows_the_table_the_command_prints():
+    section = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "paper.md").read_text(encoding="utf-8")
     assert "novelty reproduce" in section
     assert table1_markdown(table1_rows(list(protocol(0).values()))) in section

@@ -5,7 +5,7 @@ here), and every run's traversal is simulated once per process (cached in
 novelty.reproduce). Where the simulation does not support a claim as the
 paper states it, the test's docstring says so, gives the numbers measured on
 seeds 0-9, and tests the form that does hold; claims that do not hold in any
-form are not tested (see the README, "Reproducing the paper").
+form are not tested (see docs/guide/paper.md).
 """
 
 from __future__ import annotations

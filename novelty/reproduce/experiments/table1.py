@@ -162,7 +162,7 @@ def run(out: Path, seeds=range(10), jobs: int = 1) -> Result:
     rows = table_rows(protocols, own)
     claims = claim_rows(protocols, own)
     return Result(NAME, TITLE, rows, [], _plot(rows, out / f"{NAME}.png"),
-                  f"Integrated output above the resting activity; 'seed 0' is the README's table, "
+                  f"Integrated output above the resting activity; 'seed 0' is the guide's table (docs/guide/paper.md), "
                   f"'mean' and 'range' over seeds {seeds[0]}-{seeds[-1]}; the last column (not the paper's "
                   "map) gives the SOM's neighbours a learning rate of 0.05.", tables={"claims": claims})
 

@@ -7,7 +7,7 @@ from novelty.reproduce.experiments._common import learn_counting_winners, markdo
 
 
 def test_six_trials_are_the_protocols_a_column_for_seed_0():
-    """The README's Table 1 for seed 0: 27.02, 22.66, 14.46, 14.37, 10.41, 10.84."""
+    """The guide's Table 1 for seed 0: 27.02, 22.66, 14.46, 14.37, 10.41, 10.84."""
     found = six_trials(0)
     assert [round(v, 2) for v in found["integrated"]] == [27.02, 22.66, 14.46, 14.37, 10.41, 10.84]
     assert found["learning_winners"] >= max(found["distinct"][0::2])
