@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from novelty import datasets
 from novelty.io.tasks import (Mark, mark_features, place_features, read_marks, recording_task, split_runs,
@@ -100,3 +102,25 @@ def test_places_make_a_task_and_the_registry_builds_it(logs):
     assert task.y.tolist() == [1] * 13 + [0] * 13
     with pytest.raises(ValueError, match="Say what is tracked"):
         recording_task(logs)
+
+
+def _visits_by_hand(poses, radius, leave):
+    """The definition, a scan at a time: entries into the disc after being beyond leave."""
+    out = []
+    for i, here in enumerate(poses):
+        entries, away = 0, True
+        for there in poses[:i + 1]:
+            d = float(np.hypot(*(np.asarray(there) - here)))
+            if d <= radius and away:
+                entries, away = entries + 1, False
+            elif d > leave:
+                away = True
+        out.append(entries - 1)
+    return out
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 8), st.integers(0, 8)), min_size=1, max_size=30))
+def test_visit_counts_match_the_definition(points):
+    poses = np.array(points, dtype=float)
+    assert visit_counts(poses, 1.5, 3.0).tolist() == _visits_by_hand(poses, 1.5, 3.0)
