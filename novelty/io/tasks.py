@@ -35,6 +35,7 @@ __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs"
            "recording_task"]
 
 _MARK_COLUMNS = ("feature", "start", "end", "x", "y", "radius")
+_PLACE = "place "   # the prefix of a grid place's feature id
 
 
 @dataclass(frozen=True)
@@ -141,7 +142,7 @@ def place_features(poses, cell: float) -> list[tuple[str, ...]]:
     if not cell > 0:
         raise ValueError(f"cell must be a positive length (m); got {cell!r}.")
     p = np.floor(np.asarray(poses, dtype=np.float64)[:, :2] / cell).astype(np.int64)
-    return [(f"place {i},{j}",) for i, j in p.tolist()]
+    return [(f"{_PLACE}{i},{j}",) for i, j in p.tolist()]
 
 
 def split_runs(time, *, gap: float | None = None, intervals=None) -> np.ndarray:
@@ -227,7 +228,10 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     marks : str, Path or sequence of Mark, optional
         Tracked features: a CSV file (:func:`read_marks`) or the marks.
     places : float, optional
-        Track the places of a grid of this cell size (m) instead (or as well).
+        Track the places of a grid of this cell size (m) instead (or as well):
+        the places the robot did not pass in the warm-up runs; those it
+        passed there are the familiar ones (untracked), so the exploration
+        scores compare a new place's scans with the familiar places'.
     gap, intervals
         How a file splits into runs (:func:`split_runs`); default one run a file.
     warmup : int, default=1
@@ -264,12 +268,20 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
             envs.append(f"{Path(path).name}#{r}")
             poses.append(None if data.poses is None else data.poses[take])
             times.append(t[take])
+    if places is not None:
+        features = _new_places_only(features, warmup)
     task = from_runs(runs, features, warmup=warmup, name=name or Path(paths[0]).name, environments=envs)
     meta = dict(task.metadata, sources=[str(p) for p in paths], threshold_m=float(threshold),
                 encoding="1 - min(r, T) / T", description="Recorded runs of a robot.")
     pose_array = None if any(p is None for p in poses) else np.concatenate(poses)
     return replace(task, poses=pose_array, columns=dict(task.columns, time=np.concatenate(times)),
                    metadata=meta)
+
+
+def _new_places_only(features: list, warmup: int) -> list:
+    """The runs' features without the places met in the warm-up runs (marked features kept)."""
+    known = {f for run in features[:warmup] for seen in run for f in seen if f.startswith(_PLACE)}
+    return [[tuple(f for f in seen if f not in known) for seen in run] for run in features]
 
 
 def _features(data: Dataset, marks, places) -> list[tuple[str, ...]]:

@@ -94,12 +94,18 @@ def test_an_exploration_task_from_two_drives_and_a_csv(logs, tmp_path):
     assert task.train().run.max() == 0 and np.flatnonzero(task.y).tolist() == [4, 5, 6]
 
 
-def test_places_make_a_task_and_the_registry_builds_it(logs):
+def test_places_make_a_task_and_the_registry_builds_it(logs, tmp_path):
     task = datasets.load("recording", paths=[str(p) for p in logs], places=2.0, sectors=2)
     assert np.unique(task.run).tolist() == [0, 1]
-    # the second drive drives through the first's places again: exposure 1 everywhere
-    assert set(task.columns["exposure"][task.run == 1].tolist()) == {1}
-    assert task.y.tolist() == [1] * 13 + [0] * 13
+    # the second drive passes the first's places only: all familiar, nothing tracked
+    assert set(task.columns["feature"].tolist()) == {""} and task.y.sum() == 0
+    # a third drive further on (x = 10..15.5 m): its places are new, the first at x 10-12 m
+    longer = tmp_path / "longer.log"
+    longer.write_text("".join(_flaser(t, 10 + t, [3.0] * 4) for t in np.arange(0.0, 6.0, 0.5)))
+    task = recording_task([*logs, longer], places=2.0, sectors=2)
+    new = task.run == 2
+    assert task.columns["feature"][new][:4].tolist() == ["place 5,0"] * 4
+    assert task.y[new].all() and not task.y[~new].any()
     with pytest.raises(ValueError, match="Say what is tracked"):
         recording_task(logs)
 
