@@ -26,6 +26,7 @@ from __future__ import annotations
 import difflib
 import numbers
 import warnings
+import weakref
 
 import numpy as np
 
@@ -71,6 +72,11 @@ def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.n
                 novelty[i] = synapse.efficacy_[-1]
                 synapse.fire(synapse.n_units_ - 1, stimulus, dt[i])
     return novelty
+
+
+#: the detectors already warned of their scans' range: once per detector object, kept out of
+#: its state (a model file, a copy and a comparison of states do not see it)
+_WARNED_OF_RANGE: "weakref.WeakSet[HabituatingFilter]" = weakref.WeakSet()
 
 
 class ScanRangeWarning(UserWarning):
@@ -290,6 +296,11 @@ class HabituatingFilter(NoveltyDetector):
             clusterer.calibrate(self.match_scale_)
         self._warn_outside_assumed_range(X)
 
+    def _adopt(self, new: "HabituatingFilter") -> None:
+        super()._adopt(new)
+        if new in _WARNED_OF_RANGE:  # fit learns in a copy: the detector was warned
+            _WARNED_OF_RANGE.add(self)
+
     def _warn_outside_assumed_range(self, X: np.ndarray) -> None:
         """Warn, once, of scans far outside the range the clusterer's parameters assume.
 
@@ -297,7 +308,7 @@ class HabituatingFilter(NoveltyDetector):
         The paper's detector on standardised scans (StandardScaler) learns
         little and flags nothing, silently; this says why.
         """
-        if getattr(self, "_warned_range", False):
+        if self in _WARNED_OF_RANGE:
             return
         assumed = self.clusterer_.assumed_range()
         if assumed is None:
@@ -307,7 +318,7 @@ class HabituatingFilter(NoveltyDetector):
         least, most = float(X.min()), float(X.max())
         if least >= low - width and most <= high + width:
             return
-        self._warned_range = True
+        _WARNED_OF_RANGE.add(self)
         warnings.warn(
             f"{type(self).__name__}: its clusterer {type(self.clusterer_).__name__} starts its units uniformly "
             f"in [{low:g}, {high:g}] (init='uniform'), the range its parameters assume (the paper's "
