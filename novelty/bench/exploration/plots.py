@@ -25,7 +25,8 @@ import numpy as np
 
 from ..reports.figures import grid, pyplot, save, slug
 
-__all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves"]
+__all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves",
+           "mean_over_seeds"]
 
 
 def _cells(rows: Sequence[dict]) -> dict[str, dict[str, list[dict]]]:
@@ -76,6 +77,20 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
     return save(fig, out / f"exploration-route-{slug(task)}.png")
 
 
+def mean_over_seeds(curves: Sequence[np.ndarray]) -> np.ndarray:
+    """The mean of each position over the seeds' curves, of the finite values there.
+
+    NaN where no seed has a value (an exposure no run reached, runs without
+    familiar scans): a gap in the plotted line, not numpy's "Mean of empty
+    slice" warning.
+    """
+    stack = np.asarray(curves, dtype=np.float64)
+    finite = np.isfinite(stack)
+    count = finite.sum(axis=0)
+    total = np.where(finite, stack, 0.0).sum(axis=0)
+    return np.divide(total, count, out=np.full(count.shape, np.nan), where=count > 0)
+
+
 def plot_exposure_curves(task: str, cells: dict, arrays: Callable, out: Path) -> Path | None:
     """Novelty against exposure count, one panel a detector; familiar level dashed; mean over seeds."""
     plt = pyplot()
@@ -92,8 +107,8 @@ def plot_exposure_curves(task: str, cells: dict, arrays: Callable, out: Path) ->
                 familiar[f].append(a["curve_familiar"][i])
         for k, f in enumerate(sorted(novelty)):
             width = min(len(v) for v in novelty[f])
-            nov = np.nanmean([v[:width] for v in novelty[f]], axis=0)
-            fam = np.nanmean([v[:width] for v in familiar[f]], axis=0)
+            nov = mean_over_seeds([v[:width] for v in novelty[f]])
+            fam = mean_over_seeds([v[:width] for v in familiar[f]])
             if np.sum(np.isfinite(nov)) < 2:
                 continue  # met once: no curve
             ks = np.arange(1, width + 1)
