@@ -62,6 +62,14 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
         return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client, command)
 
 
+def _skip_notices(suite: Suite) -> list[str]:
+    """One line per reason: which optional entries were skipped, and what would run them."""
+    by_reason: dict[str, list[str]] = {}
+    for name in suite.skipped:
+        by_reason.setdefault(suite.skip_reasons.get(name, "not registered here"), []).append(name)
+    return [f"Skipped {', '.join(names)}: {reason}." for reason, names in by_reason.items()]
+
+
 def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: str | None,
          plots: bool, progress: TextIO | None, quiet: bool, client, command: str | None) -> BenchReport:
     cells = list({c.id: c for c in suite.cells()}.values())
@@ -73,6 +81,10 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     stream = progress if progress is not None else sys.stderr
     if report.skipped and not quiet:
         print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
+    for notice in _skip_notices(suite):
+        report.notes.append(notice)
+        if not quiet:
+            print(notice, file=stream)
     stamp = provenance()
     try:
         with Progress(len(todo), stream=stream, quiet=quiet) as bar:
@@ -88,8 +100,6 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     report.failed = sum(r.get("status") != "ok" for r in report.rows)
     report.files.append(store.write_csv())
     report.files.append(store.jsonl)
-    if suite.skipped:
-        report.notes.append(f"Not registered here, skipped: {', '.join(suite.skipped)}.")
     if suite.threshold != "max":
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"

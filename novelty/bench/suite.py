@@ -71,6 +71,7 @@ class Suite:
     reference: str | None = None  # label of the detector the others are paired with
     protocol: str = "holdout"
     cell_timeout: float | None = None  # seconds; None: no limit
+    skip_reasons: dict[str, str] = field(default_factory=dict)  # why each skipped entry was skipped
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)

@@ -6,6 +6,7 @@ file's form is described in :mod:`novelty.bench.suite`.
 
 from __future__ import annotations
 
+import importlib.util
 import itertools
 import sys
 from pathlib import Path
@@ -98,8 +99,20 @@ def _expand_detector(entry: dict, where: str) -> list[DetectorSpec]:
     return specs
 
 
-def _available(name: str, detector_registry) -> bool:
-    return river.installed() if river.is_river(name) else name in detector_registry
+def unavailable(name: str) -> str | None:
+    """Why the detector ``name`` cannot run here (None: it can): an extra or a plugin not installed."""
+    if river.is_river(name):
+        return None if river.installed() else "River is not installed (pip install 'novelty-habituation[river]')"
+    if name not in detector_registry:
+        return "not registered here"
+    try:
+        requires = getattr(detector_registry.get(name), "requires", ())
+    except Exception as exc:  # noqa: BLE001 - a broken plugin is skipped, saying why
+        return f"cannot be loaded ({type(exc).__name__}: {exc})"
+    missing = [m for m in requires if importlib.util.find_spec(m) is None]
+    if missing:
+        return f"{missing[0]} is not installed (pip install 'novelty-habituation[{missing[0]}]')"
+    return None
 
 
 def _files_task(entry: dict, where: str, base: Path | None) -> TaskSpec:
@@ -127,11 +140,13 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
     seeds = parse_seeds(head.get("seeds", [0]), f"{source}: seeds")
     detectors: list[DetectorSpec] = []
     skipped: list[str] = []
+    reasons: dict[str, str] = {}
     for i, entry in enumerate(_entries(data, "detectors", source)):
         where = f"{source}: detectors[{i}]"
-        if entry.get("optional") and isinstance(entry.get("name"), str) \
-                and not _available(entry["name"], detector_registry):
+        reason = unavailable(entry["name"]) if entry.get("optional") and isinstance(entry.get("name"), str) else None
+        if reason:
             skipped.append(entry["name"])
+            reasons[entry["name"]] = reason
             continue
         detectors.extend(_expand_detector(entry, where))
     tasks: list[TaskSpec] = []
@@ -146,6 +161,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
             raise SuiteError(f"{where}: every task needs a 'name' (a dataset registry name) or a 'path'.")
         if entry.get("optional") and name not in datasets:
             skipped.append(name)
+            reasons[name] = "not registered here"
             continue
         options = _table(entry.get("options"), f"{where}: options")
         if name == FILES_TASK:
@@ -159,7 +175,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
         raise SuiteError(f"{source}: reference must be a detector's label (a string); got {reference!r}.")
     suite = Suite(detectors, tasks, seeds, str(head.get("name", source)),
                   head.get("threshold", "max"), memory, skipped, reference,
-                  head.get("protocol", "holdout"), head.get("cell_timeout"))
+                  head.get("protocol", "holdout"), head.get("cell_timeout"), reasons)
     return suite.check()
 
 

@@ -1,10 +1,12 @@
 """Suites from TOML and the command line; bad suites get one clear message."""
 
+import io
 from pathlib import Path
 
 import pytest
 
-from novelty.bench import Suite, SuiteError, load_suite, quick_suite_path
+from novelty.bench import Suite, SuiteError, load_suite, quick_suite_path, river
+from novelty.bench.runner import run_bench
 
 
 def write(tmp_path, text, name="suite.toml"):
@@ -212,3 +214,29 @@ def test_a_suite_file_that_is_not_utf8_is_named(tmp_path):
     path.write_bytes(b'[[detectors]]\nname = "h\xffsom"\n')
     with pytest.raises(SuiteError, match=rf"Suite file {path} is not UTF-8 text"):
         load_suite(path)
+
+
+def test_a_detector_skipped_for_a_missing_extra_is_announced_with_the_extra(tmp_path, toy_registered, monkeypatch):
+    monkeypatch.setattr(river, "installed", lambda: False)
+    suite = load_suite(write(tmp_path, f"""
+[[detectors]]
+name = "hsom"
+params = {{ n_rows = 2, n_columns = 2 }}
+[[detectors]]
+name = "river-hst"
+optional = true
+[[detectors]]
+name = "river-loda"
+optional = true
+[[detectors]]
+name = "no-such-detector"
+optional = true
+[[tasks]]
+name = "{toy_registered.TASK}"
+"""))
+    console = io.StringIO()
+    report = run_bench(suite, tmp_path / "out", plots=False, progress=console)
+    notice = "Skipped river-hst, river-loda: River is not installed (pip install 'novelty-habituation[river]')."
+    assert notice in console.getvalue()
+    assert "Skipped no-such-detector: not registered here." in console.getvalue()
+    assert notice in report.notes and notice in (tmp_path / "out" / "summary.md").read_text()
