@@ -12,20 +12,9 @@ import sys
 import time
 from typing import TextIO
 
+from .._progress import use_bar
+
 __all__ = ["Progress", "use_bar"]
-
-
-def use_bar(stream: TextIO) -> bool:
-    """Whether a live bar suits ``stream``: a terminal, outside CI, with tqdm installed."""
-    if os.environ.get("CI", "").lower() not in ("", "0", "false"):
-        return False
-    if not (hasattr(stream, "isatty") and stream.isatty()):
-        return False
-    try:
-        import tqdm  # noqa: F401
-    except ImportError:
-        return False
-    return True
 
 
 def _columns(stream) -> int:

@@ -160,7 +160,8 @@ def _experiments(args) -> int:
     started = time.perf_counter()
     for name in names:
         began, cpu = time.perf_counter(), _cpu_seconds()
-        result = results[name] = experiments.run_experiment(name, args.out, seeds=seeds, jobs=args.jobs)
+        result = results[name] = experiments.run_experiment(name, args.out, seeds=seeds, jobs=args.jobs,
+                                                            progress=sys.stderr)
         blocks.update(result.blocks())
         print(f"## {result.title}\n\n" + "\n".join(result.blocks().values()))
         print(f"({name}: {time.perf_counter() - began:.1f} s, CPU {_cpu_seconds() - cpu:.1f} s)\n",

@@ -22,9 +22,10 @@ from __future__ import annotations
 
 import importlib
 from pathlib import Path
+from typing import TextIO
 
 from . import summary
-from ._common import markdown_table, write_csv
+from ._common import markdown_table, reporting, write_csv
 
 __all__ = ["names", "run_experiment", "write_summary"]
 
@@ -36,12 +37,17 @@ def names() -> list[str]:
     return list(_MODULES)
 
 
-def run_experiment(name: str, out, seeds=range(10), jobs: int = 1):
-    """Run experiment ``name``; write its table and figure to ``out``; return its :class:`Result`."""
+def run_experiment(name: str, out, seeds=range(10), jobs: int = 1, progress: TextIO | None = None):
+    """Run experiment ``name``; write its table and figure to ``out``; return its :class:`Result`.
+
+    ``progress``: a stream (e.g. ``sys.stderr``) told of each finished step
+    (a line, or a tqdm bar on a terminal); None: silent.
+    """
     if name not in _MODULES:
         raise ValueError(f"Unknown experiment {name!r}; known: {', '.join(_MODULES)}, all.")
     module = importlib.import_module(f"{__name__}.{name}")
-    result = module.run(Path(out), seeds=seeds, jobs=jobs)
+    with reporting(name, progress):
+        result = module.run(Path(out), seeds=seeds, jobs=jobs)
     result.write(Path(out))
     return result
 

@@ -6,12 +6,16 @@ import csv
 import functools
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TextIO
 
 import numpy as np
 
 import novelty
+from novelty._progress import Steps
 from novelty.reproduce.figures import pyplot  # noqa: F401  (the experiments' figures)
 from novelty.sonar import simulate
 
@@ -169,15 +173,45 @@ def six_trials(seed: int, params: dict | None = None, environment="a", options: 
 
 
 # ---------------------------------------------------------------- processes
+#: (experiment name, stream) while an experiment reports its progress (:func:`reporting`)
+_PROGRESS: ContextVar[tuple[str, TextIO] | None] = ContextVar("progress", default=None)
+
+
+@contextmanager
+def reporting(name: str, stream: TextIO | None):
+    """Within the block, :func:`parallel` reports each finished step of experiment ``name`` to ``stream``."""
+    token = _PROGRESS.set(None if stream is None else (name, stream))
+    try:
+        yield
+    finally:
+        _PROGRESS.reset(token)
+
+
 def parallel(function, items, jobs: int) -> list:
     """``[function(item) for item in items]``, in ``jobs`` processes when more than one.
 
     Every result depends on its item alone (seeded), so the answer is the
-    same in any number of processes.
+    same in any number of processes. Inside :func:`reporting`, each finished
+    item is a step reported (an experiment's steps take seconds each).
     """
     items = list(items)
+    progress = _PROGRESS.get()
+    if progress is None:
+        return _results(function, items, jobs, lambda: None)
+    with Steps(progress[0], len(items), progress[1]) as steps:
+        return _results(function, items, jobs, steps.step)
+
+
+def _results(function, items: list, jobs: int, done) -> list:
+    results = []
     if jobs <= 1 or len(items) <= 1:
-        return [function(item) for item in items]
+        for item in items:
+            results.append(function(item))
+            done()
+        return results
     # spawn, not fork: numba may be compiling in a background thread of this process
     with ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
-        return list(pool.map(function, items))
+        for result in pool.map(function, items):
+            results.append(result)
+            done()
+    return results

@@ -1,9 +1,12 @@
 """A's six trials as the experiments run them are the protocol's, and winners are counted exactly."""
 
+import io
+
 import numpy as np
 
 import novelty
-from novelty.reproduce.experiments._common import learn_counting_winners, markdown_table, six_trials, traversal
+from novelty.reproduce.experiments._common import (learn_counting_winners, markdown_table, parallel, reporting,
+                                                   six_trials, traversal)
 
 
 def test_six_trials_are_the_protocols_a_column_for_seed_0():
@@ -27,3 +30,13 @@ def test_counting_winners_learns_exactly_as_stream_does():
 def test_markdown_table_right_aligns_numbers():
     text = markdown_table([{"name": "a", "value": 1.234}])
     assert text.splitlines() == ["| name | value |", "| --- | ---: |", "| a | 1.23 |"]
+
+
+def test_steps_of_an_experiment_are_reported_while_reporting_and_only_then(capsys):
+    stream = io.StringIO()
+    with reporting("ablations", stream):
+        assert parallel(abs, [-1, -2, -3], jobs=1) == [1, 2, 3]
+    lines = stream.getvalue().splitlines()
+    assert [line.split(" (")[0] for line in lines] == [f"ablations: step {k} of 3" for k in (1, 2, 3)]
+    assert parallel(abs, [-1, -2], jobs=1) == [1, 2]  # outside: silent
+    assert stream.getvalue().splitlines() == lines and capsys.readouterr() == ("", "")
