@@ -81,3 +81,11 @@ def test_ci_runs_the_readme_quickstart_first_as_written():
     # nothing installed or run before the quickstart but a fresh virtual environment
     assert not [line for line in before if re.search(r"\b(pip|pytest|novelty|sphinx)\b", line)], before
     assert any("-m venv" in line for line in before)
+
+
+def test_the_readme_stays_a_front_page():
+    # Studies, tables and long explanations belong in the guide (docs/guide/), linked from the README.
+    lines = README.read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= 250, f"README.md has {len(lines)} lines; move the detail to a page of docs/guide/"
+    for page in re.findall(r"\]\((docs/[^)#]+)", "\n".join(lines)):
+        assert (README.parent / page).exists(), f"the README links to {page}, which does not exist"

@@ -7,7 +7,7 @@ strength ``s`` (default 0.5, the paper's choice). Its posterior is a
 Dirichlet distribution over the weights of the observations,
 ``w = (w_0, w_1, .., w_n) ~ Dir(s, 1, .., 1)``, and the probabilities of the
 three regions of the signed-rank statistic, over the pairs ``(i, j)`` of
-``0 .. n`` (the Walsh averages ``(z_i + z_j) / 2``), are
+``0 .. n`` (the Walsh averages ``(z_i + z_j) / 2``), are::
 
     theta_left  = sum_i sum_j w_i w_j I(z_i + z_j < -2 r)
     theta_rope  = sum_i sum_j w_i w_j I(|z_i + z_j| <= 2 r)
