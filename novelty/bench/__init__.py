@@ -5,9 +5,12 @@
 >>> len(suite.cells())                                   # doctest: +SKIP
 2
 
-A run is a :class:`Suite` (read from TOML with :func:`load_suite`, or built in
-code or on the command line) executed by :func:`run_bench` into an output
-folder: ``results.jsonl``, ``results.csv``, ``summary.md`` and ``plots/``.
+From Python, :func:`run` benchmarks detectors (names or objects) on tasks
+(names, task objects, arrays) and returns :class:`Results`
+(:mod:`novelty.bench.benchmark`). A run is a :class:`Suite` (read from TOML
+with :func:`load_suite`, or built in code or on the command line) executed
+by :func:`run_bench` into an output folder: ``results.jsonl``,
+``results.csv``, ``summary.md`` and ``plots/``.
 
 The package by job:
 
@@ -43,10 +46,17 @@ __all__ = [
     "parse_seeds",
     "run_bench",
     "run_cell",
+    "run",
+    "Results",
 ]
 
 
 def __getattr__(name):
+    if name in ("run", "Results", "run_suite"):
+        # deferred: a run imports the backends, results and plots; the specs need none of them
+        from . import benchmark
+
+        return getattr(benchmark, name)
     if name == "run_bench":
         # deferred: the runner imports the backends, results and plots; the specs need none of them
         from .runner import run_bench

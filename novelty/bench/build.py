@@ -71,10 +71,13 @@ def build_detector(spec: DetectorSpec):
 
 
 def make_detector(cell: Cell):
-    """The cell's detector, seeded with the cell's seed unless the suite set one."""
+    """The cell's detector, seeded with the cell's seed unless the suite (or the object) set one."""
     det = build_detector(cell.detector)
-    if "random_state" not in cell.detector.params and hasattr(det, "get_params") \
-            and "random_state" in det.get_params(deep=False):
+    params = cell.detector.params
+    # a suite's parameter is set when named; an object's only when not None (its default)
+    chosen = params.get("random_state") is not None if cell.detector.instance is not None \
+        else "random_state" in params
+    if not chosen and hasattr(det, "get_params") and "random_state" in det.get_params(deep=False):
         det.set_params(random_state=cell.seed)
     return det
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TextIO
+from typing import Sequence, TextIO
 
 from .._atomic import write_atomically
 from .backends import execute
+from .compare import compare_on_task, comparison_text
 from .progress import Progress
 from .protocol import get_protocol
 from .reports.critical_difference import plot_critical_difference
@@ -35,6 +36,7 @@ class BenchReport:
     notes: list[str] = field(default_factory=list)
     reference: str | None = None        # the paired comparison's reference (None: the first ranked)
     protocol: str = "holdout"
+    comparisons: list[str] = field(default_factory=list)  # the single-task comparisons (markdown lines)
 
     @property
     def table(self) -> str:
@@ -45,7 +47,7 @@ class BenchReport:
 
 def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, scheduler: str | None = None,
               plots: bool = True, progress: TextIO | None = None, quiet: bool = False,
-              client=None, command: str | None = None) -> BenchReport:
+              client=None, command: str | None = None, compare_on: Sequence[str] = ()) -> BenchReport:
     """Run ``suite`` into the folder ``out`` and return a :class:`BenchReport`.
 
     Cells already finished in ``out/results.jsonl`` are skipped (resume).
@@ -55,11 +57,15 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
     ``"dask"`` (the scheduler at ``scheduler``, or a local cluster of ``jobs``
     workers; or an existing ``client``). ``command``, the command line that
     started the run, is recorded in ``summary.md`` with the versions and revision.
+    ``compare_on`` names tasks on which each detector is compared with the
+    reference by a paired bootstrap over test scans (:mod:`novelty.bench.compare`);
+    a hold-out run of one task gets that comparison whether asked or not.
     """
     store = ResultsStore(out)
     store.prepare()
     with store.lock():
-        return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client, command)
+        return _run(suite, store, backend, jobs, scheduler, plots, progress, quiet, client, command,
+                    list(compare_on))
 
 
 def _skip_notices(suite: Suite) -> list[str]:
@@ -71,7 +77,8 @@ def _skip_notices(suite: Suite) -> list[str]:
 
 
 def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: str | None,
-         plots: bool, progress: TextIO | None, quiet: bool, client, command: str | None) -> BenchReport:
+         plots: bool, progress: TextIO | None, quiet: bool, client, command: str | None,
+         compare_on: list[str]) -> BenchReport:
     cells = list({c.id: c for c in suite.cells()}.values())
     done = store.done()
     todo = [c for c in cells if c.id not in done]
@@ -103,8 +110,12 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     if suite.threshold != "max":
         report.notes.append(f"Alarm threshold: the {suite.threshold} quantile of the training novelty.")
     summary = store.out / "summary.md"
+    if not compare_on and len(suite.tasks) == 1 and suite.protocol == "holdout":
+        compare_on = [suite.tasks[0].label]
+    report.comparisons = _comparisons(report.rows, store, compare_on, suite.reference)
+    sections = protocol.summary(report.rows) + report.comparisons
     text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference,
-                            {**stamp, "command": command}, protocol.summary(report.rows))
+                            {**stamp, "command": command}, sections)
     write_atomically(summary, lambda fh: fh.write(text), text=True)
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:
@@ -116,3 +127,16 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
             report.files.extend(protocol.plots(report.rows, store.arrays, folder))
             report.files.extend(plot_critical_difference(report.rows, folder))
     return report
+
+
+def _comparisons(rows: list[dict], store: ResultsStore, tasks: list[str], reference: str | None) -> list[str]:
+    """The summary's sections of single-task comparisons (markdown lines)."""
+    lines = []
+    for task in tasks:
+        try:
+            text = comparison_text(compare_on_task(rows, store.arrays, task, reference))
+        except ValueError as exc:
+            text = f"No comparison on {task}: {exc}"
+        lines += ["", f"## Comparison on one task: {task}", "",
+                  "Unit: the test scan. For a verdict on this task alone, not across tasks.", "", text]
+    return lines

@@ -14,9 +14,12 @@ Each cell streams the task's training scans through the detector (as many
 passes as the task says), sets an alarm threshold from the training novelty,
 then scores the test scans without learning. Results go to --out:
 results.csv and results.jsonl (one row a cell, with provenance), summary.md
-(the ranking, each detector paired with a reference detector cell by cell,
-ranks per task, Friedman and Wilcoxon-Holm tests, the command and versions)
-and plots/ (with a critical-difference diagram). Rerunning the same command
+(the ranking; each detector paired with a reference detector task by task,
+the seeds of a task averaged first; ranks per task; Friedman, Wilcoxon-Holm
+and Bayesian signed-rank tests over tasks, or why too few tasks allow no
+claim; the command and versions) and plots/ (with a critical-difference
+diagram). --compare-on-task TASK adds a paired bootstrap over that task's
+test scans. Name your tasks with name= (--task 'files path=a.csv name=lab-a'). Rerunning the same command
 resumes: finished cells are skipped. A cell that fails -- an error, a worker
 process that dies, a cell past --cell-timeout -- is recorded as failed and
 the run goes on; a rerun tries failed cells again. A suite is a TOML file (see
@@ -39,6 +42,9 @@ EXAMPLES = [
     "--task inspection-easy --seeds 0,1,2 --out results/mine",
     "novelty bench --detector hsom --detector lof "
     "--task 'files path=scans.csv label=novel train_rows=200' --out results/mine",
+    "novelty bench --detector kmeans-stanley --detector parzen --task 'files path=a.csv name=lab-a "
+    "label=novel train_rows=200' --task 'files path=b.csv name=lab-b label=novel train_rows=200' "
+    "--seeds 3 --compare-on-task lab-a --out results/two-labs",
 ]
 
 
@@ -61,6 +67,11 @@ def add_parser(subparsers):
     parser.add_argument("--reference", metavar="NAME",
                         help="the detector (its label in the table) each other is paired with, cell by "
                         "cell (default: the suite's 'reference', else the detector ranked first)")
+    parser.add_argument("--compare-on-task", action="append", metavar="TASK", default=[],
+                        help="compare each detector with the reference on this task alone: a paired "
+                        "bootstrap over its test scans (ROC AUC and AP intervals), and the corrected "
+                        "resampled t-test over seeds that draw different splits (repeatable; a run of "
+                        "one task gets it anyway)")
     parser.add_argument("--threshold", metavar="max|Q",
                         help="alarm threshold: 'max' of the training novelty, or a quantile Q in (0, 1]")
     parser.add_argument("--protocol", choices=("holdout", "exploration"),
@@ -118,8 +129,8 @@ def build_suite(args):
 
 def run(args) -> int:
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
+    from ..bench.benchmark import run_suite
     from ..bench.reports.statistics import statistics_line
-    from ..bench.runner import run_bench
 
     if args.jobs < 1:
         raise UserError(f"--jobs must be at least 1; got {args.jobs}.")
@@ -132,12 +143,19 @@ def run(args) -> int:
         print(f"Suite {suite.name!r}: {len(suite.detectors)} detectors x {len(suite.tasks)} tasks x "
               f"{len(suite.seeds)} seeds = {n_cells} cells, backend {backend}"
               + (f" ({args.jobs} jobs)" if backend != "serial" else "") + ".", file=sys.stderr)
-    report = run_bench(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
-                       plots=not args.no_plots, quiet=args.quiet,
-                       command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
+    unknown = [t for t in args.compare_on_task if t not in {task.label for task in suite.tasks}]
+    if unknown:
+        raise UserError(f"--compare-on-task {unknown[0]!r} is not a task of this run; tasks: "
+                        f"{', '.join(task.label for task in suite.tasks)}.")
+    results = run_suite(suite, args.out, backend=backend, jobs=args.jobs, scheduler=args.scheduler,
+                        plots=not args.no_plots, quiet=args.quiet, compare_on=args.compare_on_task,
+                        command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
+    report = results.report
     print(report.table)
     if report.rows:
         print("\n" + statistics_line(report.rows))
+    if report.comparisons:
+        print("\n".join(report.comparisons))
     for note in report.notes:
         print(note)
     summary = os.path.join(args.out, "summary.md")

@@ -34,9 +34,12 @@ from .ranking import detector_order, reference_of
 
 #: the family-wise significance level of the tests in the summary
 ALPHA = 0.05
+#: the fewest tasks the Bayesian signed-rank test is shown for (our choice: on fewer, its posterior
+#: rests on a handful of differences; two differences of one sign already give P(better) = 0.96)
+MIN_TASKS_BAYES = 5
 
 __all__ = ["paired_text", "seeds_text", "task_ranks_text", "statistics_line", "statistics_markdown",
-           "too_few_tasks", "repeated_text", "ALPHA"]
+           "too_few_tasks", "repeated_text", "ALPHA", "MIN_TASKS_BAYES"]
 
 
 def _table(rows: Sequence[dict]):
@@ -64,7 +67,8 @@ def paired_text(rows: Sequence[dict], reference: str | None = None) -> str:
         bayes = bayesian_signed_rank(values, ref)
         body.append([r["detector"], str(r["n"]), signed(r["mean_diff"], r["se"]), str(r["wins"]),
                      str(r["ties"]), str(r["losses"]), p_value(p),
-                     f"{bayes.left:.2f}, {bayes.equivalent:.2f}, {bayes.right:.2f}" if bayes.n else "-"])
+                     f"{bayes.left:.2f}, {bayes.equivalent:.2f}, {bayes.right:.2f}"
+                     if bayes.n >= MIN_TASKS_BAYES else "-"])
     return format_table(header, body)
 
 
@@ -206,4 +210,4 @@ def _bayes_note() -> list[str]:
     return ["", "The Bayesian signed-rank test (Benavoli et al. 2017) of each detector against the reference "
             "is in the paired comparison: P(worse, equivalent, better), equivalent meaning within a region "
             f"of practical equivalence of ± {ROPE} ROC AUC; it states probabilities, not significance, and "
-            "with few tasks they rest on few differences."]
+            f"is shown from {MIN_TASKS_BAYES} tasks on."]

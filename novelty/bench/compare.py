@@ -1,0 +1,112 @@
+"""Comparing detectors on one task of a run: the paired bootstrap and the corrected t-test.
+
+:func:`compare_on_task` reads a run's rows and the per-scan arrays its cells
+kept (the novelty ``novelty`` and labels ``y`` of every test scan,
+``cells/<cell_id>.npz``) and sets each detector against a reference on one
+task (:mod:`novelty.bench.stats.single_task`):
+
+- a paired, stratified bootstrap over the test scans of one seed (the
+  smallest): the interval of the difference of ROC AUC and of average
+  precision;
+- when the task's seeds draw different splits (the reference's values
+  differ between seeds), the corrected resampled t-test over the seeds.
+
+:func:`comparison_text` writes the records as a table (``novelty bench
+--compare-on-task``, and :meth:`novelty.bench.Results.compare_on_task`).
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Sequence
+
+
+from .reports.format import format_table, p_value, signed
+from .reports.ranking import reference_of
+from .stats.aggregate import as_float, distinct
+from .stats.single_task import RESAMPLES, corrected_resampled_t, paired_bootstrap
+
+__all__ = ["compare_on_task", "comparison_text"]
+
+
+def _cells(rows: Sequence[dict], task: str) -> dict[str, list[dict]]:
+    out: dict[str, list[dict]] = {}
+    for r in sorted(rows, key=lambda r: int(r["seed"])):
+        if r["task"] == task and r.get("status") == "ok":
+            out.setdefault(r["detector"], []).append(r)
+    return out
+
+
+def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], task: str,
+                    reference: str | None = None, resamples: int = RESAMPLES, seed: int = 0) -> list[dict]:
+    """Each detector against ``reference`` (default: the run's first ranked) on ``task``.
+
+    Returns one record a detector (the reference left out) with the
+    bootstrap intervals ``roc_auc`` and ``average_precision``
+    (:class:`~novelty.bench.stats.single_task.Bootstrap`), the seed they
+    used, and ``corrected_t`` (:class:`~novelty.bench.stats.single_task.CorrectedT`,
+    or None when the seeds repeat one split or a count of scans is missing).
+    """
+    cells = _cells(rows, task)
+    if not cells:
+        known = sorted({r["task"] for r in rows})
+        raise ValueError(f"No successful cell of task {task!r}; tasks of this run: {', '.join(known)}.")
+    reference = reference_of([r for r in rows if r["task"] == task], reference)
+    if reference not in cells:
+        raise ValueError(f"The reference {reference!r} has no successful cell on {task!r}; "
+                         f"detectors there: {', '.join(cells)}.")
+    ref_cell = cells[reference][0]
+    ref_arrays = arrays(ref_cell["cell_id"])
+    if ref_arrays is None or "y" not in ref_arrays:
+        raise ValueError(f"The cells of {task!r} kept no per-scan novelty and labels (hold-out cells keep "
+                         "them in cells/<cell_id>.npz); rerun it into a folder to compare on it.")
+    records = []
+    for detector, mine in cells.items():
+        if detector == reference:
+            continue
+        same_seed = next((r for r in mine if r["seed"] == ref_cell["seed"]), None)
+        a = arrays(same_seed["cell_id"]) if same_seed is not None else None
+        if a is None:
+            continue
+        record = {"detector": detector, "reference": reference, "task": task, "seed": ref_cell["seed"]}
+        for metric in ("roc_auc", "average_precision"):
+            record[metric] = paired_bootstrap(a["novelty"], ref_arrays["novelty"], ref_arrays["y"], metric,
+                                              resamples, seed)
+        record["corrected_t"] = _corrected_t(mine, cells[reference])
+        records.append(record)
+    return records
+
+
+def _corrected_t(mine: list[dict], ref: list[dict]):
+    """The corrected resampled t-test over the seeds both completed, if the seeds draw different splits."""
+    by_seed = {r["seed"]: r for r in ref}
+    pairs = [(r, by_seed[r["seed"]]) for r in mine if r["seed"] in by_seed]
+    if len(pairs) < 2 or distinct([as_float(b.get("roc_auc")) for _, b in pairs]) < 2:
+        return None
+    n_train, n_test = as_float(pairs[0][1].get("n_train")), as_float(pairs[0][1].get("n_test"))
+    if not (n_train > 0 and n_test > 0):
+        return None
+    d = [as_float(a.get("roc_auc")) - as_float(b.get("roc_auc")) for a, b in pairs]
+    return corrected_resampled_t(d, int(n_train), int(n_test))
+
+
+def _interval(b) -> str:
+    return f"{signed(b.difference)} [{b.low:+.3f}, {b.high:+.3f}]" + (" *" if b.excludes_zero else "")
+
+
+def comparison_text(records: Sequence[dict]) -> str:
+    """The comparisons on one task as a table (* : the interval excludes zero)."""
+    if not records:
+        return ""
+    first = records[0]
+    level = f"{first['roc_auc'].confidence:.0%}"
+    header = ["detector", f"ΔROC AUC vs {first['reference']} [{level} CI]", f"ΔAP [{level} CI]",
+              "Δ over seeds, corrected t (p)"]
+    body = []
+    for r in records:
+        t = r["corrected_t"]
+        body.append([r["detector"], _interval(r["roc_auc"]), _interval(r["average_precision"]),
+                     "-" if t is None else f"{signed(t.mean)}, t = {t.t:.2f} ({p_value(t.pvalue)}, "
+                                           f"{t.n_splits} seeds)"])
+    return (f"Paired bootstrap over the test scans of {first['task']}, seed {first['seed']} "
+            f"({first['roc_auc'].resamples:,} stratified resamples, seed 0); * : the interval excludes 0.\n\n"
+            + format_table(header, body))
