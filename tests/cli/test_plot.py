@@ -7,8 +7,8 @@ from novelty.cli import main
 
 
 @pytest.mark.parametrize("distance, label", [
-    (np.arange(8) * 0.1, "distance (m)"),
-    (np.r_[np.arange(4), np.arange(4)] * 0.1, "scan (several runs)"),  # distance starts again
+    (np.arange(8) * 0.1, "distance along the route (m)"),
+    (np.r_[np.arange(4), np.arange(4)] * 0.1, "scan (runs one after another)"),  # distance starts again
     (None, "scan"),
 ])
 def test_the_x_axis_says_scan_when_the_distance_is_not_the_axis(distance, label, tmp_path, monkeypatch):

@@ -68,9 +68,9 @@ def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, r
     """Novelty along the route on ``ax``, novel scans shaded, threshold dashed; returns the x axis' name."""
     novelty = np.asarray(novelty, dtype=float)
     x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
-    along = "test scan" if distance is None else "distance along the route (m)"
+    along = "scan" if distance is None else "distance along the route (m)"
     if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
-        x, along = np.arange(novelty.size), "test scan (runs one after another)"
+        x, along = np.arange(novelty.size), "scan (runs one after another)"
     if y is not None and np.any(y):
         ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
         ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
