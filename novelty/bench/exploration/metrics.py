@@ -19,6 +19,22 @@ scored. Definitions:
 - **habituation ratio**: over the *recurring* features (met at least three
   times), the mean excess at the 3rd exposure divided by the mean excess at the
   1st; at most 0.25 is what this project calls habituated;
+- **first-exposure separation**: how far the typical first-exposure scan
+  lies above the typical familiar scan, in units of the familiar scans'
+  spread: ``(median(first) - median(familiar)) / IQR(familiar)``, over the
+  scans of the first-encounter detection (``inf`` when the familiar scans
+  do not spread and the first-exposure median is above theirs). It does not
+  depend on the detector's scale. A detector **flags** first encounters when
+  the first-encounter ROC AUC is at least 0.85 *and* the separation at least
+  0.5, and **habituates** when the habituation ratio is at most 0.25 *and*
+  the separation at least 0.5: ranks decided by differences far below the
+  familiar scans' own spread (a network whose every scan sits at its
+  synapses' floor, its first encounters lifted by the few scans that add a
+  unit) neither flag nor habituate;
+- **return ratio**: for a feature that comes back after a long absence
+  (``returns``: the exposure of its return), its excess at the return over
+  its excess at the first exposure: near 1 a detector that forgot it, near
+  its habituated level one that remembers;
 - **exposures to habituate** of a feature: the first exposure k at which its
   excess is at most ``tolerance`` (default 0.25, the same quarter) times its
   first-exposure excess; ``nan`` if that never happens within its exposures or
@@ -44,7 +60,8 @@ from ..holdout import metrics as bench_metrics
 
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
-           "integrated_per_run", "warmup_threshold", "recurring", "HABITUATED", "FLAGS_FIRST", "RECURRING"]
+           "integrated_per_run", "warmup_threshold", "recurring", "first_exposure_separation", "return_ratio",
+           "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES"]
 
 #: An excess at most this share of the first-exposure excess counts as habituated.
 HABITUATED = 0.25
@@ -52,6 +69,8 @@ HABITUATED = 0.25
 FLAGS_FIRST = 0.85
 #: A feature is recurring when it is met at least this many times.
 RECURRING = 3
+#: The least first-exposure separation (in familiar IQRs) with which AUC and ratio count.
+SEPARATES = 0.5
 
 
 def _arrays(novelty, run, feature, exposure=None):
@@ -125,6 +144,47 @@ def first_encounter_auc(novelty, run, feature, exposure, warmup: int) -> float:
     familiar = scored & (feature == FAMILIAR) & np.isin(run, runs)
     keep = first | familiar
     return bench_metrics.roc_auc(novelty[keep], first[keep])
+
+
+def first_exposure_separation(novelty, run, feature, exposure, warmup: int) -> float:
+    """``(median(first) - median(familiar)) / IQR(familiar)`` over the scans of the first-encounter AUC.
+
+    Familiar 0.1, 0.2, 0.3, 0.4 (median 0.25, IQR 0.325 - 0.175), first 0.8, 0.9:
+
+    >>> s = first_exposure_separation([0.9, 0.1, 0.3, 0.8, 0.2, 0.4], [1] * 6, ["d", "", "", "d", "", ""],
+    ...                               [0, -1, -1, 0, -1, -1], 1)
+    >>> round(s, 9)
+    4.0
+    """
+    novelty, run, feature = _arrays(novelty, run, feature, exposure)
+    exposure = np.asarray(exposure)
+    scored = run >= warmup
+    first = scored & (exposure == 0) & (feature != FAMILIAR)
+    familiar = scored & (feature == FAMILIAR) & np.isin(run, np.unique(run[first]))
+    if not first.any() or not familiar.any():
+        return float("nan")
+    q25, q50, q75 = np.percentile(novelty[familiar], [25, 50, 75])
+    above = float(np.median(novelty[first]) - q50)
+    if q75 > q25:
+        return above / float(q75 - q25)
+    return math.inf if above > 0 else 0.0
+
+
+def return_ratio(curves: dict, returns: dict) -> float:
+    """Mean over the returning features of the excess at their return over the excess at their first exposure.
+
+    >>> return_ratio({"d": {"excess": np.array([0.8, 0.2, 0.1, 0.4]), "exposure": np.arange(1, 5)}}, {"d": 4})
+    0.5
+    """
+    values = []
+    for f, k in sorted(returns.items()):
+        c = curves.get(f)
+        if c is None or k not in c["exposure"].tolist() or 1 not in c["exposure"].tolist():
+            continue
+        first = c["excess"][c["exposure"].tolist().index(1)]
+        if first > 0:
+            values.append(c["excess"][c["exposure"].tolist().index(k)] / first)
+    return float(np.mean(values)) if values else float("nan")
 
 
 def recurring(curves: dict, min_exposures: int = RECURRING) -> list[str]:

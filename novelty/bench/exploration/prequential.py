@@ -51,7 +51,8 @@ POLICIES = ("online", "frozen", "refit", "window=N")
 EXPLORATION_COLUMNS = [
     "policy", "n_scans", "n_runs", "warmup_runs", "n_first", "n_recurring",
     "first_encounter_auc", "roc_auc", "excess_1", "excess_2", "excess_3", "habituation_ratio",
-    "exposures_to_habituate", "habituated_fraction", "flags_first", "habituates",
+    "exposures_to_habituate", "habituated_fraction", "first_separation", "flags_first", "habituates",
+    "flags_first_auc_only", "habituates_ratio_only", "return_ratio",
     "threshold", "false_alarms", "false_alarm_rate", "redetection_auc",
     "integrated_novelty", "integrated_per_run", "exposure_curve", "max_novelty",
     "resting_novelty", "n_units",
@@ -149,7 +150,7 @@ def evaluate(cell) -> tuple[dict, dict]:
     novelty, det = prequential(make, data.X, run, warmup, policy)
     elapsed = time.perf_counter() - start
     row = exploration_metrics(novelty, run, feature, exposure, warmup, info.get("changes", {}),
-                              resting_novelty(det), cell.threshold)
+                              resting_novelty(det), cell.threshold, info.get("returns", {}))
     row.update({"policy": policy, "n_scans": len(data), "n_runs": int(np.unique(run).size),
                 "warmup_runs": warmup, "n_units": n_units(det),
                 "train_time_s": elapsed, "train_scans_per_s": len(data) / max(elapsed, 1e-12)})
@@ -162,7 +163,7 @@ def evaluate(cell) -> tuple[dict, dict]:
 
 
 def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: dict,
-                        resting: float = 0.0, threshold_rule="max") -> dict:
+                        resting: float = 0.0, threshold_rule="max", returns: dict | None = None) -> dict:
     """Every metric of :mod:`novelty.bench.exploration.metrics` for one exploration, as a row."""
     curves = xm.exposure_curves(novelty, run, feature, exposure, warmup)
     recurring = xm.recurring(curves)
@@ -174,6 +175,8 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
     ratio = xm.habituation_ratio(curves)
     longest = max((curves[f]["excess"].size for f in recurring), default=0)
     scored = np.asarray(run) >= warmup
+    separation = xm.first_exposure_separation(novelty, run, feature, exposure, warmup)
+    separates = bool(separation >= xm.SEPARATES)
     return {
         "n_first": int(np.sum(scored & (np.asarray(exposure) == 0))),
         "n_recurring": len(recurring),
@@ -184,8 +187,12 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
         "habituation_ratio": ratio,
         "exposures_to_habituate": float(np.mean(done)) if done else float("nan"),
         "habituated_fraction": len(done) / len(recurring) if recurring else float("nan"),
-        "flags_first": bool(auc >= xm.FLAGS_FIRST),
-        "habituates": bool(ratio <= xm.HABITUATED),
+        "first_separation": separation,
+        "flags_first": bool(auc >= xm.FLAGS_FIRST) and separates,
+        "habituates": bool(ratio <= xm.HABITUATED) and separates,
+        "flags_first_auc_only": bool(auc >= xm.FLAGS_FIRST),
+        "habituates_ratio_only": bool(ratio <= xm.HABITUATED),
+        "return_ratio": xm.return_ratio(curves, returns or {}),
         "threshold": threshold,
         "false_alarms": count,
         "false_alarm_rate": rate,

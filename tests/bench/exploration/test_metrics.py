@@ -6,8 +6,10 @@ import math
 import numpy as np
 import pytest
 
-from novelty.bench.exploration.prequential import exploration_metrics
+import novelty
+from novelty.bench.exploration.prequential import exploration_metrics, prequential
 from novelty.bench.exploration import metrics as xm
+from novelty.exploration import open_door
 
 # run 0 warm-up; runs 1-3 each: 2 familiar scans, 1 scan of the door "d" (exposures 0, 1, 2);
 # run 2 also meets a box "b" for the first time
@@ -84,3 +86,32 @@ def test_the_row_of_a_cell():
 def test_mismatched_lengths_are_refused():
     with pytest.raises(ValueError, match="one value a scan"):
         xm.exposure_curves(NOVELTY, RUN[:-1], FEATURE, EXPOSURE, 1)
+
+
+def test_a_network_at_its_synapses_floor_no_longer_flags_nor_habituates():
+    # A GWR of a few wide units (Scott's scale, radius 8): every scan but those that add a unit
+    # sits at the synapses' floor, so AUC and ratio pass on differences in the fourth decimal.
+    task = open_door(0, cycles=3)
+    labels = (task.run, task.columns["feature"], task.columns["exposure"], 3, {})
+    gamed, det = prequential(lambda: novelty.make("gwr-explore", match_scale="scott", insertion_radius=8.0),
+                             task.X, task.run, 3)
+    row = exploration_metrics(gamed, *labels)
+    assert det.clusterer_.n_units_ <= 8
+    assert row["flags_first_auc_only"] and row["habituates_ratio_only"]
+    assert row["first_separation"] < 0.1
+    assert not row["flags_first"] and not row["habituates"]
+    honest, _ = prequential(lambda: novelty.make("gwr-explore-wang-hsu"), task.X, task.run, 3)
+    assert exploration_metrics(honest, *labels)["first_separation"] > 10
+
+
+def test_first_exposure_separation_does_not_depend_on_the_scale():
+    rng = np.random.default_rng(0)
+    nov, run = rng.random(40), np.repeat([0, 1], 20)
+    feature = np.where(np.arange(40) % 5 == 0, "d", "")
+    exposure = np.where(feature == "d", 0, -1)
+    nov[feature == "d"] += 0.5
+    one = xm.first_exposure_separation(nov, run, feature, exposure, 1)
+    assert one == pytest.approx(xm.first_exposure_separation(3.0 * nov - 7.0, run, feature, exposure, 1))
+    flat = np.where(feature == "d", 0.2, 0.1)
+    assert xm.first_exposure_separation(flat, run, feature, exposure, 1) == np.inf
+    assert xm.first_exposure_separation(np.full(40, 0.1), run, feature, exposure, 1) == 0.0
