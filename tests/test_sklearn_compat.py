@@ -17,7 +17,11 @@ from novelty.registry import detectors
 from novelty.testing import installed_detectors
 
 #: {detector name: {check name: reason}}
-EXPECTED_FAILURES: dict[str, dict[str, str]] = {}
+_OWN_TRAINING = ("a perfect memory holds every scan it learned, so each training scan scores 0 against "
+                 "itself and none is an outlier of its own training data, whatever the threshold")
+EXPECTED_FAILURES: dict[str, dict[str, str]] = {
+    "nearest-memory": {"check_outliers_fit_predict": _OWN_TRAINING, "check_outliers_train": _OWN_TRAINING},
+}
 
 
 def _detectors():
