@@ -6,6 +6,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import novelty
+from novelty.context import SequenceContext
 from novelty.datasets import load
 from novelty.filter import HabituatingFilter
 from novelty.habituation import StanleySynapse, WangHsuSynapse
@@ -103,7 +104,7 @@ def test_preset_with_an_unregistered_clusterer_fails_at_fit_with_the_name():
 
 # ------------------------------------------------------------ the online property
 #: every habituating preset: the paper's detector and the registered combinations
-HABITUATING = ["hsom", *PRESETS]
+HABITUATING = ["hsom", *PRESETS, "explore"]
 
 
 @pytest.fixture(scope="module")
@@ -130,6 +131,14 @@ def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, o
     assert door[0] > door[1] > door[2], door
     assert all(r < d for r, d in zip(rest, door)), (rest, door)
     assert rest[2] <= rest[0], rest
+
+
+def test_explore_is_gwr_explore_wang_hsu_given_the_last_three_scans():
+    X = np.random.default_rng(0).random((120, 16))
+    det = novelty.make("explore", beta=2.0, smoothing=0.5)
+    assert (det.delay, det.smoothing, det.detector.synapse.beta) == (3, 0.5, 2.0)
+    by_hand = SequenceContext(novelty.make("gwr-explore-wang-hsu"), delay=3)
+    np.testing.assert_array_equal(novelty.make("explore").stream(X), by_hand.stream(X))
 
 
 def test_gwr_explore_is_gwr_novelty_with_a_wider_radius_the_product_rule_and_faster_synapses():
@@ -212,5 +221,7 @@ def test_a_repeated_new_scan_grows_familiar_with_each_exposure(name, opened_door
     det = novelty.make(name)
     det.stream(train)
     out = det.stream(np.repeat(scan[None, :], 30, axis=0))
+    # a detector given the last scans sees the repeated scan alone from the delay-th repetition on
+    out = out[getattr(det, "delay", 1) - 1:]
     assert np.all(np.diff(out) <= 0), out
     assert out[-1] < out[0] / 2, out
