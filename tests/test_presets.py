@@ -119,9 +119,8 @@ def opened_door():
     return task.X[task.split == "train"], runs
 
 
-@pytest.mark.parametrize("name", SINGLE_SCAN)
-def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, opened_door):
-    """Learning as it goes, the opened door's novelty falls at each pass; the rest of A* stays below it."""
+def _door_and_rest(name, opened_door):
+    """Mean novelty at the door and elsewhere on each pass of A*, learning as it goes."""
     train, runs = opened_door
     det = novelty.make(name)
     det.stream(train)
@@ -130,6 +129,13 @@ def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, o
         out = det.stream(X)
         door.append(out[at_door].mean())
         rest.append(out[~at_door].mean())
+    return door, rest
+
+
+@pytest.mark.parametrize("name", SINGLE_SCAN)
+def test_a_recurring_feature_grows_familiar_while_the_familiar_stays_low(name, opened_door):
+    """Learning as it goes, the opened door's novelty falls at each pass; the rest of A* stays below it."""
+    door, rest = _door_and_rest(name, opened_door)
     assert door[0] > door[1] > door[2], door
     assert all(r < d for r, d in zip(rest, door)), (rest, door)
     assert rest[2] <= rest[0], rest
@@ -144,14 +150,7 @@ def test_explore_is_gwr_explore_wang_hsu_given_three_scans_two_apart():
 
 
 def test_explore_flags_the_door_then_habituates_to_it_to_the_familiar_level(opened_door):
-    train, runs = opened_door
-    det = novelty.make("explore")
-    det.stream(train)
-    door, rest = [], []
-    for X, at_door in runs:
-        out = det.stream(X)
-        door.append(out[at_door].mean())
-        rest.append(out[~at_door].mean())
+    door, rest = _door_and_rest("explore", opened_door)
     assert door[0] > door[1] > door[2] and door[0] > 5 * rest[0], (door, rest)
     assert door[2] < 0.05 and rest[2] < 0.05, (door, rest)
 
