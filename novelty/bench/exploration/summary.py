@@ -42,7 +42,8 @@ def exploration_records(rows: Sequence[dict]) -> dict[str, list[dict]]:
             auc, e1, e3 = mean(col("first_encounter_auc")), mean(col("excess_1")), mean(col("excess_3"))
             ratio = e3 / e1 if e1 > 0 else float("nan")
             separation = _median(col("first_separation"))
-            separates = separation >= SEPARATES
+            # rows recorded before the separation was measured carry none: no veto then
+            separates = separation >= SEPARATES or math.isnan(separation)
             flags, habituates = auc >= FLAGS_FIRST and separates, ratio <= HABITUATED and separates
             records.append({
                 "detector": detector, "policy": cells[0]["policy"], "seeds": len(cells),
