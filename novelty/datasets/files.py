@@ -20,6 +20,11 @@ Which columns are what:
 - ``distance``, ``run``, ``split``: distance along the route (m), traversal
   number, ``train``/``test`` part, by these names.
 
+A cell that cannot be read is refused by where it is: the line of a CSV file
+(as an editor numbers it) or the row of an NPZ file (its index in ``X``),
+and the column, with what it holds (``scans.csv, line 14, column 'us05':
+expected a number, got an empty cell``).
+
 A ``rostopic echo -p`` export (a ``%time`` column, ``field.*`` columns) mixes
 header fields with readings; its sensor columns must be chosen
 (``columns="field.ranges*"``), so that no timestamp or sequence number is
