@@ -23,6 +23,8 @@ formatting is regenerated, never edited by hand.
     python benchmarks/tables.py --run exploration --jobs 2
                                              # run a suite, then commit its rows: results.csv
                                              # and provenance.json in benchmarks/results/<suite>/
+    python benchmarks/tables.py --run exploration --from results/exploration
+                                             # record a finished run of the suite instead
 
 ``results.csv`` is the file ``novelty bench`` writes, less the columns every
 row repeats (versions, revision, host, platform: kept once in
@@ -240,8 +242,13 @@ def _versions() -> dict:
     return found
 
 
-def record(suite: str, out: Path, command: str, elapsed_s: float, jobs: int, revision: str | None = None) -> Path:
-    """Copy a run's ``results.csv`` into ``benchmarks/results/<suite>/`` with its provenance."""
+def record(suite: str, out: Path, command: str, elapsed_s: float | None, jobs: int | None,
+           revision: str | None = None) -> Path:
+    """Copy a run's ``results.csv`` into ``benchmarks/results/<suite>/`` with its provenance.
+
+    The revision is ``revision``, else the one every row names ("unknown" for a run outside a
+    checkout), else this checkout's.
+    """
     target = RESULTS / suite
     target.mkdir(parents=True, exist_ok=True)
     with open(Path(out) / RESULTS_CSV, newline="", encoding="utf-8") as fh:
@@ -255,10 +262,10 @@ def record(suite: str, out: Path, command: str, elapsed_s: float, jobs: int, rev
     made = {
         "command": command,
         "suite": f"benchmarks/suites/{suite}.toml",
-        "revision": revision or _git_revision(),
+        "revision": revision or same.get("git_revision") or _git_revision(),
         "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         "versions": _versions(),
-        "elapsed_s": round(elapsed_s),
+        "elapsed_s": None if elapsed_s is None else round(elapsed_s),
         "jobs": jobs,
         "machine": f"{sys.platform}-{platform.machine()}, {os.cpu_count()} cores",
         "rows": {c: (json.loads(v) if c == "versions" else v) for c, v in same.items()},
@@ -283,8 +290,15 @@ def main(argv=None) -> int:
     parser.add_argument("--check", action="store_true", help="compare only: exit 1 and print a diff")
     parser.add_argument("--run", metavar="SUITE", help="run benchmarks/suites/SUITE.toml and record its rows first")
     parser.add_argument("--jobs", type=int, default=2, help="cells run at once with --run (default 2)")
+    parser.add_argument("--from", dest="source", metavar="DIR",
+                        help="with --run: record the finished run in DIR (its --out) instead of running again")
     args = parser.parse_args(argv)
-    if args.run:
+    if args.source and not args.run:
+        parser.error("--from DIR needs --run SUITE: the suite the run in DIR is of")
+    if args.run and args.source:
+        command = f"novelty bench benchmarks/suites/{args.run}.toml (a finished run, recorded)"
+        print(f"recorded {_shown(record(args.run, Path(args.source), command, None, None))}")
+    elif args.run:
         print(f"recorded {_shown(run(args.run, args.jobs))}")
     diffs = differences()
     if args.check:

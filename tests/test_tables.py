@@ -149,3 +149,16 @@ def test_a_slice_of_the_suite_gives_the_committed_rows(suite, detector, task, se
 def test_every_committed_suite_has_a_slice():
     assert set(COMMITTED) <= set(SLICES), "give each committed suite a few cells in SLICES"
 
+
+
+def test_a_finished_run_is_recorded_with_the_revision_its_rows_name(results, tmp_path):
+    store, _ = results
+    rows = [dict(row, git_revision="feedc0ffee" * 4, host="lab") for row in store.rows()]
+    store.write_csv(rows)
+    target = tables.record("toy", store.out, "novelty bench toy.toml", None, None)
+    made = tables.provenance("toy")
+    assert made["revision"] == "feedc0ffee" * 4 and made["rows"]["host"] == "lab" and made["elapsed_s"] is None
+    with open(target / tables.RESULTS_CSV, newline="", encoding="utf-8") as fh:
+        assert not {"git_revision", "host"} & set(next(csv.reader(fh)))    # said once, in provenance.json
+    with pytest.raises(SystemExit):
+        tables.main(["--from", str(store.out)])                           # --from needs the suite
