@@ -42,6 +42,7 @@ __all__ = [
     "Clusterer",
     "Synapse",
     "KernelSpec",
+    "squared_distances",
     "SOM",
     "StanleySynapse",
     "ModelFileError",
@@ -56,6 +57,7 @@ _LAZY = {
     "Growth": "novelty.clusterers.base",
     "Synapse": "novelty.habituation.base",
     "KernelSpec": "novelty._component",
+    "squared_distances": "novelty.distances",
     "SOM": "novelty.clusterers.som",
     "StanleySynapse": "novelty.habituation.stanley",
     "ModelFileError": "novelty.persistence",
@@ -64,7 +66,8 @@ _LAZY = {
 
 
 #: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
-_SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing")
+_SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing",
+                "rules")
 
 
 def __getattr__(name: str) -> Any:

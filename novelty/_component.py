@@ -17,7 +17,23 @@ from sklearn.base import BaseEstimator
 
 from ._validation import validate_parameters
 
-__all__ = ["Component", "KernelSpec", "StateError"]
+__all__ = ["Component", "KernelSpec", "StateError", "declares"]
+
+#: the capabilities a component class may declare (``_capabilities``), and what each promises
+CAPABILITIES = {
+    "nearest-unit": "a clusterer whose winner, in match and winners alike, is the first unit of "
+                    "least novelty.distances.squared_distances(weights_, x): batch scoring is "
+                    "then compiled (the nearest-unit kernel) for it, with any synapse",
+}
+
+
+def declares(component, capability: str) -> bool:
+    """Whether the component's own class declares ``capability`` in ``_capabilities``.
+
+    A subclass does not inherit a declaration (it may change what it promises): it declares
+    the capability again, as it declares its compiled steps (:class:`KernelSpec`).
+    """
+    return capability in type(component).__dict__.get("_capabilities", ())
 
 _JSON_SCALARS = (str, bool, int, float, type(None))
 

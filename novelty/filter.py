@@ -34,6 +34,7 @@ from . import _kernels
 from ._component import StateError, check_array_state
 from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
+from .distances import squared_distances
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
 from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
@@ -190,6 +191,8 @@ class HabituatingFilter(NoveltyDetector):
         "threshold": Interval(numbers.Real, None, None),
         "stimulus": Interval(numbers.Real, 0, None),
         "n_epochs": Interval(numbers.Integral, 1, None),
+        "random_state": (Interval(numbers.Integral, 0, None, allow_none=True),
+                         Instance((np.random.Generator,), "a numpy Generator")),
         "novelty_rule": Options(("efficacy", "mismatch", "product")),
         "match_scale": (Options(("scott",)), Interval(numbers.Real, 0, None, closed="neither", allow_none=True)),
         "match_quantile": Interval(numbers.Real, 0, 1),
@@ -327,6 +330,7 @@ class HabituatingFilter(NoveltyDetector):
             "or set init_range to their range, or init='sample'.", ScanRangeWarning, stacklevel=2)
 
     def _rebuild_scratch(self) -> None:
+        self._engine = None  # the compiled loop of the fitted pair: built when first asked for
         if not hasattr(self, "match_scale_"):  # a model file written before the scale existed
             self.match_scale_ = None
         scans = getattr(self, "calibration_scans_", None)
@@ -388,9 +392,22 @@ class HabituatingFilter(NoveltyDetector):
         rule = mismatch_novelty if self.novelty_rule == "mismatch" else product_novelty
         return np.where(known, rule(efficacy, distances, sigma), efficacy)
 
-    # The hooks below first ask novelty._kernels for a compiled kernel for this
-    # (clusterer, synapse) pair; a kernel gives the same results as the
-    # reference code after it, which runs when there is none.
+    # The hooks below first ask the fitted pair's engine (novelty._kernels) for a
+    # compiled kernel; a kernel gives the same results as the reference code
+    # after it, which runs when there is none.
+    def set_params(self, **params):
+        """scikit-learn's ``set_params``; the compiled loop is built again on the next call."""
+        self._engine = None
+        return super().set_params(**params)
+
+    def _kernel_engine(self):
+        """The engine of the fitted pair (:func:`novelty._kernels.engine_for`), or None: built
+        once, again when a part was replaced or the parameters set (``set_params``)."""
+        engine = getattr(self, "_engine", None)
+        if engine is None or engine.clusterer is not self.clusterer_ or engine.synapse is not self.synapse_:
+            engine = self._engine = _kernels.engine_for(self.clusterer_, self.synapse_)
+        return engine
+
     def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         return self._combine(*self._learn_raw(X, dt))
 
@@ -398,7 +415,8 @@ class HabituatingFilter(NoveltyDetector):
         """Learn the rows of ``X``: each row's efficacy novelty and, unless the rule is the
         efficacy alone, its squared distance to its winner."""
         distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
-        kernel = _kernels.learner(self.clusterer_, self.synapse_, learn_stream)
+        engine = self._kernel_engine()
+        kernel = None if engine is None else engine.learner(learn_stream)
         if kernel is not None:
             efficacy = kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
                               distances=distances)
@@ -422,7 +440,7 @@ class HabituatingFilter(NoveltyDetector):
         else:
             rows[:], _ = self.clusterer_.winners(X)
             # the winners' distances as match() computes them (winners() expands the square)
-            distances[:] = ((X - self.clusterer_.weights_[rows]) ** 2).sum(axis=1)
+            distances[:] = squared_distances(X, self.clusterer_.weights_[rows])
             efficacy = self.synapse_.efficacy_[rows]
         new = self.clusterer_.grows_for(rows, distances)
         if new is not None:

@@ -67,7 +67,9 @@ def all_state(det):
     out = {}
     for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
         for name, value in vars(obj).items():
-            if name in ("clusterer_", "synapse_"):
+            # the compiled loop's engine is not state: built on first use, it reads the parts'
+            # arrays and parameters on every call (a loaded model builds its own)
+            if name in ("clusterer_", "synapse_", "_engine"):
                 continue
             out[owner + name] = value
     return out

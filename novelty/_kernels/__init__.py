@@ -2,10 +2,11 @@
 
 The readable numpy code (:func:`novelty.filter.learn_stream`, ``match``,
 ``winners``) is the reference; a kernel is an optimisation that must give the
-same winners, weights and efficacies (bit for bit where the arithmetic is the
-same; ``tests/_kernels`` checks every registered pair). The filter asks
-:func:`learner` and :func:`scorer` for a kernel on every call and falls back
-to the reference when they answer ``None``:
+same winners, weights and efficacies (bit for bit: the arithmetic is the
+same, distances included, :mod:`novelty.distances`; ``tests/_kernels`` checks
+every registered pair). A filter owns the :class:`~.engine.Engine` of its
+fitted pair (:func:`engine_for`), and asks it, and :func:`scorer`, for a
+kernel on every call, falling back to the reference when they answer ``None``:
 
 - a component whose own class declares no kernel (a plugin without compiled
   steps, a subclass that may change the arithmetic): :func:`path` says which
@@ -19,9 +20,10 @@ to the reference when they answer ``None``:
 The machinery, one job per module: :mod:`.compiling` (compiling in a child
 process, readiness, numba's disk cache), :mod:`.params` (state and
 parameters read from the components' declarations), :mod:`.drivers` (the one
-loop, generated per pair), :mod:`.learning` (running it, growing the state),
+loop, generated per pair), :mod:`.engine` (a pair's state and parameters
+handed to its driver, the state grown),
 :mod:`.handover` (from the reference to the kernel mid-stream),
-:mod:`._distances` and :mod:`._pairwise` (numpy's summation order). Batch
+:mod:`._distances` (the project's summation order, :mod:`novelty.distances`). Batch
 scoring is :mod:`.scoring`: a float32 pre-filter with exact re-checks, on
 threads (``NOVELTY_NUM_THREADS``, default: the usable cores).
 """
@@ -34,16 +36,15 @@ from typing import Callable
 
 import numpy as np
 
-from ..clusterers.gng import GrowingNeuralGas
-from ..clusterers.gwr import GrowWhenRequired
-from ..clusterers.kmeans import OnlineKMeans
-from ..clusterers.som import SOM
-from . import compiling, learning
+from .._component import declares
+from . import compiling
 from .compiling import Compiled, disabled
+from .engine import Engine, engine_for
 from .params import nested_ready, spec_of
 from .scoring import score
 
-__all__ = ["learner", "scorer", "kernels_enabled", "wait", "path", "reference_loops"]
+__all__ = ["Engine", "engine_for", "learner", "scorer", "kernels_enabled", "wait", "path",
+           "reference_loops"]
 
 _NEAREST = Compiled("novelty._kernels._nearest")  # batch scoring (see .scoring)
 
@@ -51,9 +52,11 @@ _NEAREST = Compiled("novelty._kernels._nearest")  # batch scoring (see .scoring)
 def learner(clusterer, synapse, reference: Callable) -> Callable | None:
     """A function ``(clusterer, synapse, X, dt, stimulus, distances=None) -> novelty``, or None.
 
-    The function gives what ``reference`` (``learn_stream``) gives, state and all.
+    The function gives what ``reference`` (``learn_stream``) gives, state and all. (A new
+    engine each call: a filter keeps its own, see :func:`engine_for`.)
     """
-    return learning.learner(clusterer, synapse, reference)
+    engine = engine_for(clusterer, synapse)
+    return None if engine is None else engine.learner(reference)
 
 
 def path(clusterer, synapse) -> str:
@@ -70,7 +73,7 @@ def path(clusterer, synapse) -> str:
     if disabled():
         return "reference (NOVELTY_NO_KERNELS)"
     if hasattr(clusterer, "weights_"):
-        compiled = learning.compiled_for(clusterer, synapse)
+        compiled = engine_for(clusterer, synapse).compiled()
         if compiled is None:
             return "reference (state not in the declared layout)"
         if compiled.failed or compiled.error is not None:
@@ -104,7 +107,8 @@ def wait(clusterer=None, synapse=None, timeout: float | None = None):
     Returns the module waited for last, or None when kernels are unavailable.
     """
     if clusterer is not None:
-        compiled = learning.compiled_for(clusterer, synapse)
+        engine = engine_for(clusterer, synapse)
+        compiled = None if engine is None else engine.compiled()
         return None if compiled is None else compiled.wait(timeout)
     for compiled in compiling.live():
         if compiled is not _NEAREST:
@@ -120,11 +124,6 @@ def _plain(a, ndim: int) -> bool:
     return flags.c_contiguous and flags.writeable
 
 
-#: clusterers whose winner is the first unit of least squared distance, ``match``
-#: and ``winners`` alike: batch scoring is the same kernel for all of them
-_NEAREST_UNIT = (SOM, GrowingNeuralGas, GrowWhenRequired, OnlineKMeans)
-
-
 def scorer(clusterer, synapse) -> Callable | None:
     """A function ``(clusterer, synapse, X, winners=None, distances=None) -> novelty``, or None.
 
@@ -133,9 +132,11 @@ def scorer(clusterer, synapse) -> Callable | None:
     distance, as ``match`` computes them (:mod:`.scoring`).
 
     Scoring only reads the weights and the efficacies, so any synapse model
-    with a plain ``efficacy_`` array will do.
+    with a plain ``efficacy_`` array will do; the clusterer's class declares
+    the capability ``"nearest-unit"`` (its winner is the first unit of least
+    squared distance, :func:`novelty._component.declares`).
     """
-    if type(clusterer) not in _NEAREST_UNIT:
+    if not declares(clusterer, "nearest-unit"):
         return None
     W, y = getattr(clusterer, "weights_", None), getattr(synapse, "efficacy_", None)
     if not (_plain(W, 2) and _plain(y, 1) and y.shape[0] == W.shape[0]):

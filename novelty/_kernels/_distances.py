@@ -1,9 +1,9 @@
-"""Squared distances to every unit at once, in numpy's summation order (shared by the kernels).
+"""Squared distances to every unit at once, in the project's summation order (shared by the kernels).
 
 Weights are held transposed, (features, units), so that the loops over the
 units are innermost and contiguous and vectorise. The order of the sums is
-numpy's (:func:`._pairwise.pairwise_plan`), so the distances equal
-``((W - x) ** 2).sum(axis=1)`` bit for bit. Every function here is inlined
+the one :mod:`novelty.distances` documents, so the distances equal
+:func:`novelty.distances.squared_distances` bit for bit. Every function here is inlined
 into the kernel that calls it (``inline="always"``), so importing this
 module compiles nothing. numba keys a cached kernel on its own source file
 only: after editing this file, clear the cache (``__pycache__/*.nb*`` or
@@ -24,11 +24,11 @@ def sq(WT, k, j, x):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def block_cols(WT, x, out, acc, lo, n, n_units):
-    """Sum of (WT[k, j] - x[k])**2 over one block of at most 128 features k, for every unit j.
+    """Sum of (WT[k, j] - x[k])**2 over the features k in [lo, lo + n), for every unit j.
 
-    numpy's order: eight running sums over the blocks of eight features,
-    combined pairwise, then the tail added one by one (fewer than eight
-    features: all of them one by one). Starting a sum at 0.0 changes nothing
+    The project's order (:mod:`novelty.distances`): eight running sums over the
+    blocks of eight features, combined pairwise, then the tail added one by one
+    (fewer than eight features: all of them one by one). Starting a sum at 0.0 changes nothing
     (0.0 + s == s for the non-negative squares). The loops over units j are
     innermost and contiguous, so they vectorise. Up to 23 features (the
     paper's 16) the eight sums stay in registers, one pass over the units;
@@ -78,29 +78,17 @@ def block_cols(WT, x, out, acc, lo, n, n_units):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def distances_cols(WT, x, plan, acc, stack, n_units):
-    """Squared distances from ``x`` to the first ``n_units`` units, into ``stack[0]``.
+def distances_cols(WT, x, acc, out, n_units):
+    """Squared distances from ``x`` to the first ``n_units`` units, into ``out``.
 
-    Weights as (features, units); ``acc`` (8, units) and ``stack`` (plan
-    length, units) are scratch. ``plan`` is numpy's summation order
-    (:func:`._pairwise.pairwise_plan`).
+    Weights as (features, units); ``acc`` (8, units) is scratch.
     """
-    if plan.shape[0] == 1 and plan[0, 1] == 16:
+    if WT.shape[0] == 16:
         # The paper's 16 sonar readings: with the block size a constant, LLVM
         # drops the other cases and their checks (about 1.4x faster).
-        block_cols(WT, x, stack[0], acc, 0, 16, n_units)
-        return
-    sp = 0
-    for p in range(plan.shape[0]):
-        if plan[p, 1] > 0:
-            block_cols(WT, x, stack[sp], acc, plan[p, 0], plan[p, 1], n_units)
-            sp += 1
-        else:
-            a = stack[sp - 2]
-            b = stack[sp - 1]
-            for j in range(n_units):
-                a[j] = a[j] + b[j]
-            sp -= 1
+        block_cols(WT, x, out, acc, 0, 16, n_units)
+    else:
+        block_cols(WT, x, out, acc, 0, WT.shape[0], n_units)
 
 
 @njit(cache=True, error_model="numpy", inline="always")

@@ -1,8 +1,9 @@
 """Each scan's nearest unit, exactly as ``match`` finds it, from a float32 pre-filter.
 
 The reference is ``Clusterer.match``: the squared distances
-``d_j = ((W - x) ** 2).sum(axis=1)`` in float64, summed in numpy's pairwise
-order, and the winner ``np.argmin(d)``, the first unit of least distance.
+``d_j = squared_distances(W, x)`` in float64, summed in the project's order
+(:mod:`novelty.distances`), and the winner ``np.argmin(d)``, the first unit
+of least distance.
 :func:`nearest` returns the same winner and the same ``d_winner``, bit for
 bit, at a fraction of the cost:
 
@@ -11,15 +12,15 @@ bit, at a fraction of the cost:
    from the squared distance by ``|x|^2``, the same for all units. Per scan
    the least value ``s_a`` (unit ``a``) and the second least ``s_b``.
 2. **Decision** (:func:`_decide`): the distance to unit ``a``, in float64
-   in numpy's order (:func:`row_distance`). If the gap ``s_b - s_a``
+   in the project's order (:func:`row_distance`). If the gap ``s_b - s_a``
    exceeds the bound ``T`` below, unit ``a`` is the reference's winner and
    that is its distance. Otherwise (ties, near ties; in :func:`nearest`) every
    unit ``j`` with ``s_j <= s_a + T`` is a candidate (the others are farther
-   than ``a``), the candidates' distances are computed in numpy's order and
-   the first of the least wins, as in the reference.
+   than ``a``), the candidates' distances are computed in the project's
+   order and the first of the least wins, as in the reference.
    Scans beyond float32's range (below) take the exact path: all distances
-   in numpy's order (:func:`._distances.distances_cols`), the first of the
-   least.
+   in the project's order (:func:`._distances.distances_cols`), the first of
+   the least.
 
 **The bound.** Let ``u = 2**-24`` (float32's unit roundoff), ``t = 2**-126``
 (float32's smallest normal number: the absolute error of one rounding that
@@ -49,7 +50,9 @@ order, each product rounded once or fused with its addition, where
 So ``D_j - D_a >= (s_j - s_a) - 2 e`` (the pre-filter's values ``s^`` written ``s``) for the exact squared distances
 ``D_j = |x - w_j|^2``. The reference's float64 distances are the exact ones
 up to ``|d_j - D_j| <= gamma_{n+2}(2**-53) D_j`` (a rounded difference,
-squared, then a sum of non-negative terms; float64 underflow is far below
+squared, then a sum of ``n`` non-negative terms, whose error is at most
+``gamma_{n-1}`` times the sum in every order of summation, so in the
+project's (:mod:`novelty.distances`); float64 underflow is far below
 ``A``), and ``D_j <= r^2``. Hence ``s_j - s_a > T_0 := 2 e + 2 gamma_{n+2}(2**-53) r^2``
 implies ``d_a < d_j``, strictly: such a unit ``j`` is not the winner, and
 when it holds for all ``j != a`` (``s_b - s_a > T_0``) unit ``a`` is
@@ -63,7 +66,7 @@ above might overflow, and the scan takes the exact path (every scan, when
 :data:`novelty._validation.MAX_SCAN_NORM` (1e100); their float64 squared
 distances stay finite.
 
-numba compiles without fast-math, so the float64 sums keep numpy's order;
+numba compiles without fast-math, so the float64 sums keep the project's order;
 the float32 pre-filter alone is compiled with fused multiply-adds
 (:data:`PREFILTER_MATH`): the bound holds for every order and for fused or
 separate products.
@@ -99,7 +102,7 @@ LIMIT = 1e18
 PREFILTER_MATH = {"contract"}
 #: the one signature compiled: callers pass exactly these types
 SIGNATURE = ("int64(float64[:, ::1], float64[::1], float64[:, ::1], int64[::1], float64[::1], "
-             "float64[::1], int64[:, ::1])")
+             "float64[::1])")
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -110,8 +113,8 @@ def _sq(W, j, X, i, k):
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _block(W, j, X, i, lo, n):
-    """Sum of (W[j, k] - X[i, k])**2 over one block [lo, lo + n) of at most 128 features, in
-    numpy's pairwise order (as :func:`._distances.block_cols`, for one unit)."""
+    """Sum of (W[j, k] - X[i, k])**2 over the features [lo, lo + n), in the project's order
+    (:mod:`novelty.distances`; as :func:`._distances.block_cols`, for one unit)."""
     end = lo + n - n % 8
     if n >= 8:
         r0, r1, r2, r3 = _sq(W, j, X, i, lo), _sq(W, j, X, i, lo + 1), _sq(W, j, X, i, lo + 2), \
@@ -136,25 +139,15 @@ def _block(W, j, X, i, lo, n):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def row_distance(W, j, X, i, plan, stack):
-    """``((W[j] - X[i]) ** 2).sum()`` bit for bit (``plan``: :func:`._pairwise.pairwise_plan`).
+def row_distance(W, j, X, i):
+    """:func:`novelty.distances.squared_distances` of ``W[j]`` and ``X[i]``, bit for bit.
 
     Rows are passed by index: a view ``X[i]`` would count references to
     ``X`` (atomic operations) for every scan.
     """
-    if plan.shape[0] == 1:
-        if plan[0, 1] == 16:  # the paper's 16 readings: a constant block, straight-line code
-            return _block(W, j, X, i, 0, 16)
-        return _block(W, j, X, i, 0, plan[0, 1])
-    sp = 0
-    for p in range(plan.shape[0]):
-        if plan[p, 1] > 0:
-            stack[sp] = _block(W, j, X, i, plan[p, 0], plan[p, 1])
-            sp += 1
-        else:
-            stack[sp - 2] = stack[sp - 2] + stack[sp - 1]
-            sp -= 1
-    return stack[0]
+    if W.shape[1] == 16:  # the paper's 16 readings: a constant block, straight-line code
+        return _block(W, j, X, i, 0, 16)
+    return _block(W, j, X, i, 0, W.shape[1])
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -272,15 +265,14 @@ def _bound(r, n):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, plan, one, check, winners, novelty,
-            distances):
+def _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, check, winners, novelty, distances):
     """Lanes ``0, ..., m - 1`` (scans ``start + b``): the pre-filter's winner, its exact
     distance and efficacy written out; ``check[b]`` where the gap test fails (or ``r`` is
     beyond :data:`LIMIT`). Returns how many fail.
     """
     n = W.shape[1]
     for b in range(m):  # the winner's distance, scan by scan (vectorised by features)
-        distances[start + b] = row_distance(W, arg[b], X, start + b, plan, one)
+        distances[start + b] = row_distance(W, arg[b], X, start + b)
     n_check = 0
     for b in range(m):  # vectorised over the lanes
         r = norm[b] + w_max
@@ -294,21 +286,21 @@ def _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, plan, one, check, winne
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _exact(WT, X, i, plan, acc8, stack):
-    """What ``match`` does: all squared distances in numpy's order, the first of the least."""
+def _exact(WT, X, i, acc8, d):
+    """What ``match`` does: all squared distances in the project's order, the first of the least."""
     n_units = WT.shape[1]
-    distances_cols(WT, X[i], plan, acc8, stack, n_units)
-    best = stack[0, 0]
+    distances_cols(WT, X[i], acc8, d, n_units)
+    best = d[0]
     a = 0
     for j in range(1, n_units):
-        if stack[0, j] < best:
+        if d[j] < best:
             a = j
-            best = stack[0, j]
+            best = d[j]
     return a, best
 
 
 @njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
-def nearest(W, y, X, winners, novelty, distances, plan):
+def nearest(W, y, X, winners, novelty, distances):
     """Each row of ``X``: its nearest unit (row of ``W``), that unit's efficacy ``y`` and
     squared distance, written to ``winners``, ``novelty`` and ``distances``.
 
@@ -321,8 +313,7 @@ def nearest(W, y, X, winners, novelty, distances, plan):
     # the exact path's scratch: transposed weights, as the learning kernels hold them
     WT = transposed(W, n_units)
     acc8 = np.empty((8, n_units))
-    stack = np.empty((plan.shape[0], n_units))
-    one = np.empty(plan.shape[0])
+    d_all = np.empty(n_units)
     # the pre-filter's lanes
     XT = _aligned(n, LANES, f32)
     XT[:] = 0.0
@@ -341,7 +332,7 @@ def nearest(W, y, X, winners, novelty, distances, plan):
         if not (prefilter and m * 8 >= LANES):
             for i in range(start, start + m):
                 n_exact += 1
-                a, best = _exact(WT, X, i, plan, acc8, stack)
+                a, best = _exact(WT, X, i, acc8, d_all)
                 winners[i] = a
                 novelty[i] = y[a]
                 distances[i] = best
@@ -360,12 +351,12 @@ def nearest(W, y, X, winners, novelty, distances, plan):
             _prefilter16(Wm, wn, XT, S, acc, s1, s2, arg)
         else:
             _prefilter(Wm, wn, XT, S, acc, s1, s2, arg)
-        if _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, plan, one, check, winners,
-                   novelty, distances) == 0:
+        if _decide(W, y, X, start, m, norm, w_max, s1, s2, arg, check, winners, novelty,
+                   distances) == 0:
             continue
         # The scans whose gap test failed. Within the pre-filter's range, every unit j
         # with S[j, b] <= s_a + T is a candidate (the others are farther than unit a);
-        # their distances in numpy's order, the first of the least. Beyond it, the exact
+        # their distances in the project's order, the first of the least. Beyond it, the exact
         # path. Written here, not in a function: a call passing these arrays cost
         # about as much as the re-check itself.
         for b in range(m):
@@ -374,14 +365,14 @@ def nearest(W, y, X, winners, novelty, distances, plan):
                 i = start + b
                 r = norm[b] + w_max
                 if r > LIMIT:
-                    a, best = _exact(WT, X, i, plan, acc8, stack)
+                    a, best = _exact(WT, X, i, acc8, d_all)
                 else:
                     a = arg[b]
                     best = distances[i]
                     limit = np.float64(s1[b]) + _bound(r, n)
                     for j in range(n_units):
                         if j != a and np.float64(S[j, b]) <= limit:
-                            d = row_distance(W, j, X, i, plan, one)
+                            d = row_distance(W, j, X, i)
                             if d < best or (d == best and j < a):
                                 a = j
                                 best = d

@@ -29,7 +29,7 @@ import sys
 import threading
 import warnings
 
-__all__ = ["Compiled", "disabled", "load"]
+__all__ = ["Compiled", "cache_files", "disabled", "load"]
 
 #: what the compiling child runs: ``python -I -c _CHILD module file path...`` (file: "" for a
 #: module found on the path)
@@ -64,6 +64,17 @@ def load(name: str, file: str | None):
         del sys.modules[name]
         raise
     return module
+
+
+def cache_files(stem: str, source: str, kinds: tuple = ("nbi", "nbc")) -> list[str]:
+    """numba's cache files (of these kinds: ``nbi`` the index, ``nbc`` the code) of the module
+    ``stem`` whose source is ``source``: in ``NUMBA_CACHE_DIR/<a folder per source folder>/``
+    when that is set, else in ``__pycache__`` beside the source."""
+    cache_dir = os.environ.get("NUMBA_CACHE_DIR")
+    folders = (glob.glob(os.path.join(cache_dir, "*")) if cache_dir
+               else [os.path.join(os.path.dirname(os.path.abspath(source or ".")), "__pycache__")])
+    return [found for folder in folders for kind in kinds
+            for found in glob.glob(os.path.join(glob.escape(folder), f"{glob.escape(stem)}.*.{kind}"))]
 
 
 class Compiled:
@@ -150,11 +161,7 @@ class Compiled:
             spec = importlib.util.find_spec(self.name)
             source = spec.origin if spec is not None else ""
         stem = os.path.splitext(os.path.basename(source or ""))[0]
-        cache_dir = os.environ.get("NUMBA_CACHE_DIR")
-        # numba's cache: NUMBA_CACHE_DIR/<one folder per source folder>/, else __pycache__
-        folders = (glob.glob(os.path.join(cache_dir, "*")) if cache_dir
-                   else [os.path.join(os.path.dirname(os.path.abspath(source or ".")), "__pycache__")])
-        return bool(stem) and any(glob.glob(os.path.join(f, f"{stem}.*.nbi")) for f in folders)
+        return bool(stem) and bool(cache_files(stem, source, ("nbi",)))
 
     def _compile_in_child(self) -> None:
         """Compile in a child process, which leaves the machine code in numba's disk cache.

@@ -10,18 +10,13 @@ from __future__ import annotations
 import math
 import numbers
 import operator
-import weakref
 from typing import Callable
 
 import numpy as np
 
 from .._component import Component, KernelSpec
 
-__all__ = ["spec_of", "pack", "attribute", "arrays_of", "counters_of", "getter"]
-
-#: the last vector packed for each component, with the values it packed (held weakly: a
-#: copy or a pickle of a component never carries it)
-_packed: "weakref.WeakKeyDictionary[Component, tuple]" = weakref.WeakKeyDictionary()
+__all__ = ["spec_of", "pack", "attribute", "arrays_of", "getter", "nested_ready"]
 
 
 def spec_of(component) -> KernelSpec | None:
@@ -49,23 +44,6 @@ def getter(names: tuple) -> Callable:
     return operator.attrgetter(*names) if names else (lambda obj: ())
 
 
-_getters: dict[type, tuple] = {}
-
-
-def _params_getter(kind: type, spec: KernelSpec) -> Callable:
-    known = _getters.get(kind)
-    if known is None or known[0] is not spec:
-        known = _getters[kind] = (spec, getter(spec.params))
-    return known[1]
-
-
-def _last_packed(component) -> tuple | None:
-    try:
-        return _packed.get(component)
-    except TypeError:  # a component that cannot be weakly referenced or hashed
-        return None
-
-
 def _encode(component, name: str, value) -> list[float] | np.ndarray:
     if type(value) is float or type(value) is int:  # the common case first
         return [float(value)]
@@ -78,7 +56,9 @@ def _encode(component, name: str, value) -> list[float] | np.ndarray:
     if isinstance(value, (bool, np.bool_)):
         return [float(value)]
     if isinstance(value, str):
-        rules = component._parameter_rules.get(name, ())
+        owner_path, _, leaf = name.rpartition(".")  # a dotted name: the nested component's rule
+        owner = attribute(component, owner_path) if owner_path else component
+        rules = owner._parameter_rules.get(leaf, ())
         for rule in rules if isinstance(rules, tuple) else (rules,):
             options = getattr(rule, "values", ())
             if value in options:
@@ -91,34 +71,12 @@ def _encode(component, name: str, value) -> list[float] | np.ndarray:
 
 def pack(component) -> np.ndarray:
     """The float64 vector of the component's ``_kernel.params`` (see KernelSpec), nested
-    components' vectors appended in place.
-
-    Parameters may change between calls (``set_params``, or set directly), so
-    they are read every time; the vector is packed again unless every value is
-    equal to, and of the same type as, the one last packed (a nested
-    component's own vector the same object as last time).
-    """
+    components' vectors appended in place. (An engine packs again when a value changed.)"""
     spec = spec_of(component)
-    values = _params_getter(type(component), spec)(component)
-    types = tuple(map(type, values))
-    last = _last_packed(component)
-    if last is not None and last[0] == types and last[1] == values and all(
-            pack(values[i]) is vector for i, vector in last[2]):
-        return last[3]
     parts: list[float] = []
-    nested = []
-    for i, name in enumerate(spec.params):
-        encoded = _encode(component, name, values[i])
-        if isinstance(values[i], Component):
-            nested.append((i, encoded))
-            encoded = list(encoded)
-        parts += encoded
-    vector = np.array(parts, dtype=np.float64)
-    try:
-        _packed[component] = (types, values, tuple(nested), vector)
-    except TypeError:  # a component that cannot be weakly referenced or hashed
-        pass
-    return vector
+    for name, value in zip(spec.params, getter(spec.params)(component)):
+        parts.extend(_encode(component, name, value))
+    return np.array(parts, dtype=np.float64)
 
 
 def arrays_of(component, spec: KernelSpec, n_units: int) -> list | None:
@@ -135,13 +93,6 @@ def arrays_of(component, spec: KernelSpec, n_units: int) -> list | None:
             return None
         out.append(a)
     return out
-
-
-def counters_of(component, spec: KernelSpec) -> np.ndarray | None:
-    try:
-        return np.array([int(getattr(component, name)) for name in spec.counters], dtype=np.int64)
-    except (AttributeError, TypeError, ValueError, OverflowError):
-        return None
 
 
 def nested_ready(component, spec: KernelSpec) -> bool:

@@ -2,7 +2,7 @@
 
 :func:`score` gives what the reference gives (``Clusterer.match`` scan by
 scan: the winner is the first unit of least squared distance, the distance
-is ``((W - x) ** 2).sum(axis=1)`` at the winner; the novelty its efficacy),
+is :func:`novelty.distances.squared_distances` at the winner; the novelty its efficacy),
 bit for bit, through the compiled :func:`._nearest.nearest` (a float32
 pre-filter with exact float64 re-checks; its docstring derives the bound).
 The batch is cut into chunks of :data:`CHUNK` scans (bounding the kernel's
@@ -23,7 +23,6 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from ._pairwise import pairwise_plan
 
 __all__ = ["score", "threads"]
 
@@ -31,7 +30,6 @@ __all__ = ["score", "threads"]
 #: about 0.4 ms of one core, small enough to share 200,000 scans evenly)
 CHUNK = 8192
 
-_plans: dict[int, np.ndarray] = {}
 _lock = threading.Lock()
 _pool: ThreadPoolExecutor | None = None
 _pool_size = 0
@@ -46,13 +44,6 @@ def threads() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on Linux
         return max(1, os.cpu_count() or 1)
-
-
-def _plan(n_features: int) -> np.ndarray:
-    plan = _plans.get(n_features)
-    if plan is None:
-        plan = _plans[n_features] = pairwise_plan(n_features)
-    return plan
 
 
 def _executor(n_threads: int) -> ThreadPoolExecutor:
@@ -86,7 +77,6 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     out = np.empty(n)
     rows = np.empty(n, dtype=np.int64) if winners is None else winners
     dist = np.empty(n) if distances is None else distances
-    plan = _plan(W.shape[1])
     kernel = module.nearest
 
     n_chunks = -(-n // CHUNK)
@@ -95,7 +85,7 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     n_threads = 1 if n_chunks < 2 else min(threads(), n_chunks)
     if n_threads < 2:
         for a in range(0, n, CHUNK):
-            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist, plan)
+            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist)
         return out
     # Chunks are handed out one at a time, as threads come for them: a thread
     # slowed by another process on its core scores fewer (a fixed share each
@@ -104,7 +94,7 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
 
     def work() -> None:
         for a in starts:
-            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist, plan)
+            _chunk(kernel, W, y, X, a, min(a + CHUNK, n), rows, out, dist)
 
     pool = _executor(n_threads - 1)
     jobs = [pool.submit(work) for _ in range(n_threads - 1)]
@@ -114,6 +104,6 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     return out
 
 
-def _chunk(kernel, W, y, X, a, b, rows, out, dist, plan) -> None:
+def _chunk(kernel, W, y, X, a, b, rows, out, dist) -> None:
     # a read-only or strided batch is copied chunk by chunk
-    kernel(W, y, _contiguous(X[a:b]), rows[a:b], out[a:b], dist[a:b], plan)
+    kernel(W, y, _contiguous(X[a:b]), rows[a:b], out[a:b], dist[a:b])

@@ -4,8 +4,10 @@
 (steps 3-11), on arrays with room for more units: ``state`` is
 ``(firing_.efficacy_, edge_ages_, unit_ids_)``, ``counters``
 ``(next_unit_id_,)``, ``p`` the vector of ``GrowWhenRequired._kernel.params``
-followed by the firing counters' (a Stanley bank, driven by the step
-functions of :mod:`novelty.habituation._stanley_steps`).
+followed by the firing counters' (a Stanley bank: its equation is
+:mod:`novelty.habituation._stanley_steps`, its schedule the one every synapse
+follows, :mod:`novelty.habituation._schedule`, with the bank's own schedule
+parameters).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ import numpy as np
 
 from .._jit import compiled, step
 from ..habituation import _stanley_steps as firing
+from ..habituation._schedule import fire, stimulate
 from . import _graph_steps as graph
 from ._graph import NO_EDGE
 from .base import move_towards
@@ -26,6 +29,9 @@ A_T, H_T, EPS_B, EPS_N, MAX_AGE, MAX_UNITS, FIRING_CONDITION, NEW_WINS, FIRING =
     _P.index(name) for name in ("activity_threshold_", "habituation_threshold", "epsilon_b",
                                 "epsilon_n", "max_age", "max_units", "firing_condition",
                                 "new_unit_wins", "firing_"))
+F_TAU_W, F_TAU_N, F_TAU_F, F_OTHERS = (
+    _P.index(name) for name in ("firing_.tau_winner", "firing_.tau_neighbour", "firing_.tau_forget",
+                                "firing_.others"))
 NEXT_ID = GrowWhenRequired._kernel.counters.index("next_unit_id_")
 
 _move = compiled(move_towards)
@@ -86,10 +92,13 @@ def adapt(WT, x, d, s, t, nb, k, n, state, counters, p, gone):
                     WT[f, j] = _move(WT[f, j], x[f], p[EPS_N] * h[j])
     graph.age_edges(A, n, s)                                            # step 9
     around = np.empty(n, dtype=np.int64)                                # step 10
-    firing.step((h,), n, s, around, graph.neighbours(A, n, s, around), 1.0, 1.0, ph, gone)
+    rows = np.empty(n, dtype=np.int64)
+    tau_f = p[F_TAU_N] if math.isnan(p[F_TAU_F]) else p[F_TAU_F]
+    stimulate(firing.advance, (h,), n, s, around, graph.neighbours(A, n, s, around), 1.0, 1.0,
+              p[F_TAU_W], p[F_TAU_N], tau_f, p[F_OTHERS] != 0.0, ph, gone, rows)
     new_wins = grow and p[NEW_WINS] != 0.0
     if new_wins:  # the new unit fires for the input too
-        firing.fire((h,), r, 1.0, 1.0, ph)
+        fire(firing.advance, (h,), r, 1.0, 1.0, p[F_TAU_W], ph, rows)
     removed = graph.prune(A, n, s, int(p[MAX_AGE]), gone)               # step 11
     if removed:
         n = graph.delete_units(n, gone, WT, A, ids, h)

@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._component import Component, StateError, check_array_state, check_int_state
+from ..distances import squared_distances
 
 __all__ = ["Clusterer", "Match", "Growth", "NO_UNITS", "move_towards"]
 
@@ -90,6 +91,9 @@ class Clusterer(Component):
     """
 
     _kind = "clusterer"
+    #: capabilities this class itself declares (see :func:`novelty._component.declares`):
+    #: ``"nearest-unit"`` when the winner is the first unit of least squared distance
+    _capabilities: frozenset = frozenset()
 
     # ---------------------------------------------------------- to implement
     @abstractmethod
@@ -200,7 +204,7 @@ class Clusterer(Component):
         suspect = np.flatnonzero(part[:, 1] - part[:, 0] <= 1e-9 * scale)
         W = self.weights_
         for i in suspect:
-            direct = ((W - block[i]) ** 2).sum(axis=1)
+            direct = squared_distances(W, block[i])
             j = int(np.argmin(direct))
             rows_out[i] = j
             dist_out[i] = direct[j]

@@ -52,6 +52,7 @@ import numbers
 
 import numpy as np
 
+from ..distances import squared_distances
 from .._component import KernelSpec, StateError, check_array_state, check_int_state
 from .._validation import Bounds, Interval, Options
 from . import _graph
@@ -133,6 +134,8 @@ class GrowingNeuralGas(Clusterer):
         "init_range": Bounds(),
     }
 
+    _capabilities = frozenset({"nearest-unit"})  # match: the first unit of least distance
+
     _kernel = KernelSpec(
         steps="novelty.clusterers._gng_steps",
         params=("epsilon_b", "epsilon_n", "insertion_interval", "insertion_error_decay",
@@ -174,7 +177,7 @@ class GrowingNeuralGas(Clusterer):
 
     # ------------------------------------------------------------------ step 2
     def match(self, x: np.ndarray) -> Match:
-        d = ((self.weights_ - x) ** 2).sum(axis=1)
+        d = squared_distances(self.weights_, x)
         s1 = int(np.argmin(d))
         d1 = float(d[s1])
         d[s1] = np.inf
@@ -189,7 +192,7 @@ class GrowingNeuralGas(Clusterer):
         W, A = self.weights_, self.edge_ages_
         nb = _graph.neighbours(A, s1)
         _graph.age_edges(A, s1)                                          # step 3
-        self.errors_[s1] += float(((x - W[s1]) ** 2).sum())              # step 4
+        self.errors_[s1] += float(squared_distances(x, W[s1]))          # step 4
         W[s1] = move_towards(W[s1], x, self.epsilon_b)                   # step 5
         W[nb] = move_towards(W[nb], x, self.epsilon_n)
         _graph.connect(A, s1, s2)                                        # step 6

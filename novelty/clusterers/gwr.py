@@ -80,6 +80,7 @@ import numbers
 
 import numpy as np
 
+from ..distances import squared_distances
 from .._component import KernelSpec, StateError
 from ..habituation.stanley import StanleySynapse
 from .._validation import Bounds, Instance, Interval, Options
@@ -202,10 +203,14 @@ class GrowWhenRequired(Clusterer):
         "init_range": Bounds(),
     }
 
+    _capabilities = frozenset({"nearest-unit"})  # match: the first unit of least distance
+
     _kernel = KernelSpec(
         steps="novelty.clusterers._gwr_steps",
         params=("activity_threshold_", "habituation_threshold", "epsilon_b", "epsilon_n",
-                "max_age", "max_units", "firing_condition", "new_unit_wins", "firing_"),
+                "max_age", "max_units", "firing_condition", "new_unit_wins",
+                "firing_.tau_winner", "firing_.tau_neighbour", "firing_.tau_forget",
+                "firing_.others", "firing_"),  # the nested bank's vector last: it is appended
         arrays=("firing_.efficacy_", "edge_ages_", "unit_ids_"),
         square=("edge_ages_",),
         counters=("next_unit_id_",),
@@ -283,7 +288,7 @@ class GrowWhenRequired(Clusterer):
 
     # ---------------------------------------------------------------- steps 3-4
     def match(self, x: np.ndarray) -> Match:
-        d = ((self.weights_ - x) ** 2).sum(axis=1)
+        d = squared_distances(self.weights_, x)
         s = int(np.argmin(d))
         d_s = float(d[s])
         d[s] = np.inf
@@ -300,7 +305,7 @@ class GrowWhenRequired(Clusterer):
             t = self.match(x).runner_up
         h = self.firing_.efficacy_
         _graph.connect(self.edge_ages_, s, t)                            # step 5
-        activity = np.exp(-np.sqrt(((x - self.weights_[s]) ** 2).sum()))  # step 6
+        activity = np.exp(-np.sqrt(squared_distances(x, self.weights_[s])))  # step 6
         added = 0
         if (activity < self.activity_threshold_
                 and (h[s] < self.habituation_threshold or not self.firing_condition)

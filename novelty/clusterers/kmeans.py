@@ -55,6 +55,7 @@ import numbers
 
 import numpy as np
 
+from ..distances import squared_distances
 from .._component import KernelSpec, StateError, check_array_state
 from .._validation import Bounds, Interval, Options
 from . import _graph
@@ -121,6 +122,8 @@ class OnlineKMeans(Clusterer):
         "placement_radius": (Options(("auto",)), Interval(numbers.Real, 0, None)),
     }
 
+    _capabilities = frozenset({"nearest-unit"})  # match: the first unit of least distance
+
     _kernel = KernelSpec(
         steps="novelty.clusterers._kmeans_steps",
         # "count" packs as 0, which no constant rate is; init: only "first" changes learning;
@@ -169,7 +172,7 @@ class OnlineKMeans(Clusterer):
         return self.init == "first" and self.n_units_ < self.n_clusters
 
     def match(self, x: np.ndarray) -> Match:
-        d = ((self.weights_ - x) ** 2).sum(axis=1)
+        d = squared_distances(self.weights_, x)
         s = int(np.argmin(d))
         return Match(s, float(d[s]), NO_UNITS)
 

@@ -37,6 +37,7 @@ import numbers
 
 import numpy as np
 
+from ..distances import squared_distances
 from .._component import KernelSpec, StateError, check_int_state
 from .._validation import Bounds, Interval, Options
 from .base import NO_GROWTH, Clusterer, Growth, Match, move_towards
@@ -125,6 +126,8 @@ class SOM(Clusterer):
         "init_range": Bounds(),
     }
 
+    _capabilities = frozenset({"nearest-unit"})  # match: the first unit of least distance
+
     _kernel = KernelSpec(
         steps="novelty.clusterers._som_steps",
         params=("n_rows", "n_columns", "learning_rate", "neighbour_learning_rate", "radius",
@@ -205,7 +208,7 @@ class SOM(Clusterer):
         return block[block != unit]
 
     def match(self, x: np.ndarray) -> Match:
-        d = ((self.weights_ - x) ** 2).sum(axis=1)
+        d = squared_distances(self.weights_, x)
         winner = int(np.argmin(d))
         return Match(winner, float(d[winner]), self.neighbours_of(winner, self._table_radius))
 

@@ -5,13 +5,12 @@ The equations are the functions of :mod:`novelty.habituation.wang_hsu`
 they are: each advances a group of synapses together (the closed form of a
 long gap depends on the whole group), so the units of a step are gathered
 into a group, advanced and scattered back, as ``WangHsuSynapse._advance``
-does. ``state`` is ``(efficacy, recovery)``; ``p`` the vector of
+does; the schedule (:mod:`._schedule`) decides which units and when.
+``state`` is ``(efficacy, recovery)``; ``p`` the vector of
 ``WangHsuSynapse._kernel.params``.
 """
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 from numba import njit
@@ -20,9 +19,8 @@ from .._jit import compiled, step as _step
 from . import wang_hsu as _model
 
 _P = _model.WangHsuSynapse._kernel.params
-TAU_W, TAU_N, TAU_F, ALPHA, BETA, GAMMA, Y0, Z0, L, OTHERS, METHOD = (
-    _P.index(name) for name in ("tau_winner", "tau_neighbour", "tau_forget", "alpha", "beta",
-                                "gamma", "y0", "z0", "l", "others", "method"))
+ALPHA, BETA, GAMMA, Y0, Z0, L, METHOD = (
+    _P.index(name) for name in ("alpha", "beta", "gamma", "y0", "z0", "l", "method"))
 
 _n_substeps = compiled(_model._n_substeps)
 _level = compiled(_model.level)
@@ -33,7 +31,7 @@ _exact = compiled(_model.exact_advance, _n_substeps=_n_substeps, settled=_settle
                   recovery_step=_recovery_step)
 
 
-@njit(cache=True, error_model="numpy")  # called at four places: inlined, it compiles slowly
+@njit(cache=True, error_model="numpy")  # called at three places: inlined, it compiles slowly
 def advance(state, rows, count, stimulus, tau, dt, p):
     """The units ``rows[:count]`` advanced together over ``dt`` (WangHsuSynapse._advance)."""
     y = np.empty(count)
@@ -48,38 +46,6 @@ def advance(state, rows, count, stimulus, tau, dt, p):
     for m in range(count):
         state[0][rows[m]] = y[m]
         state[1][rows[m]] = z[m]
-
-
-@_step
-def step(state, n, winner, nb, k, stimulus, dt, p, mark):
-    """Synapse.step: the other units (when forgetting), the neighbours ``nb[:k]``, the winner."""
-    if p[OTHERS] != 0.0:  # "forget"
-        mark[winner] = True
-        for m in range(k):
-            mark[nb[m]] = True
-        rest = np.empty(n, dtype=np.int64)
-        count = 0
-        for j in range(n):
-            if not mark[j]:
-                rest[count] = j
-                count += 1
-        for m in range(k):
-            mark[nb[m]] = False
-        mark[winner] = False
-        if count:
-            tau_f = p[TAU_N] if math.isnan(p[TAU_F]) else p[TAU_F]
-            advance(state, rest, count, 0.0, tau_f, dt, p)
-    if k:
-        advance(state, nb, k, stimulus, p[TAU_N], dt, p)
-    fire(state, winner, stimulus, dt, p)
-
-
-@_step
-def fire(state, row, stimulus, dt, p):
-    """Synapse.fire: the unit at ``row`` alone, as a winner."""
-    rows = np.empty(1, dtype=np.int64)
-    rows[0] = row
-    advance(state, rows, 1, stimulus, p[TAU_W], dt, p)
 
 
 @_step

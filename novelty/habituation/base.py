@@ -13,14 +13,22 @@ units follow the rule ``others``:
 - ``"forget"``: they receive ``S = 0`` and recover towards ``y0`` with time
   constant ``tau_forget`` (``tau_neighbour`` when None).
 
-A subclass provides the model: :meth:`Synapse._advance` integrates the
-equation for a set of units over an elapsed time ``dt`` with a constant
-stimulus, and ``_per_unit`` / :meth:`Synapse._fresh` describe the per-unit
-state so that the bank can grow and shrink with its clusterer.
+The schedule (who is stimulated, with which time constant, and when) is the
+base class's, here and in the compiled loop (:mod:`._schedule`); so are its
+four parameters (:data:`SCHEDULE`): a subclass whose ``__init__`` does not
+take one of them gets it, as a keyword argument with its default and its
+rule, from this class. A subclass provides only the model:
+:meth:`Synapse._advance` integrates the equation for a set of units over an
+elapsed time ``dt`` with a constant stimulus, and ``_per_unit`` /
+:meth:`Synapse._fresh` describe the per-unit state so that the bank can grow
+and shrink with its clusterer.
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
+import numbers
 from abc import abstractmethod
 
 import numpy as np
@@ -28,9 +36,37 @@ import numpy as np
 from .._component import Component, StateError, check_array_state
 from .._validation import Interval, Options
 
-import numbers
+__all__ = ["Synapse", "SCHEDULE"]
 
-__all__ = ["Synapse"]
+#: the parameters of the schedule, which every synapse takes, with their defaults (the paper's)
+SCHEDULE = {"tau_winner": 3.33, "tau_neighbour": 14.3, "others": "hold", "tau_forget": None}
+
+_SCHEDULE_RULES = {
+    "tau_winner": Interval(numbers.Real, 0, None, closed="neither"),
+    "tau_neighbour": Interval(numbers.Real, 0, None, closed="neither"),
+    "others": Options(("hold", "forget")),
+    "tau_forget": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
+}
+
+
+def _with_schedule(init, missing: list[str]):
+    """``init`` also taking the schedule's parameters ``missing``, as keywords with defaults
+    (its signature says so, so that ``get_params``, ``set_params`` and ``clone`` see them)."""
+
+    @functools.wraps(init)
+    def __init__(self, *args, **kwargs):
+        schedule = {name: kwargs.pop(name, SCHEDULE[name]) for name in missing}
+        init(self, *args, **kwargs)
+        for name, value in schedule.items():
+            setattr(self, name, value)
+
+    signature = inspect.signature(init)
+    params = list(signature.parameters.values())
+    at = next((i for i, p in enumerate(params) if p.kind is p.VAR_KEYWORD), len(params))
+    added = [inspect.Parameter(name, inspect.Parameter.KEYWORD_ONLY, default=SCHEDULE[name])
+             for name in missing]
+    __init__.__signature__ = signature.replace(parameters=params[:at] + added + params[at:])
+    return __init__
 
 
 class Synapse(Component):
@@ -46,12 +82,31 @@ class Synapse(Component):
     #: names of the per-unit state arrays (grown and shrunk together)
     _per_unit: tuple[str, ...] = ("efficacy_",)
 
-    _common_rules = {
-        "tau_winner": Interval(numbers.Real, 0, None, closed="neither"),
-        "tau_neighbour": Interval(numbers.Real, 0, None, closed="neither"),
-        "others": Options(("hold", "forget")),
-        "tau_forget": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
-    }
+    #: the rules of the schedule's parameters (:data:`SCHEDULE`); a subclass's own rules are
+    #: added to them
+    _common_rules = _SCHEDULE_RULES
+    _parameter_rules = _SCHEDULE_RULES
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        rules = cls.__dict__.get("_parameter_rules")
+        if rules is not None and not set(SCHEDULE) <= set(rules):
+            cls._parameter_rules = {**{k: v for k, v in _SCHEDULE_RULES.items() if k not in rules},
+                                    **rules}
+        init = cls.__dict__.get("__init__")
+        if init is not None:
+            taken = inspect.signature(init).parameters
+            missing = [name for name in SCHEDULE if name not in taken]
+            if missing:
+                cls.__init__ = _with_schedule(init, missing)
+
+    @property
+    def schedule(self) -> tuple[float, float, float, bool]:
+        """``(tau_winner, tau_neighbour, tau_forget, forget)`` as the schedule reads them:
+        ``tau_forget`` is ``tau_neighbour`` when None; ``forget`` is ``others == "forget"``."""
+        tau_forget = self.tau_neighbour if self.tau_forget is None else self.tau_forget
+        return (float(self.tau_winner), float(self.tau_neighbour), float(tau_forget),
+                self.others == "forget")
 
     # --------------------------------------------------------------- the model
     @abstractmethod
@@ -117,17 +172,17 @@ class Synapse(Component):
         dt : float, default=1.0
             Elapsed time; one scan is one step.
         """
-        if self.others == "forget":
+        tau_winner, tau_neighbour, tau_forget, forget = self.schedule
+        if forget:
             rest = np.ones(self.n_units_, dtype=bool)
             rest[winner] = False
             rest[neighbours] = False
             rows = np.flatnonzero(rest)
             if rows.size:
-                tau = self.tau_neighbour if self.tau_forget is None else self.tau_forget
-                self._advance(rows, 0.0, tau, dt)
+                self._advance(rows, 0.0, tau_forget, dt)
         if len(neighbours):
-            self._advance(np.asarray(neighbours, dtype=np.intp), stimulus, self.tau_neighbour, dt)
-        self._advance(np.array([winner], dtype=np.intp), stimulus, self.tau_winner, dt)
+            self._advance(np.asarray(neighbours, dtype=np.intp), stimulus, tau_neighbour, dt)
+        self._advance(np.array([winner], dtype=np.intp), stimulus, tau_winner, dt)
 
     def fire(self, row: int, stimulus: float = 1.0, dt: float = 1.0) -> None:
         """Habituate the synapse at ``row`` alone, as a winner's (``tau_winner``); the others are left as they are.

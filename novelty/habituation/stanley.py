@@ -147,7 +147,7 @@ class StanleySynapse(Synapse):
 
     _kernel = KernelSpec(
         steps="novelty.habituation._stanley_steps",
-        params=("tau_winner", "tau_neighbour", "tau_forget", "alpha", "y0", "others", "method"),
+        params=("alpha", "y0", "method"),
         arrays=("efficacy_",),
     )
 

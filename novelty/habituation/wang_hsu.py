@@ -313,8 +313,7 @@ class WangHsuSynapse(Synapse):
 
     _kernel = KernelSpec(
         steps="novelty.habituation._wang_hsu_steps",
-        params=("tau_winner", "tau_neighbour", "tau_forget", "alpha", "beta", "gamma", "y0", "z0",
-                "l", "others", "method"),
+        params=("alpha", "beta", "gamma", "y0", "z0", "l", "method"),
         arrays=("efficacy_", "recovery_"),
     )
 

@@ -27,7 +27,10 @@ from typing import Callable, Iterator
 from ..clusterers.base import Clusterer
 from ..detector import NoveltyDetector
 from ..habituation.base import Synapse
-from ._helpers import N_FEATURES, _assert_same_state, _data, _state_arrays  # noqa: F401  (read from here too)
+from ._helpers import N_FEATURES, _assert_same_state, _check, _data, _state_arrays  # noqa: F401  (read from here too)
+from .._component import declares
+from .._kernels.params import spec_of
+from .compiled_checks import check_compiled_equals_reference
 from .clusterer_checks import (check_clusterer_adapt_moves_winner_closer, check_clusterer_deterministic,
                                check_clusterer_growth_is_consistent, check_clusterer_in_filter,
                                check_clusterer_initialize, check_clusterer_match, check_clusterer_match_is_pure,
@@ -39,7 +42,8 @@ from .synapse_checks import (check_synapse_dt, check_synapse_forget_rule, check_
                              check_synapse_habituates_and_is_bounded, check_synapse_hold_rule,
                              check_synapse_initialize)
 
-__all__ = ["conformance_checks", "check_conformance", "installed_detectors"]
+__all__ = ["conformance_checks", "check_conformance", "installed_detectors",
+           "check_compiled_equals_reference", "check_rules_cover_every_parameter"]
 
 
 def _named(fn: Callable, component) -> Callable:
@@ -79,18 +83,39 @@ _CHECKS = {
 }
 
 
+@_check
+def check_rules_cover_every_parameter(component) -> None:
+    """Every parameter has a rule (``_parameter_rules``; :mod:`novelty.rules`), so that a
+    wrong value is refused with a clear message before anything is learned."""
+    rules = set(getattr(component, "_parameter_rules", {}))
+    if isinstance(component, NoveltyDetector) and hasattr(component, "contamination"):
+        rules.add("contamination")  # the base class's rule, for every detector
+    missing = sorted(set(component.get_params(deep=False)) - rules)
+    assert not missing, f"{type(component).__name__} has no rule for {missing} (_parameter_rules)"
+
+
 def conformance_checks(component) -> Iterator[Callable[[], None]]:
-    """The checks that apply to ``component``, each a no-argument callable."""
+    """The checks that apply to ``component``, each a no-argument callable.
+
+    A clusterer or synapse whose class declares compiled steps, or a clusterer that declares
+    nearest-unit scoring, is also checked against its reference
+    (:func:`check_compiled_equals_reference`).
+    """
     for base, checks in _CHECKS.items():
         if isinstance(component, base):
             for fn in checks:
                 yield _named(fn, component)
+            yield _named(check_rules_cover_every_parameter, component)
+            if base is not NoveltyDetector and (spec_of(component) is not None
+                                                or declares(component, "nearest-unit")):
+                yield _named(check_compiled_equals_reference, component)
             return
     raise TypeError(f"{type(component).__name__} is not a Clusterer, Synapse or NoveltyDetector.")
 
 
 def check_conformance(component) -> None:
-    """Run every applicable check; raise AssertionError on the first failure."""
+    """Run every applicable check; raise AssertionError on the first failure (a check that
+    cannot run here, the compiled one without numba, raises ``unittest.SkipTest``)."""
     for check in conformance_checks(component):
         try:
             check()

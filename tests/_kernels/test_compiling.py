@@ -18,7 +18,7 @@ import pytest
 
 import novelty
 from novelty import _kernels
-from novelty._kernels import compiling, drivers, handover, learning
+from novelty._kernels import compiling, drivers, handover
 from novelty.filter import learn_stream
 
 from .kernel_helpers import assert_same_filter, corridor, reference_only
@@ -56,7 +56,7 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
     monkeypatch.setattr(handover, "BLOCK", 100)
     X = corridor(1000)
     det = novelty.make("hsom").fit(X[:1])
-    compiled = learning.compiled_for(det.clusterer_, det.synapse_)
+    compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()
     module = compiled.wait()
     calls = []
 
@@ -68,8 +68,9 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
 
     monkeypatch.setattr(compiled, "module", None)  # "compiling"
     monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)
-    kernel = _kernels.learner(det.clusterer_, det.synapse_, reference_blocks)
-    assert kernel is not None and getattr(kernel, "func", None) is not learning.run
+    engine = _kernels.engine_for(det.clusterer_, det.synapse_)
+    kernel = engine.learner(reference_blocks)
+    assert kernel is not None and kernel != engine._learn  # the stand-in
     got = det.stream(X)
     assert calls == [100, 100, 100]
     monkeypatch.undo()
@@ -85,7 +86,7 @@ def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
     code = ("import sys, time, numpy as np, novelty\n"
             "from novelty import _kernels\n"
             "det = novelty.make('hsom', n_rows=3, n_columns=3).fit(np.zeros((2, 5)))\n"
-            "compiled = _kernels.learning.compiled_for(det.clusterer_, det.synapse_)\n"
+            "compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()\n"
             "cached = compiled._cached()\n"
             "assert compiled.wait(timeout=600) is not None, compiled.error\n"
             "print(compiled.file, cached, compiled.thread is None)\n")

@@ -1,7 +1,7 @@
 """Batch scoring (novelty._kernels.scoring, ._nearest) against ``match``, exactly.
 
 The reference for every scan ``x`` is what ``Clusterer.match`` computes:
-``d = ((W - x) ** 2).sum(axis=1)``, the winner ``np.argmin(d)`` (the first
+``d = squared_distances(W, x)``, the winner ``np.argmin(d)`` (the first
 unit of least distance) and its distance ``d[winner]``. The compiled path
 must give the same winners and the same distances bit for bit, through its
 float32 pre-filter (ordinary data) and its exact path (ties, near ties,
@@ -26,6 +26,7 @@ from novelty.clusterers.gng import GrowingNeuralGas
 from novelty.clusterers.gwr import GrowWhenRequired
 from novelty.clusterers.kmeans import OnlineKMeans
 from novelty.clusterers.som import SOM
+from novelty.distances import squared_distances
 from novelty.filter import HabituatingFilter
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
@@ -35,7 +36,7 @@ def reference(W, X):
     """``match``'s winners and distances, scan by scan."""
     rows, dist = [], []
     for x in X:
-        d = ((W - x) ** 2).sum(axis=1)
+        d = squared_distances(W, x)
         j = int(np.argmin(d))
         rows.append(j)
         dist.append(d[j])
@@ -49,7 +50,7 @@ def compiled(W, X, y=None):
     module = _kernels._NEAREST.wait()
     n = X.shape[0]
     rows, dist, out = np.empty(n, dtype=np.int64), np.empty(n), np.empty(n)
-    n_exact = module.nearest(W, y, X, rows, out, dist, scoring._plan(W.shape[1]))
+    n_exact = module.nearest(W, y, X, rows, out, dist)
     return out, rows, dist, n_exact
 
 
