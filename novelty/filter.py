@@ -256,6 +256,7 @@ class HabituatingFilter(NoveltyDetector):
         names only: ``clone`` rebuilds the filter from them, and no parameter
         is reported twice.
         """
+        vars(self).pop("_engine", None)  # the compiled loop is built again on the next call
         own = self._get_param_names()
         short = [key for key in params if key not in own and "__" not in key]
         if not short:
@@ -395,11 +396,6 @@ class HabituatingFilter(NoveltyDetector):
     # The hooks below first ask the fitted pair's engine (novelty._kernels) for a
     # compiled kernel; a kernel gives the same results as the reference code
     # after it, which runs when there is none.
-    def set_params(self, **params):
-        """scikit-learn's ``set_params``; the compiled loop is built again on the next call."""
-        self._engine = None
-        return super().set_params(**params)
-
     def _kernel_engine(self):
         """The engine of the fitted pair (:func:`novelty._kernels.engine_for`), or None: built
         once, again when a part was replaced or the parameters set (``set_params``)."""
