@@ -38,7 +38,7 @@ def _cells(rows: Sequence[dict], task: str) -> dict[str, list[dict]]:
 
 def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], task: str,
                     reference: str | None = None, resamples: int = RESAMPLES, seed: int = 0) -> list[dict]:
-    """Each detector against ``reference`` (default: the run's first ranked) on ``task``.
+    """Each detector against ``reference`` (default: the run's first ranked, as in the paired comparison) on ``task``.
 
     Returns one record a detector (the reference left out) with the
     bootstrap intervals ``roc_auc`` and ``average_precision``
@@ -50,7 +50,7 @@ def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], 
     if not cells:
         known = sorted({r["task"] for r in rows})
         raise ValueError(f"No successful cell of task {task!r}; tasks of this run: {', '.join(known)}.")
-    reference = reference_of([r for r in rows if r["task"] == task], reference)
+    reference = reference_of(rows, reference)
     if reference not in cells:
         raise ValueError(f"The reference {reference!r} has no successful cell on {task!r}; "
                          f"detectors there: {', '.join(cells)}.")

@@ -103,7 +103,8 @@ def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out:
             ax.set_title(detector, fontsize=9, loc="left")
         handles, labels = axes[0, 0].get_legend_handles_labels()
         if handles:
-            axes[0, 0].legend(handles, labels, fontsize=7, loc="upper right", ncols=len(handles))
+            axes[0, 0].legend(handles, labels, fontsize=7, loc="lower right", bbox_to_anchor=(1, 1),
+                              ncols=len(handles), frameon=False)
         axes[-1, 0].set_xlabel(along)
         seed = min(row["seed"] for row in cells.values())
         fig.suptitle(f"{task}, seed {seed}: novelty of the test scans (shaded: novel scans)", fontsize=10)

@@ -147,15 +147,19 @@ def too_few_tasks(k: int, n: int, alpha: float = ALPHA) -> list[str]:
 
 def statistics_line(rows: Sequence[dict], alpha: float = ALPHA) -> str:
     """One line for the terminal: Friedman's test over tasks, or why there is none."""
-    result = stats.friedman(_table(rows))
+    table = _table(rows)
+    result = stats.friedman(table)
     if result is None:
         return "No Friedman test: it needs three detectors and two tasks they all completed."
     if result.min_pvalue > alpha:
         return (f"No significance claim: with {result.n_tasks} tasks and {result.k} detectors no test "
                 f"can reach alpha = {alpha} (see summary.md, Statistics).")
+    pairs = (f" With {result.n_tasks} tasks no pair of detectors can differ significantly (Wilcoxon's "
+             f"smallest p is {stats.wilcoxon_min_p(result.n_tasks):.3g})." if _pairs_cannot_reach(table, alpha)
+             else "")
     return (f"Friedman's test over the {result.n_tasks} tasks that all {result.k} detectors completed: "
             f"{p_is(result.pvalue)}; ranks, pairwise tests and the critical-difference diagram are in "
-            "summary.md and plots/.")
+            f"summary.md and plots/.{pairs}")
 
 
 def statistics_markdown(rows: Sequence[dict], alpha: float = ALPHA) -> list[str]:
@@ -168,15 +172,17 @@ def statistics_markdown(rows: Sequence[dict], alpha: float = ALPHA) -> list[str]
     few = too_few_tasks(result.k, result.n_tasks, alpha)
     pairs = stats.pairwise_wilcoxon(table)
     groups = stats.cliques(result.mean_ranks, pairs.significant(alpha))
-    verdict = ("no claim is possible (below)" if result.min_pvalue > alpha else
-               "the detectors differ" if result.pvalue <= alpha else "no difference shown")
     f_text = "infinite (every task ranks the detectors alike)" if np.isinf(result.f) else f"{result.f:.2f}"
+    if result.min_pvalue > alpha:  # its p-value would say nothing: the reason instead (below)
+        test = "no p-value, as no ranking of so few tasks can reach alpha (below)"
+    else:
+        verdict = "the detectors differ" if result.pvalue <= alpha else "no difference shown"
+        test = (f"exact {p_is(result.pvalue)} (each task's ranking permuted at random "
+                f"{stats.RANDOM_RANKINGS:,} times): {verdict} at alpha = {alpha}")
     lines += [
         f"Over the {result.n_tasks} tasks that all {result.k} detectors completed: Friedman chi2 = "
-        f"{result.statistic:.2f} (Iman-Davenport F = {f_text}), exact {p_is(result.pvalue)} "
-        f"(each task's ranking permuted at random {stats.RANDOM_RANKINGS:,} times): {verdict} at "
-        f"alpha = {alpha}. Nemenyi's critical difference of average ranks: "
-        f"{stats.nemenyi_cd(result.k, result.n_tasks, alpha):.2f}.",
+        f"{result.statistic:.2f} (Iman-Davenport F = {f_text}), {test}. Nemenyi's critical difference "
+        f"of average ranks: {stats.nemenyi_cd(result.k, result.n_tasks, alpha):.2f}.",
         "",
     ]
     if few:
