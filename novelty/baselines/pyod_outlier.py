@@ -132,6 +132,21 @@ class PyODDetector(SklearnOutlierDetector):
             own["model_params"] = {**(own.get("model_params") or {}), **params}
         return cls(model=model, **own)
 
+    def set_params(self, **params):
+        """Set parameters, a PyOD model's own also by its name as :func:`novelty.make` takes it.
+
+        ``set_params(n_neighbors=5)`` sets ``model_params["n_neighbors"]``
+        (the routing of :meth:`from_params`), so a grid over
+        ``{"n_neighbors": [...]}`` searches the model; the names are checked
+        against the PyOD class in ``fit``, as for :func:`novelty.make`.
+        """
+        own = self._get_param_names()
+        flat = {key: params.pop(key) for key in list(params) if key not in own and "__" not in key}
+        if flat:
+            given = params.get("model_params", self.model_params)
+            params["model_params"] = {**(given or {}), **flat}
+        return super().set_params(**params)
+
     def _validate_params(self) -> None:
         CalibratedDetector._validate_params(self)  # the scikit-learn adapter's own check does not apply
         self._build_estimator()

@@ -117,3 +117,12 @@ def test_without_pyod_fit_says_how_to_install_it(monkeypatch):
     with pytest.raises(ImportError, match=r'pip install "novelty-habituation\[pyod\]"'):
         det.fit(np.zeros((5, 2)))
     assert not hasattr(det, "n_features_in_")
+
+
+def test_set_params_routes_a_models_parameter_as_make_does():
+    det = novelty.make("pyod", model="KNN", n_neighbors=10)
+    assert det.set_params(n_neighbors=5, method="mean", threshold=0.8) is det
+    assert det.model_params == {"n_neighbors": 5, "method": "mean"} and det.threshold == 0.8
+    assert "n_neighbors" not in det.get_params()  # reported once, inside model_params
+    assert det.set_params(model_params={"n_neighbors": 3}, method="median").model_params == {
+        "n_neighbors": 3, "method": "median"}
