@@ -162,3 +162,15 @@ def test_a_finished_run_is_recorded_with_the_revision_its_rows_name(results, tmp
         assert not {"git_revision", "host"} & set(next(csv.reader(fh)))    # said once, in provenance.json
     with pytest.raises(SystemExit):
         tables.main(["--from", str(store.out)])                           # --from needs the suite
+
+
+@pytest.mark.parametrize("suite", COMMITTED)
+def test_committed_results_hold_every_cell_of_their_suite(suite):
+    """A detector, task or seed added to a suite needs its results recorded again (``--run``)."""
+    spec = load_suite(tables.SUITES / f"{suite}.toml")
+    wanted = {(c.detector.label, c.task.label, c.seed) for c in spec.cells()}
+    held = set(_committed_text(suite))
+    assert not wanted - held, (f"{suite}: no committed rows for {sorted(wanted - held)[:5]}...; run "
+                               f"'python benchmarks/tables.py --run {suite}'")
+    # rows of detectors skipped here (an optional dependency missing) may stay; others must be in the suite
+    assert {k for k in held - wanted if k[0] not in set(spec.skipped)} == set()
