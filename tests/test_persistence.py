@@ -68,9 +68,8 @@ def all_state(det):
     for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
         for name, value in vars(obj).items():
             # the compiled loop's engine is not state: built on first use, it reads the parts'
-            # arrays and parameters on every call (a loaded model builds its own); nor is the
-            # mark that the scan-range warning was given (once per model in memory)
-            if name in ("clusterer_", "synapse_", "_engine", "_warned_range"):
+            # arrays and parameters on every call (a loaded model builds its own)
+            if name in ("clusterer_", "synapse_", "_engine"):
                 continue
             out[owner + name] = value
     return out
