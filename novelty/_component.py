@@ -66,9 +66,11 @@ class KernelSpec(NamedTuple):
         ``params``) that the steps drive with the step functions of module
         ``steps``, so it must declare those (else the reference runs).
 
-    A synapse's ``steps`` module defines ``step``, ``fire`` and ``fresh``; a
-    clusterer's ``match``, ``room`` and ``adapt`` (signatures in
-    :mod:`novelty._kernels.drivers`).
+    A synapse's ``steps`` module defines only its equation, ``advance`` and
+    ``fresh`` (the schedule of who is stimulated and when is the driver's, with
+    the base class's parameters); a clusterer's ``match``, ``room`` and
+    ``adapt`` (signatures in :mod:`novelty._kernels.drivers` and in the guide,
+    docs/guide/engine.md).
     """
 
     steps: str

@@ -412,10 +412,8 @@ class HabituatingFilter(NoveltyDetector):
         efficacy alone, its squared distance to its winner."""
         distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
         engine = self._kernel_engine()
-        kernel = None if engine is None else engine.learner(learn_stream)
-        if kernel is not None:
-            efficacy = kernel(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
-                              distances=distances)
+        if engine is not None:
+            efficacy = engine.run(learn_stream, X, dt, float(self.stimulus), distances)
         else:
             efficacy = learn_stream(self.clusterer_, self.synapse_, X, dt, float(self.stimulus),
                                     distances=distances)

@@ -165,14 +165,30 @@ class Engine:
     def _learn(self, clusterer, synapse, X, dt, stimulus, distances=None, winners=None):
         return self.learn(X, dt, stimulus, distances, winners)
 
+    def run(self, reference: Callable, X: np.ndarray, dt: np.ndarray, stimulus: float,
+            distances: np.ndarray | None = None) -> np.ndarray:
+        """Learn the rows of ``X``: compiled when the driver is ready, else by ``reference``
+        (``learn_stream``; block by block while the driver compiles). The state is read once."""
+        state = None if disabled() else self.state()
+        compiled = None if state is None else self.compiled(state)
+        if compiled is not None:
+            if compiled.module is not None or compiled.get() is not None:
+                return self.learn(X, dt, stimulus, distances, state=state)
+            if compiled.compiling:
+                return handing_over(compiled, self._learn, reference)(
+                    self.clusterer, self.synapse, X, dt, stimulus, distances=distances)
+        return reference(self.clusterer, self.synapse, X, dt, stimulus, distances=distances)
+
     def learn(self, X: np.ndarray, dt: np.ndarray, stimulus: float,
-              distances: np.ndarray | None = None, winners: np.ndarray | None = None) -> np.ndarray:
+              distances: np.ndarray | None = None, winners: np.ndarray | None = None,
+              state: tuple | None = None) -> np.ndarray:
         """Learn the rows of ``X`` compiled; return their novelty (the winners' efficacies).
 
         ``distances`` and ``winners`` (int64), if given, receive each row's squared
-        distance to its winner and the winner's row (at the time of the row).
+        distance to its winner and the winner's row (at the time of the row). ``state``:
+        what :meth:`state` answers now, if known.
         """
-        state = self.state()
+        state = state or self.state()
         W, c_arrays, s_arrays, counters = state
         drive = self.compiled(state).module.drive
         cp, sp = self.params()

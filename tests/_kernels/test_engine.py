@@ -485,3 +485,25 @@ def test_what_changed_between_two_compiled_calls_is_used(preset, params, change)
         expected = slow.stream(X[60:])
     np.testing.assert_array_equal(got, expected)
     assert_same_filter(fast, slow)
+
+
+# ------------------------------------------------------------------ the filter's engine
+def test_the_filter_owns_its_engine_dropped_by_set_params_and_load(tmp_path):
+    """One engine per fitted filter, kept between calls; set_params drops it, a loaded model
+    and a copy build their own."""
+    X = corridor(60)
+    det = novelty.make("hsom").fit(X[:20])
+    engine = det._engine
+    assert engine is not None and engine.clusterer is det.clusterer_ and engine.synapse is det.synapse_
+    det.stream(X[20:30])
+    assert det._engine is engine
+    det.set_params(threshold=0.4)
+    assert getattr(det, "_engine", None) is None
+    det.score_learn_one(X[30])
+    assert det._engine is not engine and det._engine.clusterer is det.clusterer_
+    assert copy.deepcopy(det)._engine is None
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert loaded._engine is None
+    np.testing.assert_array_equal(loaded.stream(X[31:]), det.stream(X[31:]))
+    assert loaded._engine.clusterer is loaded.clusterer_
