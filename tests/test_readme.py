@@ -11,6 +11,11 @@ import shutil
 import sys
 from pathlib import Path
 
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # the tomli backport, a dependency on 3.10
+    import tomli as tomllib
+
 import numpy as np
 import pytest
 
@@ -94,3 +99,13 @@ def test_the_readme_stays_a_front_page():
     assert len(lines) <= 250, f"README.md has {len(lines)} lines; move the detail to a page of docs/guide/"
     for page in re.findall(r"\]\((docs/[^)#]+)", "\n".join(lines)):
         assert (README.parent / page).exists(), f"the README links to {page}, which does not exist"
+
+
+def test_pytest_configuration_names_no_novelty_class():
+    # pytest imports the classes of pyproject's filterwarnings before the checkout is on the path:
+    # after `pip install .`, `pytest` would import the installed novelty and refuse to collect the
+    # checkout's modules (import file mismatch), failing the README's second command.
+    options = tomllib.loads((README.parent / "pyproject.toml").read_text(encoding="utf-8"))
+    pytest_options = options["tool"]["pytest"]["ini_options"]
+    named = [f for f in pytest_options.get("filterwarnings", []) if "novelty" in f]
+    assert not named, f"filter these in conftest.py instead: {named}"
