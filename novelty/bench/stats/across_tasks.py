@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Sequence
 
 import numpy as np
@@ -157,7 +158,8 @@ def friedman_min_p(k: int, n: int) -> float:
     >>> friedman_min_p(3, 2), friedman_min_p(4, 2)
     (0.16666666666666666, 0.041666666666666664)
     """
-    return float(math.exp((1 - n) * math.lgamma(k + 1)))
+    # exact, then rounded once: exp(lgamma) rounded differently from one libm to another
+    return float(Fraction(1, math.factorial(k) ** (n - 1)))
 
 
 def friedman(table: TaskTable, draws: int = RANDOM_RANKINGS, seed: int = 0) -> Friedman | None:
