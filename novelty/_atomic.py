@@ -23,7 +23,7 @@ import stat
 from pathlib import Path
 from typing import IO, Callable
 
-__all__ = ["write_atomically", "NotARegularFileError", "check_target"]
+__all__ = ["write_atomically", "NotARegularFileError", "check_target", "not_regular"]
 
 _KINDS = ((stat.S_ISLNK, "a symbolic link"), (stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
           (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
@@ -33,15 +33,26 @@ class NotARegularFileError(FileExistsError):
     """The target exists and is not a regular file, so it is not replaced."""
 
 
+def not_regular(path: str | os.PathLike, follow: bool = True) -> str | None:
+    """What ``path`` is ("a FIFO (named pipe)", ...) if it exists and is not a regular file, else None.
+
+    Reading such a file may never end (``/dev/zero``) or never start (a FIFO
+    without a writer); ``follow=False`` looks at a link itself.
+    """
+    try:
+        mode = (os.stat if follow else os.lstat)(path).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    if stat.S_ISREG(mode):
+        return None
+    return next((name for test, name in _KINDS if test(mode)), "not a regular file")
+
+
 def check_target(path: str | os.PathLike) -> None:
     """Raise :class:`NotARegularFileError` if ``path`` exists and is not a regular file (links not followed)."""
-    try:
-        mode = os.lstat(path).st_mode
-    except FileNotFoundError:
+    kind = not_regular(path, follow=False)
+    if kind is None:
         return
-    if stat.S_ISREG(mode):
-        return
-    kind = next((name for test, name in _KINDS if test(mode)), "not a regular file")
     raise NotARegularFileError(
         f"Not written: {os.fspath(path)} exists and is {kind}; only a regular file is replaced "
         "(choose another path, or remove it first).")

@@ -171,6 +171,14 @@ class NoveltyDetector(OutlierMixin, Component):
         """Novelty of a first perception, before anything is learned (parameters are valid)."""
         return 1.0
 
+    def _novelty_bounds(self) -> tuple[float, float] | None:
+        """The interval every novelty of the fitted model lies in, when the detector knows it.
+
+        A model file's ``decision_scores_`` (which set ``threshold_``) are
+        checked against it: scores that learning cannot produce are refused.
+        """
+        return None
+
     # ------------------------------------------------------------------ helpers
     def _is_fitted(self) -> bool:
         return hasattr(self, "n_features_in_")
@@ -243,12 +251,25 @@ class NoveltyDetector(OutlierMixin, Component):
                 f"or all integers; got {names!r}."
             )
         if hasattr(self, "decision_scores_"):
-            check_array_state(self, "decision_scores_", 1)
+            self._check_scores(check_array_state(self, "decision_scores_", 1))
         t = getattr(self, "last_time_", None)
         if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or (
                 abs(t) > 2**63 - 1 if isinstance(t, numbers.Integral) else not math.isfinite(t))):
             raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number (an int "
                              f"within int64); got {t!r}.")
+
+    def _check_scores(self, scores: np.ndarray) -> None:
+        bounds = self._novelty_bounds()
+        if bounds is None or not scores.size:
+            return
+        low, high = bounds
+        slack = 1e-9 * max(1.0, abs(low), abs(high))
+        if scores.min() < low - slack or scores.max() > high + slack:
+            raise StateError(
+                f"{type(self).__name__}.decision_scores_ must lie in [{low:.6g}, {high:.6g}], where this "
+                f"model's novelty lies; they hold values from {scores.min():.6g} to {scores.max():.6g} "
+                "(a threshold_ taken from them could not be reached)."
+            )
 
     def _validate_params(self) -> None:
         super()._validate_params()

@@ -106,7 +106,13 @@ class HabituatingFilter(NoveltyDetector):
         Expected fraction of outliers in the training data; a float sets
         ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
     stimulus : float, default=1.0
-        Stimulus S presented to the winning neighbourhood's synapses.
+        Stimulus S presented to the winning neighbourhood's synapses. The
+        efficacy is the novelty, on [0, 1] as every detector's: a synapse
+        that bounds its efficacy (``Synapse.efficacy_range``) must keep it
+        there under S, so Stanley's synapse needs ``y0 <= 1`` and a fixed
+        point ``y0 - S / alpha >= 0`` (``S <= alpha * y0``; beyond it the
+        efficacy, a synaptic strength, would turn negative, which the model
+        of Stanley 1976 does not describe).
     n_epochs : int, default=1
         Passes over the data in :meth:`fit` (the robot's repeated runs).
     random_state : int, numpy Generator or None, default=0
@@ -154,6 +160,15 @@ class HabituatingFilter(NoveltyDetector):
         (``GrowWhenRequired(activity_threshold="auto")``) adds no unit
         before then; a model that has learned fewer scans scores with the
         scale of those it has (a first batch of one scan: the efficacy).
+
+    Parameters of the parts set after fitting (``set_params(synapse__alpha=1.5)``,
+    or a new ``clusterer``) take effect at the next :meth:`fit`: the fitted
+    ``clusterer_`` and ``synapse_`` keep the values they learned with, and
+    learning on (:meth:`stream`, :meth:`partial_fit`, :meth:`learn_one`) is
+    refused until the model is refitted or the values are set back, so that
+    no scan is learned under parameters other than those it reports. Scoring
+    reads the fitted state. The filter's own parameters (``stimulus``,
+    ``threshold``, ``novelty_rule``, ...) apply from the next call.
 
     Attributes
     ----------
@@ -214,6 +229,19 @@ class HabituatingFilter(NoveltyDetector):
         self.match_quantile = match_quantile
         self.calibration_scans = calibration_scans
 
+    def _validate_params(self) -> None:
+        super()._validate_params()
+        synapse = self.synapse if isinstance(self.synapse, Synapse) else build("synapse", self.synapse)
+        synapse._validate_params()
+        low, high = synapse.efficacy_range(float(self.stimulus))
+        if (np.isfinite(low) and low < 0) or (np.isfinite(high) and high > 1):
+            raise ValueError(
+                f"The synapse's efficacy is the novelty, on [0, 1]; {synapse!r} under the stimulus "
+                f"S = {self.stimulus} ranges over [{low:.6g}, {high:.6g}], which leaves it. Keep y0 <= 1 and "
+                f"S <= alpha * y0 (Stanley's fixed point y0 - S / alpha >= 0): a smaller stimulus, a larger "
+                "alpha, or a smaller y0."
+            )
+
     # ------------------------------------------------------------ construction
     @classmethod
     def from_params(cls, clusterer="som", synapse="stanley", **params):
@@ -254,13 +282,16 @@ class HabituatingFilter(NoveltyDetector):
         it (the routing of :meth:`from_params`), so a grid over ``{"alpha":
         [...]}`` searches the synapse. ``get_params`` still reports the full
         names only: ``clone`` rebuilds the filter from them, and no parameter
-        is reported twice.
+        is reported twice. Parameters of the parts set after fitting take
+        effect at the next fit (see the class notes).
         """
         vars(self).pop("_engine", None)  # the compiled loop is built again on the next call
         own = self._get_param_names()
         short = [key for key in params if key not in own and "__" not in key]
         if not short:
-            return super().set_params(**params)
+            super().set_params(**params)
+            self._note_changed_parts()
+            return self
         # a component given in the same call is the one a short name goes to; a value that is
         # not a component yet (checked in fit, as every parameter) takes no short name
         parts = {part: params.get(part, getattr(self, part)) for part in ("clusterer", "synapse")}
@@ -278,7 +309,42 @@ class HabituatingFilter(NoveltyDetector):
                 raise ValueError(f"'{key}' is a parameter of the {taker} {parts[taker]!r}, given by name; "
                                  f"set {taker}= to an instance (novelty.make builds one) to set it.")
             full[f"{taker}__{key}"] = value
-        return super().set_params(**full)
+        super().set_params(**full)
+        self._note_changed_parts()
+        return self
+
+    # ------------------------------------------------ parameters after fitting
+    def _note_changed_parts(self) -> None:
+        if self._is_fitted():
+            self._parts_changed = self._changed_parts()
+
+    def _changed_parts(self) -> list[str]:
+        """The parameters of the parts that differ from those the fitted parts learned with."""
+        changed = []
+        for part in ("clusterer", "synapse"):
+            spec, fitted = getattr(self, part), getattr(self, f"{part}_")
+            template = build(part, spec) if isinstance(spec, str) else spec
+            if type(template) is not type(fitted):
+                changed.append(part)
+                continue
+            ours, theirs = template.get_params(deep=False), fitted.get_params(deep=False)
+            changed += [f"{part}__{k}" for k in ours if repr(ours[k]) != repr(theirs.get(k))]
+        return changed
+
+    def _check_online(self) -> None:
+        super()._check_online()
+        changed = getattr(self, "_parts_changed", None)
+        if changed:
+            self._validate_params()  # a value that is wrong anyway is named as such first
+            raise ValueError(
+                f"{', '.join(changed)} changed after fitting; the fitted clusterer_ and synapse_ keep the "
+                "values they learned with, so learning on would mix the two. Refit (fit) to learn with the "
+                "new values, or set them back."
+            )
+
+    def _adopt(self, new: "HabituatingFilter") -> None:
+        super()._adopt(new)
+        self._parts_changed = []  # a new model is built from the parameters in force
 
     # ------------------------------------------------------------------- hooks
     def _start(self, X: np.ndarray) -> None:
@@ -334,6 +400,7 @@ class HabituatingFilter(NoveltyDetector):
         self._engine = None  # the compiled loop of the fitted pair: built when first asked for
         if not hasattr(self, "match_scale_"):  # a model file written before the scale existed
             self.match_scale_ = None
+        self._parts_changed = self._changed_parts()  # a file saved after set_params
         scans = getattr(self, "calibration_scans_", None)
         self._calibration = None if scans is None else ScaleCalibration(
             scans, self.calibration_scans, self.match_quantile, self._calibration_rule())
@@ -478,7 +545,15 @@ class HabituatingFilter(NoveltyDetector):
         synapse = self.synapse_ if hasattr(self, "synapse_") else build("synapse", self.synapse)
         return synapse.resting_efficacy
 
+    def _novelty_bounds(self) -> tuple[float, float] | None:
+        low, high = self.synapse_.efficacy_range(float(self.stimulus))
+        if not (np.isfinite(low) and np.isfinite(high)):
+            return None  # a synapse that does not bound its efficacy
+        # mismatch: 1 - (1 - y) e with e in (0, 1]; product: y (1 - e)
+        return {"efficacy": (low, high), "mismatch": (low, 1.0), "product": (0.0, high)}[self.novelty_rule]
+
     def _check_state(self) -> None:
+        self.synapse_.check_efficacy(self.stimulus)  # before the scores are checked against its range
         super()._check_state()
         if self.synapse_.n_units_ != self.clusterer_.n_units_:
             raise StateError(
@@ -493,7 +568,6 @@ class HabituatingFilter(NoveltyDetector):
             raise StateError(f"HabituatingFilter.match_scale_ must be None or a positive number; got {scale!r}.")
         if hasattr(self, "calibration_scans_"):
             check_array_state(self, "calibration_scans_", 2, shape=(None, self.n_features_in_))
-        self.synapse_.check_efficacy(self.stimulus)
 
 
 def _parameters_of(part: str, spec, strict: bool = True) -> list[str]:

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ._atomic import write_atomically
+from ._atomic import not_regular, write_atomically
 from ._version import __version__
 from ._component import Component, StateError
 from .registry import UnknownNameError, of_kind
@@ -277,6 +277,9 @@ def _read_meta(npz: _Archive, name: str) -> dict:
 
 def _read(path: str | os.PathLike, name: str) -> Component:
     """:func:`load`, naming the file ``name`` in messages."""
+    kind = not_regular(path)
+    if kind is not None:  # a FIFO would block the open, a device never end
+        raise ModelFileError(f"{name} is {kind}, not a regular file; a model file is read only from a file.")
     with open(path, "rb") as fh:  # FileNotFoundError and the like propagate as they are
         magic = fh.read(4)
         if magic == b"\x93NUM":

@@ -177,7 +177,7 @@ def test_an_array_scan_for_a_model_learned_from_dicts_is_read_in_the_names_order
 def test_score_one_before_learning_is_y0_and_learns_nothing():
     det = small_hsom()
     assert det.score_one(np.full(4, 0.5)) == 1.0
-    assert novelty.make("hsom", y0=0.8, alpha=1.2).score_one([0.5, 0.5]) == 0.8
+    assert novelty.make("hsom", y0=0.8, alpha=1.5).score_one([0.5, 0.5]) == 0.8
     assert novelty.make("gwr-wang-hsu").score_one({"a": 1.0}) == 1.0
     assert not hasattr(det, "n_features_in_") and not hasattr(det, "clusterer_")
     with pytest.raises(NotFittedError):
@@ -362,6 +362,19 @@ def test_a_scan_beyond_the_norm_bound_is_refused_and_changes_nothing(name):
     if det.supports_online:
         with pytest.raises(ValueError, match=r"norm above 1e\+100"):
             det.learn_one(X[1])
+    _assert_same_state(before, _state_arrays(det), name)
+
+
+@pytest.mark.parametrize("name", DETECTORS)
+def test_an_integer_beyond_float64_is_a_value_error_and_changes_nothing(name):
+    det = fitted_quick(name)
+    before = _state_arrays(det)
+    n = det.n_features_in_
+    with pytest.raises(ValueError, match=r"integer beyond the float64 range"):
+        learn(det, [[10**400] * n] * 2)
+    if det.supports_online:
+        with pytest.raises(ValueError, match=r"integer beyond the float64 range"):
+            det.learn_one([10**400] * n)
     _assert_same_state(before, _state_arrays(det), name)
 
 

@@ -569,3 +569,59 @@ def test_no_warning_where_the_scans_fit_what_the_parameters_assume(name, params,
 def test_a_preset_on_units_drawn_in_0_1_warns_too():
     with pytest.warns(novelty.ScanRangeWarning, match=r"GrowWhenRequired .*init='uniform'.*far outside"):
         novelty.make("gwr-novelty").fit(far_outside())
+
+
+# ------------------------------------------------------------ the novelty range
+@pytest.mark.parametrize("params", [dict(stimulus=2.0), dict(synapse__alpha=0.5), dict(y0=1e12), dict(y0=1.5)])
+def test_parameters_whose_efficacy_leaves_0_1_are_refused(params):
+    det = small(**params)
+    with pytest.raises(ValueError, match=r"efficacy is the novelty, on \[0, 1\].*S <= alpha \* y0"):
+        det.learn_one(np.full(4, 0.5))
+    assert not hasattr(det, "n_features_in_")
+    with pytest.raises(ValueError, match=r"on \[0, 1\]"):
+        det.fit(data())
+
+
+@pytest.mark.parametrize("params", [dict(stimulus=1.05), dict(y0=0.5, alpha=2.0), dict(stimulus=0.0)])
+def test_at_the_edge_of_the_range_novelty_stays_in_it(params):
+    # Stanley's fixed point y0 - S/alpha >= 0: S = alpha y0 settles at exactly 0, never below
+    det = small(**params)
+    scan = np.full(4, 0.5)
+    novelties = np.array([det.score_learn_one(scan) for _ in range(200)])
+    assert novelties.min() >= -1e-12 and novelties.max() <= 1.0
+
+
+# --------------------------------------------------- parameters after fitting
+def test_part_parameters_changed_after_fitting_refuse_learning_until_refit(tmp_path):
+    X = data()
+    det = small().fit(X)
+    before = det.synapse_.efficacy_.copy()
+    det.set_params(synapse__alpha=1.5)
+    for learn in (lambda: det.learn_one(X[0]), lambda: det.partial_fit(X[:3]), lambda: det.stream(X[:3])):
+        with pytest.raises(ValueError, match=r"synapse__alpha changed after fitting.*Refit"):
+            learn()
+    np.testing.assert_array_equal(det.synapse_.efficacy_, before)  # nothing learned
+    assert det.novelty(X).shape == (60,)  # scoring reads the fitted state
+    det.save(tmp_path / "m.npz")
+    with pytest.raises(ValueError, match="synapse__alpha changed after fitting"):
+        novelty.load(tmp_path / "m.npz").learn_one(X[0])  # the same after a round trip
+    det.fit(X)  # a refit learns with the new value
+    assert det.synapse_.alpha == 1.5
+    det.learn_one(X[0])
+    det.set_params(clusterer__learning_rate=0.5, synapse__alpha=1.5)
+    with pytest.raises(ValueError, match=r"clusterer__learning_rate changed"):
+        det.learn_one(X[0])
+    det.set_params(clusterer__learning_rate=0.25)  # set back: learning goes on
+    det.learn_one(X[0])
+
+
+def test_a_nan_part_parameter_is_refused_alike_by_every_learning_call():
+    X = data()
+    for learn in (lambda d: d.learn_one(X[0]), lambda d: d.stream(X[:3]), lambda d: d.fit(X)):
+        det = small().fit(X)
+        det.set_params(synapse__alpha=float("nan"))
+        with pytest.raises(ValueError, match="alpha"):
+            learn(det)
+        unfitted = small(synapse__alpha=float("nan"))
+        with pytest.raises(ValueError, match="alpha"):
+            learn(unfitted)

@@ -133,11 +133,11 @@ def random_models(draw):
         alpha=alpha,
         tau_winner=draw(st.floats(low, 20.0)),
         tau_neighbour=draw(st.floats(low, 20.0)),
-        y0=draw(st.floats(0.5, 2.0)),
+        y0=(y0 := draw(st.floats(0.5, 1.0))),
         others=draw(st.sampled_from(["hold", "forget"])),
         method=method,
         threshold=draw(st.floats(-1.0, 1.0)),
-        stimulus=draw(st.floats(0.0, 1.5)),
+        stimulus=draw(st.floats(0.0, alpha * y0)),  # the efficacy stays in [0, 1]
         n_epochs=draw(st.integers(1, 2)),
         random_state=draw(st.integers(0, 2**31 - 1)),
     )
@@ -671,8 +671,8 @@ def test_counters_beyond_any_run_are_refused(saved, tmp_path, field, value):
 
 
 def test_efficacy_range_follows_the_stimulus(tmp_path):
-    """Under a stimulus S, Stanley's efficacy stays in [y0 - S/alpha, y0]: S = 2 reaches below 0."""
-    det = fitted(stimulus=2.0)
+    """Under a stimulus S, Stanley's efficacy stays in [y0 - S/alpha, y0]: S = alpha y0 reaches 0."""
+    det = fitted(stimulus=1.05)
     det.partial_fit(np.tile(det.clusterer_.weights_[:1], (40, 1)))
     assert det.synapse_.efficacy_.min() < 1 - 1 / 1.05  # below the range of S = 1
     det.save(tmp_path / "m.npz")
@@ -992,3 +992,54 @@ def test_save_refuses_a_target_that_appears_while_it_writes(saved, tmp_path, mon
     with pytest.raises(FileExistsError, match="FIFO"):
         det.save(target)
     assert stat.S_ISFIFO(os.lstat(target).st_mode)
+
+
+# ------------------------------------------------- state that learning cannot produce
+def test_decision_scores_outside_the_novelty_range_are_refused(tmp_path):
+    det = fitted(contamination=0.1)
+    det.save(tmp_path / "m.npz")
+    entries = read_entries(tmp_path / "m.npz")
+    entries["root/decision_scores_"] = np.full_like(entries["root/decision_scores_"], 1e200)
+    with pytest.raises(ModelFileError, match=r"decision_scores_ must lie in \[0.047619, 1\].*threshold_"):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+def test_weights_beyond_the_norm_bound_are_refused_and_at_the_bound_learning_goes_on(tmp_path):
+    det = novelty.make("gng-stanley").fit(np.random.default_rng(0).uniform(size=(30, 4)))
+    det.save(tmp_path / "m.npz")
+    entries = read_entries(tmp_path / "m.npz")
+    weights = entries["root/clusterer_/weights_"].copy()
+    weights[0] = 1e200
+    entries["root/clusterer_/weights_"] = weights
+    with pytest.raises(ModelFileError, match=r"weights_ reach a norm of 2e\+200, beyond the bound 1e\+100"):
+        novelty.load(write_entries(tmp_path / "far.npz", entries))
+    weights[0] = 0.49e100  # a norm of 0.98e100: scans can be there, so the units can
+    entries["root/clusterer_/weights_"] = weights
+    loaded = novelty.load(write_entries(tmp_path / "edge.npz", entries))
+    loaded.learn_one(np.full(4, -0.49e100))
+    assert np.all(np.isfinite(loaded.clusterer_.errors_))
+    loaded.save(tmp_path / "again.npz")
+
+
+def test_a_baselines_training_scores_must_be_those_of_its_refit(tmp_path):
+    det = novelty.make("isolation-forest", n_estimators=10, contamination=0.1)
+    det.fit(np.random.default_rng(0).uniform(size=(40, 3)))
+    det.save(tmp_path / "m.npz")
+    assert novelty.load(tmp_path / "m.npz").threshold_ == det.threshold_
+    entries = read_entries(tmp_path / "m.npz")
+    entries["root/decision_scores_"] = entries["root/decision_scores_"][::-1] * 0.5  # within [0, 1]
+    with pytest.raises(ModelFileError, match="not the novelty of samples_ under the refitted estimator"):
+        novelty.load(write_entries(tmp_path / "bad.npz", entries))
+
+
+def test_initial_weights_beyond_the_norm_bound_are_refused():
+    det = novelty.make("hsom", n_rows=2, init="uniform", init_range=(0.0, 1e99))
+    with pytest.raises(ValueError, match=r"initial weights reach a norm of .*beyond 1e\+100"):
+        det.fit(np.zeros((3, 400)))
+    assert not hasattr(det, "clusterer_")
+
+
+def test_loading_a_fifo_is_refused_without_blocking(tmp_path):
+    os.mkfifo(tmp_path / "m.npz")  # no writer: opening it would block forever
+    with pytest.raises(ModelFileError, match="is a FIFO .*not a regular file"):
+        novelty.load(tmp_path / "m.npz")

@@ -45,12 +45,21 @@ class Interval:
 
     def describe(self) -> str:
         what = "an int" if self.kind is numbers.Integral else "a float"
-        lo = "-inf" if self.low is None else f"{self.low:g}"
-        hi = "inf" if self.high is None else f"{self.high:g}"
+        lo = "-inf" if self.low is None else _bound(self.low)
+        hi = "inf" if self.high is None else _bound(self.high)
         lb = "[" if self.closed in ("both", "left") and self.low is not None else "("
         rb = "]" if self.closed in ("both", "right") and self.high is not None else ")"
         text = f"{what} in {lb}{lo}, {hi}{rb}"
         return text + (" or None" if self.allow_none else "")
+
+
+def _bound(value) -> str:
+    """A bound as a reader types it: a large power of two as ``2**53``, other numbers short."""
+    if isinstance(value, int) and value > 2**20 and (value + 1) & value == 0:
+        return f"2**{value.bit_length()} - 1"
+    if isinstance(value, int) and value > 2**20 and value & (value - 1) == 0:
+        return f"2**{value.bit_length() - 1}"
+    return f"{value:g}"
 
 
 @dataclass(frozen=True)

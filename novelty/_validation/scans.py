@@ -72,6 +72,8 @@ def _converted(X: Any, owner: Any) -> np.ndarray:
     try:
         return check_array(X, dtype=np.float64, order="C", estimator=owner, input_name="X",
                            ensure_all_finite=False)
+    except OverflowError:  # a Python int beyond float64
+        raise _beyond_float(owner, "X") from None
     except (TypeError, ValueError) as exc:
         # numpy's own conversion errors name neither the model nor what it expects
         if not str(exc).startswith(("could not convert", "setting an array element", "float() argument")):
@@ -135,6 +137,8 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
                 _refuse_text_values(x, arr, owner)
             _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
             arr = arr.astype(np.float64, copy=False)
+        except OverflowError:  # a Python int beyond float64
+            raise _beyond_float(owner, "the scan") from None
         except (TypeError, ValueError) as exc:
             if isinstance(exc, _NotReal):
                 raise
@@ -199,6 +203,13 @@ def _refuse_text_cells(X: Any, owner: Any) -> None:
         raise _NotReal(
             f"{type(owner).__name__} expects X as a 2-D array of numbers; got the string "
             f"{cells[i, j]!r} in row {i}, column {j}; convert text to numbers first.")
+
+
+def _beyond_float(owner: Any, what: str) -> ValueError:
+    return ValueError(
+        f"{type(owner).__name__}: {what} holds an integer beyond the float64 range (about 1.8e308); "
+        f"scans are vectors of finite numbers of norm at most {MAX_SCAN_NORM:g}."
+    )
 
 
 class _NotReal(ValueError):

@@ -256,6 +256,9 @@ class CalibratedDetector(NoveltyDetector):
         super()._rebuild_scratch()
         self._scale = _Scale(self.reference_)
 
+    def _novelty_bounds(self) -> tuple[float, float]:
+        return 0.0, 1.0  # c(r) of the module notes
+
     def _check_state(self) -> None:
         super()._check_state()
         ref = check_array_state(self, "reference_", 1)

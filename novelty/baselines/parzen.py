@@ -97,7 +97,8 @@ class ParzenDetector(CalibratedDetector):
     """
 
     _parameter_rules = {
-        "bandwidth": (Options(("scott", "silverman")), Interval(numbers.Real, 0, None, closed="neither")),
+        # h^2 and the squared distances of scans of norm up to 1e100 over h^2 stay finite floats
+        "bandwidth": (Options(("scott", "silverman")), Interval(numbers.Real, 1e-50, 1e150)),
         "threshold": Interval(numbers.Real, None, None),
     }
 

@@ -30,8 +30,19 @@ project can evaluate itself, and pickle is never used. The registered
 detectors therefore keep the training inputs (``samples_``), and loading a
 model refits the estimator on them with the same parameters and the same
 integer ``random_state``, which reproduces it exactly under the same
-scikit-learn version (refitting is deterministic). Saving needs an integer
-``random_state`` where there is one. A :class:`SklearnOutlierDetector`
+scikit-learn version (refitting is deterministic), and checks that the
+refitted estimator gives the training scores the file holds. Saving needs an
+integer ``random_state`` where there is one.
+
+The refit is the one cost of a load that the file could choose, so it is
+capped by the library (storing the fitted forest or support vectors instead
+would mean evaluating scikit-learn's internals here, and following them from
+version to version): at most :data:`MAX_REFIT_SAMPLES` training inputs and
+:data:`MAX_REFIT_VALUES` values, and for the isolation forest at most
+:data:`MAX_REFIT_TREE_SAMPLES` trees x samples per tree (1000 trees of the
+default 256). A model beyond the caps is refused by ``save`` (which reads
+the file back as ``load`` does) and by ``load``, before anything is fitted;
+fitting it is not limited. A :class:`SklearnOutlierDetector`
 wrapping an arbitrary estimator instance cannot be saved (its parameter is
 an object a model file cannot name); ``save`` says so. To make another
 estimator saveable, subclass as the four below do and register the subclass.
@@ -67,7 +78,17 @@ from .._component import StateError, check_array_state
 from .._validation import Instance, Interval, Options
 from ._calibration import CalibratedDetector
 
+#: the most training inputs a model file may make ``load`` refit on
+MAX_REFIT_SAMPLES = 20_000
+#: the most training values (inputs x features) a model file may make ``load`` refit on
+MAX_REFIT_VALUES = 2**20
+#: the most trees x samples per tree an isolation-forest file may make ``load`` grow
+MAX_REFIT_TREE_SAMPLES = 1000 * 256
+
 __all__ = [
+    "MAX_REFIT_SAMPLES",
+    "MAX_REFIT_VALUES",
+    "MAX_REFIT_TREE_SAMPLES",
     "SklearnOutlierDetector",
     "IsolationForestDetector",
     "OneClassSVMDetector",
@@ -145,6 +166,22 @@ class SklearnOutlierDetector(CalibratedDetector):
         if hasattr(self, "samples_") and not hasattr(self, "_estimator"):
             self._estimator = self._build_estimator().fit(self.samples_)
 
+    def _import_state(self, arrays, values, children) -> None:
+        super()._import_state(arrays, values, children)
+        self._check_refit()  # once every subclass has rebuilt its scratch
+
+    def _check_refit(self) -> None:
+        """The refitted estimator must give the training scores the file holds (which set ``threshold_``)."""
+        if not hasattr(self, "decision_scores_"):
+            return
+        again = self._novelty(self.samples_)
+        if again.shape != self.decision_scores_.shape or not np.allclose(again, self.decision_scores_,
+                                                                         rtol=1e-9, atol=1e-12):
+            raise StateError(
+                f"{type(self).__name__}.decision_scores_ are not the novelty of samples_ under the refitted "
+                "estimator (the file was edited, or written with another scikit-learn version)."
+            )
+
     # ------------------------------------------------------------------- files
     def save(self, path) -> None:
         """Write the model (training inputs + parameters; loading refits). See the module notes."""
@@ -168,6 +205,12 @@ class SklearnOutlierDetector(CalibratedDetector):
         X = check_array_state(self, "samples_", 2, shape=(None, self.n_features_in_))
         if X.shape[0] == 0:
             raise StateError(f"{type(self).__name__}.samples_ is empty.")
+        if X.shape[0] > MAX_REFIT_SAMPLES or X.size > MAX_REFIT_VALUES:
+            raise StateError(
+                f"{type(self).__name__} keeps {X.shape[0]} training inputs of {X.shape[1]} features, which "
+                f"loading would refit on; a model file holds at most {MAX_REFIT_SAMPLES} inputs and "
+                f"{MAX_REFIT_VALUES} values, so that reading it costs seconds (fit on fewer to save it)."
+            )
 
 
 class IsolationForestDetector(SklearnOutlierDetector):
@@ -191,7 +234,7 @@ class IsolationForestDetector(SklearnOutlierDetector):
     """
 
     _parameter_rules = {
-        "n_estimators": Interval(numbers.Integral, 1, None),
+        "n_estimators": Interval(numbers.Integral, 1, 2**31 - 1),
         "max_samples": (Options(("auto",)), Interval(numbers.Integral, 1, None),
                         Interval(numbers.Real, 0, 1, closed="right")),
         "max_features": (Interval(numbers.Integral, 1, None), Interval(numbers.Real, 0, 1, closed="right")),
@@ -209,6 +252,22 @@ class IsolationForestDetector(SklearnOutlierDetector):
         self.random_state = random_state
         self.threshold = threshold
         self.contamination = contamination
+
+    def _check_state(self) -> None:
+        super()._check_state()
+        n = self.samples_.shape[0]
+        if self.max_samples == "auto":
+            per_tree = min(256, n)
+        elif isinstance(self.max_samples, numbers.Integral):
+            per_tree = min(int(self.max_samples), n)
+        else:
+            per_tree = int(self.max_samples * n)
+        if self.n_estimators * per_tree > MAX_REFIT_TREE_SAMPLES:
+            raise StateError(
+                f"IsolationForestDetector grows {self.n_estimators} trees of {per_tree} samples, which loading "
+                f"would grow again; a model file holds at most {MAX_REFIT_TREE_SAMPLES} trees x samples "
+                "(1000 trees of the default 256), so that reading it costs seconds."
+            )
 
     def _build_estimator(self):
         # deferred: sklearn.ensemble takes 0.4 s to import, needed only by this detector
@@ -243,7 +302,7 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         "kernel": Options(("rbf", "linear", "poly", "sigmoid")),
         "gamma": (Options(("scale", "auto")), Interval(numbers.Real, 0, None, closed="neither")),
         "nu": Interval(numbers.Real, 0, 1, closed="right"),
-        "degree": Interval(numbers.Integral, 0, None),
+        "degree": Interval(numbers.Integral, 0, 2**31 - 1),
         "coef0": Interval(numbers.Real, None, None),
         "tol": Interval(numbers.Real, 0, None, closed="neither"),
         "threshold": Interval(numbers.Real, None, None),

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 from ..datasets import load, registry
+from ..datasets.tables import check_data_file
 from ..registry import RegistryError, check_parameters
 from .build import build_detector
 from .exploration.prequential import check_policy, default_policy
@@ -87,8 +87,11 @@ def check_task(spec: TaskSpec) -> None:
         if "path" not in spec.options:
             raise SuiteError(f"Task {spec.label!r}: the {FILES_TASK!r} task needs path= (a .csv or .npz file).")
         for key in FILE_OPTIONS:
-            if key in spec.options and not Path(str(spec.options[key])).is_file():
-                raise SuiteError(f"Task {spec.label!r}: data file not found: {spec.options[key]}")
+            if key in spec.options:
+                try:  # the reader's own check: the same message as novelty run's
+                    check_data_file(str(spec.options[key]))
+                except (OSError, ValueError) as exc:
+                    raise SuiteError(f"Task {spec.label!r}: {exc}") from None
     if valid is not None and "seed" not in valid and any(key in spec.options for key in FILE_OPTIONS):
         try:
             load(spec.name, **spec.options)

@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from .._atomic import not_regular
 from ..datasets import registry as datasets
 from ..registry import detectors as detector_registry
 from . import river
@@ -32,9 +33,14 @@ def _read_toml(path: Path) -> dict:
             raise SuiteError(
                 "Reading TOML suites on Python 3.10 needs the 'tomli' package (pip install tomli)."
             ) from None
+    kind = not_regular(path)
+    if kind is not None:  # a FIFO would block the read, a device never end
+        raise SuiteError(f"Suite file {path} is {kind}, not a regular file.")
     try:
         with open(path, "rb") as fh:
             return tomllib.load(fh)
+    except RecursionError:
+        raise SuiteError(f"Suite file {path} nests its tables or arrays too deeply to read.") from None
     except FileNotFoundError:
         raise SuiteError(f"Suite file not found: {path}") from None
     except IsADirectoryError:

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import not_regular
 from ._common import UserError, add_command
 
 DESCRIPTION = """Plot the novelty along the route.
@@ -60,12 +61,15 @@ def _bench_folder(path: Path) -> Path | None:
 
 
 def _read_run_output(path: Path) -> dict:
+    # deferred: `novelty --help` does not read files
+    from ..datasets.tables import bounded_lines
+
     if path.suffix.lower() == ".npz":
         with np.load(path, allow_pickle=False) as npz:
             data = {k: npz[k] for k in npz.files}
     else:
         with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.DictReader(fh))
+            rows = list(csv.DictReader(bounded_lines(fh, str(path))))
         if not rows:
             raise UserError(f"{path} has no rows.")
         try:
@@ -136,7 +140,19 @@ def run(args) -> int:
     path = Path(args.results)
     if not path.exists():
         raise UserError(f"Results not found: {path}")
+    kind = not_regular(path)
+    if kind is not None and not path.is_dir():  # a FIFO would block the read, a device never end
+        raise UserError(f"{path} is {kind}, not a regular file; expected the output of 'novelty run' or a "
+                        "bench folder.")
     plt = _pyplot()
+    try:
+        return _plot(path, args, plt)
+    except UnicodeDecodeError as exc:
+        raise UserError(f"{path} is not UTF-8 text ({exc.reason}); expected the CSV output of 'novelty run' "
+                        "or a bench folder.") from None
+
+
+def _plot(path: Path, args, plt) -> int:
     folder = _bench_folder(path)
     if folder is not None:
         fig = _plot_bench(folder, args, plt)

@@ -194,8 +194,10 @@ class StreamReader:
     def __iter__(self):
         # deferred: `novelty --help` does not read files
         from ..datasets.files import header_of, plan_columns, sensors_to_scans
+        from ..datasets.tables import bounded_lines, csv_rows
 
-        rows = csv.reader(iter(self.lines.readline, ""))
+        source = "standard input"
+        rows = csv_rows(csv.reader(bounded_lines(self.lines, source)), source)
         layout = None
         for number, row in enumerate(rows, start=1):
             if not row or not any(c.strip() for c in row):

@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .._component import Component, StateError, check_array_state, check_int_state
+from .._validation import MAX_SCAN_NORM
 from ..distances import squared_distances
 
 __all__ = ["Clusterer", "Match", "Growth", "NO_UNITS", "move_towards"]
@@ -39,6 +40,16 @@ def move_towards(w, x, rate):
     """
     return w + rate * (x - w)
 
+
+
+def _largest_norm(W: np.ndarray) -> float:
+    """The largest Euclidean norm of the rows of ``W`` (inf where a square overflows)."""
+    if W.size == 0:
+        return 0.0
+    scale = float(np.abs(W).max())
+    if scale == 0.0 or not np.isfinite(scale):
+        return scale
+    return scale * float(np.sqrt(((W / scale) ** 2).sum(axis=1).max()))
 
 class Match(NamedTuple):
     """The outcome of presenting one input, before any learning.
@@ -153,7 +164,17 @@ class Clusterer(Component):
         """
         self._validate_params()
         rng = np.random.default_rng(random_state)
-        self._initialize(np.asarray(X, dtype=np.float64), rng)
+        try:
+            self._initialize(np.asarray(X, dtype=np.float64), rng)
+        except MemoryError as exc:  # numpy says how much it could not allocate
+            raise ValueError(f"{type(self).__name__} with these parameters does not fit in memory for "
+                             f"{X.shape[1]} features: {exc}. Use fewer units.") from None
+        if _largest_norm(self.weights_) > MAX_SCAN_NORM:
+            raise ValueError(
+                f"{type(self).__name__}'s initial weights reach a norm of {_largest_norm(self.weights_):.3g}, "
+                f"beyond {MAX_SCAN_NORM:g}, the largest scan norm (init_range too wide for "
+                f"{self.weights_.shape[1]} features)."
+            )
         n = self.weights_.shape[0]
         self.unit_ids_ = np.arange(n, dtype=np.int64)
         self.next_unit_id_ = n
@@ -221,6 +242,11 @@ class Clusterer(Component):
 
     def _check_state(self) -> None:
         W = check_array_state(self, "weights_", 2)
+        if _largest_norm(W) > MAX_SCAN_NORM * (1 + 1e-9):
+            # learning moves units towards scans (convex steps) and initialises them from scans or
+            # from init_range, so no unit lies beyond the norm bound scans are held to
+            raise StateError(f"{type(self).__name__}.weights_ reach a norm of {_largest_norm(W):.3g}, beyond "
+                             f"the bound {MAX_SCAN_NORM:g} that learning keeps to.")
         check_array_state(self, "unit_ids_", 1, "iu", shape=(W.shape[0],))
         nxt = check_int_state(self, "next_unit_id_")
         if W.shape[0] == 0:

@@ -53,7 +53,7 @@ import numbers
 import numpy as np
 
 from ..distances import squared_distances
-from .._component import KernelSpec, StateError, check_array_state, check_int_state
+from .._component import MAX_COUNT, KernelSpec, StateError, check_array_state, check_int_state
 from .._validation import Bounds, Interval, Options
 from . import _graph
 from .base import Clusterer, Growth, Match, move_towards
@@ -125,11 +125,11 @@ class GrowingNeuralGas(Clusterer):
     _parameter_rules = {
         "epsilon_b": Interval(numbers.Real, 0, 1),
         "epsilon_n": Interval(numbers.Real, 0, 1),
-        "insertion_interval": Interval(numbers.Integral, 1, None),
+        "insertion_interval": Interval(numbers.Integral, 1, MAX_COUNT),
         "insertion_error_decay": Interval(numbers.Real, 0, 1),
         "error_decay": Interval(numbers.Real, 0, 1),
-        "max_age": Interval(numbers.Integral, 1, None),
-        "max_units": Interval(numbers.Integral, 2, None),
+        "max_age": Interval(numbers.Integral, 1, MAX_COUNT),
+        "max_units": Interval(numbers.Integral, 2, MAX_COUNT),
         "init": Options(("sample", "uniform")),
         "init_range": Bounds(),
     }

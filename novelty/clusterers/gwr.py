@@ -81,7 +81,7 @@ import numbers
 import numpy as np
 
 from ..distances import squared_distances
-from .._component import KernelSpec, StateError
+from .._component import MAX_COUNT, KernelSpec, StateError
 from ..habituation.stanley import StanleySynapse
 from .._validation import Bounds, Instance, Interval, Options
 from ..habituation.base import Synapse
@@ -196,8 +196,8 @@ class GrowWhenRequired(Clusterer):
         "new_unit_wins": Options((True, False)),
         "epsilon_b": Interval(numbers.Real, 0, 1),
         "epsilon_n": Interval(numbers.Real, 0, 1),
-        "max_age": Interval(numbers.Integral, 1, None),
-        "max_units": Interval(numbers.Integral, 2, None, allow_none=True),
+        "max_age": Interval(numbers.Integral, 1, MAX_COUNT),
+        "max_units": Interval(numbers.Integral, 2, MAX_COUNT, allow_none=True),
         "firing": (Options((None,)), Instance((str, Synapse), "a synapse name or a Synapse instance")),
         "init": Options(("sample", "uniform")),
         "init_range": Bounds(),

@@ -38,7 +38,7 @@ import numbers
 import numpy as np
 
 from ..distances import squared_distances
-from .._component import KernelSpec, StateError, check_int_state
+from .._component import MAX_COUNT, KernelSpec, StateError, check_int_state
 from .._validation import Bounds, Interval, Options
 from .base import NO_GROWTH, Clusterer, Growth, Match, move_towards
 
@@ -119,7 +119,7 @@ class SOM(Clusterer):
         "neighbour_learning_rate": Interval(numbers.Real, 0, 1, allow_none=True),
         "radius": Interval(numbers.Real, 0, None),
         "decay": Options(("constant", "linear", "asymptotic")),
-        "decay_steps": Interval(numbers.Integral, 1, None),
+        "decay_steps": Interval(numbers.Integral, 1, MAX_COUNT),
         "learning_rate_final": Interval(numbers.Real, 0, 1),
         "radius_final": Interval(numbers.Real, 0, None),
         "init": Options(("uniform", "sample")),

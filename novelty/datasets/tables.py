@@ -1,17 +1,38 @@
-"""Reading a CSV or NPZ file of scans into named columns (the format is described in :mod:`novelty.datasets.files`)."""
+"""Reading a CSV or NPZ file of scans into named columns (the format is described in :mod:`novelty.datasets.files`).
+
+Reading is bounded by limits the library sets, not by the file: only a
+regular file is read (``/dev/zero`` would never end, a FIFO without a writer
+never start); a CSV line holds at most :data:`MAX_LINE_CHARS` characters and
+a row at most :data:`MAX_COLUMNS` cells (a header of a few hundred MB is
+refused after reading one limit's worth, not loaded); an ``.npz`` file
+inflates to at most :data:`MAX_NPZ_BYTES` in all, and each array's declared
+shape must fit in the bytes its member holds, both checked before anything
+is inflated.
+"""
 
 from __future__ import annotations
 
 import csv
+import math
+import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
 
 import numpy as np
 
+from .._atomic import not_regular
 from ._files import _is_float
 
-__all__ = ["Table", "header_of", "read_table"]
+__all__ = ["Table", "header_of", "read_table", "bounded_lines", "csv_rows", "check_data_file",
+           "MAX_LINE_CHARS", "MAX_COLUMNS", "MAX_NPZ_BYTES"]
+
+#: the longest line of a CSV file or stream read (a scan of 65,536 readings of 60 characters)
+MAX_LINE_CHARS = 2**22
+#: the most cells in a row (and names in a header)
+MAX_COLUMNS = 2**16
+#: the most bytes an .npz data file inflates to, all its arrays together
+MAX_NPZ_BYTES = 2**30
 
 
 @dataclass(frozen=True)
@@ -61,13 +82,61 @@ def _column(cells: list[str]) -> np.ndarray:
         return np.array([c.strip() for c in cells])
 
 
+def bounded_lines(fh, source: str):
+    """The lines of the text stream ``fh``, refusing one longer than :data:`MAX_LINE_CHARS`
+    (a ``ValueError`` naming ``source`` and the line) after reading no more than that."""
+    limit = MAX_LINE_CHARS
+    number = 0
+    while True:
+        try:
+            line = fh.readline(limit + 1)
+        except UnicodeDecodeError as exc:
+            raise ValueError(f"{source} is not UTF-8 text ({exc.reason}); save it as UTF-8.") from None
+        if not line:
+            return
+        number += 1
+        if len(line) > limit and not line.endswith("\n"):
+            raise ValueError(f"{source}, line {number}: longer than {limit} characters, the longest line "
+                             "read (one scan a line); is it a CSV file of scans?")
+        yield line
+
+
+def csv_rows(reader, source: str):
+    """The rows of a csv reader, each of at most :data:`MAX_COLUMNS` cells; csv's errors named."""
+    while True:
+        try:
+            row = next(reader)
+        except StopIteration:
+            return
+        except csv.Error as exc:  # a NUL byte, a field beyond csv's limit
+            raise ValueError(f"{source}, line {reader.line_num}: not CSV text ({exc}).") from None
+        if len(row) > MAX_COLUMNS:
+            raise ValueError(f"{source}, line {reader.line_num}: {len(row)} cells; at most {MAX_COLUMNS} "
+                             "are read.")
+        yield row
+
+
+def check_data_file(path) -> Path:
+    """``path`` if it is a regular file; else ``FileNotFoundError`` or ``ValueError`` saying what it is."""
+    path = Path(path)
+    if not path.exists():
+        raise FileNotFoundError(f"Data file not found: {path}")
+    if path.is_dir():
+        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
+    kind = not_regular(path)
+    if kind is not None:
+        raise ValueError(f"{path} is {kind}, not a regular file; scans are read only from a .csv or .npz "
+                         "file (standard input: --data -).")
+    return path
+
+
 def _read_csv(path: Path) -> Table:
     try:
         with open(path, newline="", encoding="utf-8") as fh:
-            reader = csv.reader(fh)
+            reader = csv.reader(bounded_lines(fh, str(path)))
             # the line a row ends on, so that an error names the line an editor shows
             rows, lines = [], []
-            for r in reader:
+            for r in csv_rows(reader, str(path)):
                 if r and any(c.strip() for c in r):
                     rows.append(r)
                     lines.append(reader.line_num)
@@ -94,10 +163,35 @@ def _read_csv(path: Path) -> Table:
                  tuple(lines))
 
 
+def _check_npz_sizes(path: Path) -> None:
+    """Refuse an .npz that would inflate beyond :data:`MAX_NPZ_BYTES`, or an array whose declared
+    shape needs more bytes than its member holds (numpy allocates the shape first)."""
+    with zipfile.ZipFile(path) as zf:
+        members = zf.infolist()
+        total = sum(info.file_size for info in members)
+        if total > MAX_NPZ_BYTES:
+            raise ValueError(f"{path} inflates to {total} bytes; at most {MAX_NPZ_BYTES} are read.")
+        for info in members:
+            if not info.filename.endswith(".npy"):
+                continue
+            with zf.open(info) as fh:
+                version = np.lib.format.read_magic(fh)
+                read = {(1, 0): np.lib.format.read_array_header_1_0,
+                        (2, 0): np.lib.format.read_array_header_2_0}.get(version)
+                if read is None:
+                    raise ValueError(f"{path}: the array {info.filename[:-4]!r} has npy format {version}.")
+                shape, _, dtype = read(fh)
+                declared = math.prod(shape) * dtype.itemsize
+                if declared > info.file_size - fh.tell():
+                    raise ValueError(f"{path}: the array {info.filename[:-4]!r} declares shape {shape} "
+                                     f"({declared} bytes) but holds {info.file_size - fh.tell()} bytes.")
+
+
 def _read_npz(path: Path) -> Table:
     try:
+        _check_npz_sizes(path)
         npz = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
         raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
     with npz:
         arrays = {k: npz[k] for k in npz.files}
@@ -120,11 +214,7 @@ def _read_npz(path: Path) -> Table:
 
 def read_table(path) -> Table:
     """The columns of a CSV or NPZ file (see the module docstring)."""
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"Data file not found: {path}")
-    if path.is_dir():
-        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
+    path = check_data_file(path)
     table = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
     if table.n_rows == 0:
         raise ValueError(f"{path} has no scans.")

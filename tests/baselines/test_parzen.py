@@ -38,3 +38,10 @@ def test_far_point_keeps_a_finite_ordered_score():
     det = ParzenDetector().fit(np.random.default_rng(0).normal(size=(100, 3)))
     raw = det.raw_novelty([[50.0, 0, 0], [100.0, 0, 0]])
     assert np.all(np.isfinite(raw)) and raw[1] > raw[0]
+
+
+@pytest.mark.parametrize("bandwidth", [1e155, 1e-200])
+def test_a_bandwidth_whose_square_leaves_the_floats_is_a_value_error(blobs, bandwidth):
+    # h^2 overflows above about 1e154; below about 1e-154 it is 0 and every density is damaged
+    with pytest.raises(ValueError, match=r"'bandwidth' parameter of ParzenDetector must be .* \[1e-50, 1e\+150\]"):
+        ParzenDetector(bandwidth=bandwidth).fit(blobs)

@@ -1,5 +1,8 @@
 """The scikit-learn outlier adapter and the four detectors registered through it."""
 
+import json
+import time
+
 import numpy as np
 import pytest
 from sklearn.covariance import EllipticEnvelope
@@ -10,7 +13,8 @@ from sklearn.svm import OneClassSVM
 
 import novelty
 from novelty._component import StateError
-from novelty.baselines import SklearnOutlierDetector
+from novelty.baselines import SklearnOutlierDetector, sklearn_outlier
+from novelty.persistence import ModelFileError
 
 
 @pytest.fixture(scope="module")
@@ -81,3 +85,49 @@ def test_the_wrapped_estimator_is_not_modified(data):
     est = IsolationForest(n_estimators=10, random_state=0)
     SklearnOutlierDetector(est).fit(data[0])
     assert not hasattr(est, "estimators_"), "fit works on a clone"
+
+
+# ------------------------------------------------------------- the cost of a load
+def _with_meta_change(path, out, change):
+    with np.load(path, allow_pickle=False) as npz:
+        entries = {name: npz[name] for name in npz.files}
+    meta = json.loads(entries["meta"].tobytes().decode("utf-8"))
+    change(meta["root"], entries)
+    entries["meta"] = np.frombuffer(json.dumps(meta).encode("utf-8"), dtype=np.uint8)
+    with open(out, "wb") as fh:
+        np.savez(fh, **entries)
+    return out
+
+
+@pytest.mark.parametrize("n_estimators", [10**6, 10**9, 2**31 - 1])
+def test_a_small_file_declaring_a_huge_forest_is_refused_before_any_tree_grows(tmp_path, n_estimators):
+    det = novelty.make("isolation-forest", n_estimators=5).fit(np.random.default_rng(0).uniform(size=(40, 3)))
+    det.save(tmp_path / "m.npz")
+    bad = _with_meta_change(tmp_path / "m.npz", tmp_path / "bad.npz",
+                            lambda root, _: root["params"].update(n_estimators=n_estimators))
+    assert bad.stat().st_size < 30_000
+    started = time.perf_counter()
+    with pytest.raises(ModelFileError, match=r"at most 256000 trees x samples"):
+        novelty.load(bad)
+    assert time.perf_counter() - started < 5  # refused before fitting (a 10**6-tree refit took over 75 s)
+
+
+def test_training_inputs_beyond_the_refit_cap_are_refused_at_load_and_at_save(tmp_path, monkeypatch):
+    monkeypatch.setattr(sklearn_outlier, "MAX_REFIT_SAMPLES", 30)  # the cap made small: the test stays fast
+    X = np.random.default_rng(0).uniform(size=(40, 3))
+    det = novelty.make("lof").fit(X)
+    with pytest.raises(StateError, match=r"keeps 40 training inputs .* at most 30 inputs"):
+        det.save(tmp_path / "m.npz")
+    assert not (tmp_path / "m.npz").exists()
+    monkeypatch.setattr(sklearn_outlier, "MAX_REFIT_SAMPLES", 40)
+    det.save(tmp_path / "m.npz")
+    monkeypatch.setattr(sklearn_outlier, "MAX_REFIT_SAMPLES", 30)
+    with pytest.raises(ModelFileError, match=r"keeps 40 training inputs"):
+        novelty.load(tmp_path / "m.npz")
+
+
+@pytest.mark.parametrize("name, param, value", [("isolation-forest", "n_estimators", 2**70),
+                                                ("one-class-svm", "degree", 10**12)])
+def test_parameters_beyond_what_the_estimator_takes_are_a_value_error(name, param, value):
+    with pytest.raises(ValueError, match=rf"'{param}' parameter .* must be an int in \[\d+, 2\*\*31 - 1\]"):
+        novelty.make(name, **{param: value}).fit(np.random.default_rng(0).uniform(size=(20, 2)))

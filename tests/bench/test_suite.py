@@ -240,3 +240,10 @@ name = "{toy_registered.TASK}"
     assert notice in console.getvalue()
     assert "Skipped no-such-detector: not registered here." in console.getvalue()
     assert notice in report.notes and notice in (tmp_path / "out" / "summary.md").read_text()
+
+
+def test_a_suite_nested_thousands_deep_is_a_suite_error(tmp_path):
+    path = tmp_path / "deep.toml"
+    path.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    with pytest.raises(SuiteError, match="nests its tables or arrays too deeply"):
+        load_suite(path)

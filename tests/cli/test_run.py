@@ -186,3 +186,27 @@ def test_save_to_a_fifo_or_a_link_is_refused_before_the_scans_are_read(tmp_path,
         assert kind in captured.err and "only a regular file is replaced" in captured.err
         assert captured.out == ""  # refused before any scan was scored
     assert os.path.islink(link) and not (tmp_path / "elsewhere.npz").exists()
+
+
+def test_a_fifo_as_data_is_refused_at_once_with_the_message_the_bench_gives(tmp_path, capsys):
+    fifo = tmp_path / "scans.csv"
+    os.mkfifo(fifo)  # no writer: opening it would block forever
+    assert main(["run", "hsom", "--data", str(fifo)]) == 2
+    run_says = capsys.readouterr().err
+    assert "is a FIFO (named pipe), not a regular file" in run_says
+    assert main(["bench", "--detector", "hsom", "--task", f"files path={fifo}", "--out", str(tmp_path / "b"),
+                 "--quiet"]) == 2
+    bench_says = capsys.readouterr().err
+    assert run_says.split("error: ")[1] in bench_says
+
+
+@pytest.mark.parametrize("stdin, message", [
+    (b"a,b\n\x00\xff\xfe,1\n", "standard input, line 2"),
+    (b"a,b\n0.1,0.2\n" + b"0," * 3_000_000 + b"\n", "standard input, line 3: longer than 4194304 characters"),
+])
+def test_binary_or_endless_stdin_is_a_user_error(stdin, message):
+    proc = subprocess.run([sys.executable, "-m", "novelty.cli", "run", "hsom", "--data", "-"], env=ENV,
+                          input=stdin, capture_output=True, timeout=300)
+    err = proc.stderr.decode()
+    assert proc.returncode == 2, err
+    assert message in err and "internal error" not in err

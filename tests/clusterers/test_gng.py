@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+import novelty
 from novelty._component import StateError
 from novelty.clusterers.gng import GrowingNeuralGas
 
@@ -146,7 +147,7 @@ def test_edge_of_age_max_age_survives():
 # ---------------------------------------------------------------- validation
 def test_parameter_messages():
     with pytest.raises(ValueError, match=r"The 'max_age' parameter of GrowingNeuralGas must be an int "
-                                         r"in \[1, inf\)\. Got 0 instead\."):
+                                         r"in \[1, 2\*\*53\]\. Got 0 instead\."):
         GrowingNeuralGas(max_age=0).initialize(np.zeros((2, 2)))
     with pytest.raises(ValueError, match="'insertion_interval'"):
         GrowingNeuralGas(insertion_interval=0.5).initialize(np.zeros((2, 2)))
@@ -181,3 +182,12 @@ def test_a_match_without_runner_up_is_completed():
     b.adapt(x, Match(m.winner, m.distance, m.neighbours))
     np.testing.assert_array_equal(a.edge_ages_, b.edge_ages_)
     assert edge_dict(b) == {(0, 1): 0, (0, 2): 0}   # winner 2, runner-up 0
+
+
+def test_an_age_or_interval_beyond_any_run_is_a_value_error():
+    # 2**63 - 1 rounds to 2**63 in the compiled steps' float parameters and wraps round
+    X = np.random.default_rng(0).uniform(size=(30, 3))
+    for name in ("max_age", "insertion_interval", "max_units"):
+        with pytest.raises(ValueError, match=rf"'{name}' parameter of GrowingNeuralGas must be an int in"):
+            novelty.make("gng-stanley", **{f"clusterer__{name}": 2**63 - 1}).fit(X)
+    novelty.make("gng-stanley", clusterer__max_age=2**53).fit(X)  # never reached, as 2**63 - 1 meant

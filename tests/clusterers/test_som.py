@@ -12,6 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
+import novelty
 import novelty.clusterers.base as clusterer_base
 from novelty.clusterers.som import SOM
 
@@ -368,3 +369,8 @@ def test_a_large_map_needs_memory_in_proportion_to_its_units():
     finally:
         tracemalloc.stop()
     assert peak < 2_000_000  # 3600 units x 2 features are 58 kB; a unit-by-unit table 100 MB
+
+
+def test_a_map_beyond_memory_is_a_value_error_that_says_so():
+    with pytest.raises(ValueError, match=r"SOM with these parameters does not fit in memory .* Use fewer units"):
+        novelty.make("hsom", n_rows=10**12).fit(np.zeros((3, 3)))
