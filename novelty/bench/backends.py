@@ -20,6 +20,10 @@ Whatever goes wrong inside a cell is a failed cell, never the end of the run:
 - Dask: a cell whose worker dies is retried by the scheduler, then recorded
   as failed; a cell past its timeout is recorded as failed, but runs on in
   its worker's thread (Dask cannot stop running code).
+
+Every worker process (loky's, its resource tracker, a local Dask cluster's)
+is started without the working directory on its ``sys.path``
+(:mod:`novelty._children`).
 """
 
 from __future__ import annotations
@@ -30,6 +34,7 @@ import time
 from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, wait
 from typing import Iterable, Iterator
 
+from .._children import SAFE_PATH, isolated_children
 from .cell import failed_row, run_cell
 from .specs import Cell
 
@@ -80,7 +85,7 @@ def run_watched(cells: list[Cell], jobs: int) -> Iterator[tuple]:
     try:
         while pending or suspects or running:
             if executor is None:
-                executor = get_reusable_executor(max_workers=jobs)
+                executor = get_reusable_executor(max_workers=jobs, env=SAFE_PATH)
                 # a new pool's workers start and import first; that is not the cells' time
                 for job in [executor.submit(_ready) for _ in range(jobs)]:
                     job.result()
@@ -215,5 +220,11 @@ def execute(cells: Iterable[Cell], backend: str = "serial", jobs: int = 1,
     if backend not in _RUNNERS:
         raise BackendError(f"Unknown backend {backend!r}; expected one of {', '.join(BACKENDS)}.")
     if backend == "dask":
-        return run_dask(cells, jobs, scheduler, client=client)
-    return _RUNNERS[backend](cells, jobs, scheduler)
+        return _isolated(run_dask(cells, jobs, scheduler, client=client))
+    return _isolated(_RUNNERS[backend](cells, jobs, scheduler))
+
+
+def _isolated(rows: Iterator[tuple]) -> Iterator[tuple]:
+    # workers start lazily (at a first submit, after a crash), so for as long as cells run
+    with isolated_children():
+        yield from rows

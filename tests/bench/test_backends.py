@@ -68,3 +68,55 @@ def test_non_finite_scores_fail_the_cell(tmp_path, faulty_registered):
                                             "NaN or infinite")
     summary = (tmp_path / "summary.md").read_text()
     assert "Failed cells" in summary and faulty.NAN in summary.split("Failed cells")[1]
+
+
+# ------------------------------------------------ no code from the working directory
+LAUNCH = """
+import sys
+sys.path[:0] = [{repo!r}, {bench_tests!r}]
+import novelty, toy
+from novelty.bench import DetectorSpec, Suite, TaskSpec
+from novelty.bench.runner import run_bench
+from novelty.datasets import registry
+
+
+def main():
+    registry.register(toy.TASK, toy.toy_task, replace=True)
+    for backend, timeout in (("joblib", None), ("serial", 60), ("dask", None)):
+        if backend == "dask":
+            try:
+                import distributed  # noqa: F401
+            except ImportError:
+                continue
+        suite = Suite([DetectorSpec("hsom", {{"n_rows": 2, "n_columns": 2}})], [TaskSpec(toy.TASK)],
+                      seeds=[0, 1], memory=False, cell_timeout=timeout).check()
+        report = run_bench(suite, backend, backend=backend, jobs=2, quiet=True, plots=False)
+        assert report.failed == 0, report.rows
+        print(backend, "ran", report.ran)
+
+
+if __name__ == "__main__":  # spawned children import this file again
+    main()
+"""
+
+
+def test_no_worker_imports_modules_planted_in_the_working_directory(tmp_path):
+    # a launcher outside the working directory, as the installed 'novelty' script is
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    repo = Path(novelty.__file__).resolve().parents[1]
+    launcher = tmp_path / "launcher" / "launch.py"
+    launcher.parent.mkdir()
+    launcher.write_text(LAUNCH.format(repo=str(repo), bench_tests=str(Path(__file__).parent)))
+    cwd = tmp_path / "cwd"
+    cwd.mkdir()
+    for name in ("numpy", "joblib", "multiprocessing"):
+        (cwd / f"{name}.py").write_text(f"open({str(tmp_path / ('MARKER-' + name))!r}, 'w').close()\n")
+    proc = subprocess.run([sys.executable, str(launcher)], cwd=cwd, capture_output=True, text=True,
+                          timeout=600, env={k: v for k, v in __import__("os").environ.items()
+                                            if k != "PYTHONSAFEPATH"})
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert "joblib ran 2" in proc.stdout and "serial ran 2" in proc.stdout
+    assert sorted(p.name for p in tmp_path.glob("MARKER-*")) == []

@@ -15,6 +15,7 @@ from typing import TextIO
 import numpy as np
 
 import novelty
+from novelty._children import isolated_children
 from novelty._progress import Steps
 from novelty.reproduce.figures import pyplot  # noqa: F401  (the experiments' figures)
 from novelty.sonar import simulate
@@ -210,7 +211,8 @@ def _results(function, items: list, jobs: int, done) -> list:
             done()
         return results
     # spawn, not fork: numba may be compiling in a background thread of this process
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
+    with isolated_children(), ProcessPoolExecutor(max_workers=jobs,
+                                                  mp_context=multiprocessing.get_context("spawn")) as pool:
         for result in pool.map(function, items):
             results.append(result)
             done()
