@@ -35,7 +35,7 @@ from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, wait
 from typing import Iterable, Iterator
 
 from .._children import SAFE_PATH, isolated_children
-from .cell import failed_row, run_cell
+from .cell import failed_row, run_cell, run_cell_in_worker
 from .specs import Cell
 
 __all__ = ["BACKENDS", "execute", "BackendError"]
@@ -91,7 +91,7 @@ def run_watched(cells: list[Cell], jobs: int) -> Iterator[tuple]:
                     job.result()
             while len(running) < (1 if suspects else jobs) and (suspects or pending):
                 cell = suspects.pop() if suspects else pending.pop()
-                running[executor.submit(run_cell, cell)] = (cell, time.monotonic())
+                running[executor.submit(run_cell_in_worker, cell)] = (cell, time.monotonic())
             done, _ = wait(list(running), timeout=_POLL, return_when=FIRST_COMPLETED)
             crashed = []
             for future in done:
@@ -199,10 +199,10 @@ def _run_with_deadline(cell: Cell) -> tuple:
     recorded as failed and left to finish on its own.
     """
     if cell.timeout is None:
-        return run_cell(cell)
+        return run_cell_in_worker(cell)
 
     result: list = []
-    thread = threading.Thread(target=lambda: result.append(run_cell(cell)), daemon=True)
+    thread = threading.Thread(target=lambda: result.append(run_cell_in_worker(cell)), daemon=True)
     thread.start()
     thread.join(cell.timeout)
     if result:

@@ -22,7 +22,7 @@ from .build import CellError, ensure_registered
 from .protocol import get_protocol
 from .specs import Cell
 
-__all__ = ["run_cell", "failed_row", "cell_header"]
+__all__ = ["run_cell", "run_cell_in_worker", "failed_row", "cell_header"]
 
 
 def failed_row(cell: Cell, error: str) -> tuple[dict, dict]:
@@ -75,3 +75,17 @@ def run_cell(cell: Cell) -> tuple[dict, dict]:
     messages = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
     row["warnings"] = " | ".join(m[:200] for m in messages[:3])
     return row, arrays
+
+
+def run_cell_in_worker(cell: Cell) -> tuple[dict, dict]:
+    """:func:`run_cell` in a worker process or thread, where a ``KeyboardInterrupt`` is the cell's.
+
+    In the bench's own process a ``KeyboardInterrupt`` is the user's and stops
+    the run; raised in a worker it came from the cell (or reached the worker
+    beside the bench, which stops the run itself), so the cell is recorded as
+    failed, and run again by a resumed bench as every failed cell is.
+    """
+    try:
+        return run_cell(cell)
+    except KeyboardInterrupt:
+        return failed_row(cell, "KeyboardInterrupt: raised inside the cell's worker")

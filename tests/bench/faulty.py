@@ -13,6 +13,7 @@ import numpy as np
 import novelty
 
 CRASH, EXIT, HANG, NAN = "faulty-crash", "faulty-exit", "faulty-hang", "faulty-nan"
+INTERRUPT = "faulty-interrupt"
 
 
 def _hsom_failing(fail, **params):
@@ -30,6 +31,13 @@ def exit_(**params):
     """Training calls sys.exit."""
     def fail(*args, **kwargs):
         raise SystemExit(4)
+    return _hsom_failing(fail, **params)
+
+
+def interrupt(**params):
+    """Training raises KeyboardInterrupt (as a library's own signal handling may)."""
+    def fail(*args, **kwargs):
+        raise KeyboardInterrupt
     return _hsom_failing(fail, **params)
 
 
@@ -54,4 +62,4 @@ def nan_on_seed_1(**params):
     return det
 
 
-FACTORIES = {CRASH: crash, EXIT: exit_, HANG: hang, NAN: nan_on_seed_1}
+FACTORIES = {CRASH: crash, EXIT: exit_, HANG: hang, NAN: nan_on_seed_1, INTERRUPT: interrupt}

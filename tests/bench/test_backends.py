@@ -120,3 +120,19 @@ def test_no_worker_imports_modules_planted_in_the_working_directory(tmp_path):
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert "joblib ran 2" in proc.stdout and "serial ran 2" in proc.stdout
     assert sorted(p.name for p in tmp_path.glob("MARKER-*")) == []
+
+
+def test_a_keyboard_interrupt_raised_in_a_worker_is_a_failed_cell_and_rerun_on_resume(tmp_path, faulty_registered):
+    suite = toy_suite(faulty_registered, faulty.INTERRUPT, "hsom")
+    report = run_bench(suite, tmp_path, backend="joblib", jobs=2, quiet=True, plots=False)
+    rows = by_detector(report)
+    assert rows[faulty.INTERRUPT, 0]["error"] == "KeyboardInterrupt: raised inside the cell's worker"
+    assert rows["hsom", 0]["status"] == "ok"
+    again = run_bench(suite, tmp_path, backend="joblib", jobs=2, quiet=True, plots=False)
+    assert again.ran == 1 and again.failed == 1  # the failed cell runs again, the ok one does not
+
+
+def test_a_keyboard_interrupt_in_the_bench_process_still_stops_the_bench(tmp_path, faulty_registered):
+    # serial cells run in the bench's own process: there the interrupt is the user's
+    report = run_bench(toy_suite(faulty_registered, faulty.INTERRUPT, "hsom"), tmp_path, quiet=True, plots=False)
+    assert report.interrupted and report.rows == []  # stopped at the first cell, which is not recorded
