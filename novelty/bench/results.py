@@ -4,8 +4,14 @@
 an interrupted run loses at most the cells that were running; it is the resume
 record. A cell whose ``cell_id`` is there with ``status = "ok"`` is not run
 again; a failed cell is run again (its new line supersedes the old one).
-``results.csv`` is rewritten from it after every run. The novelty of every
-test scan of a cell goes to ``cells/<cell_id>.npz`` for the plots.
+``results.csv`` is rewritten from it after every run, its rows in a canonical
+order (detector, task, seed, threshold rule, cell id) and its columns in
+their order of first appearance down those rows, so that the files of one
+suite run serially, with joblib or on Dask are equal byte for byte apart
+from the columns of :data:`MACHINE_COLUMNS` (times, speeds, traced memory and
+the time a cell finished; every metric is the same on every backend). The
+novelty of every test scan of a cell goes to ``cells/<cell_id>.npz`` for the
+plots.
 
 One run at a time writes to a folder: a run holds ``.lock`` (an advisory
 ``flock``, released by the system when the process ends, however it ends;
@@ -36,10 +42,15 @@ import numpy as np
 from .._atomic import write_atomically
 from .._version import __version__
 
-__all__ = ["ResultsStore", "OutputBusyError", "provenance", "read_rows", "RESULTS_JSONL", "RESULTS_CSV"]
+__all__ = ["ResultsStore", "OutputBusyError", "provenance", "read_rows", "canonical_order", "RESULTS_JSONL",
+           "RESULTS_CSV", "MACHINE_COLUMNS"]
 
 RESULTS_JSONL = "results.jsonl"
 RESULTS_CSV = "results.csv"
+#: the columns of results.csv that measure the machine and the moment, not the detector: they differ
+#: from run to run and from backend to backend (every other column is the same)
+MACHINE_COLUMNS = ("train_time_s", "score_time_s", "train_scans_per_s", "score_scans_per_s", "peak_memory_mb",
+                   "finished_at")
 _VERSIONED = ("novelty", "numpy", "scipy", "scikit-learn", "numba", "joblib", "dask", "distributed")
 
 
@@ -136,6 +147,18 @@ def read_rows(path) -> list[dict]:
     return list(rows.values())
 
 
+def canonical_order(rows: Iterable[dict]) -> list[dict]:
+    """``rows`` sorted by detector, task, seed, threshold rule and cell id: the order of results.csv,
+    whatever order the cells finished in."""
+    def key(row: dict) -> tuple:
+        seed = row.get("seed")
+        return (str(row.get("detector", "")), str(row.get("task", "")),
+                (0, seed, "") if isinstance(seed, int) else (1, 0, str(seed)),
+                str(row.get("threshold_rule", "")), str(row.get("cell_id", "")))
+
+    return sorted(rows, key=key)
+
+
 class OutputBusyError(OSError):
     """Another run is writing to the same output folder."""
 
@@ -218,7 +241,7 @@ class ResultsStore:
             return {k: npz[k] for k in npz.files}
 
     def write_csv(self, rows: Iterable[dict] | None = None) -> Path:
-        rows = list(self.rows() if rows is None else rows)
+        rows = canonical_order(self.rows() if rows is None else rows)
         columns: list[str] = []
         for row in rows:
             columns.extend(k for k in row if k not in columns)

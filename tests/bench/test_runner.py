@@ -114,11 +114,41 @@ def test_failed_cells_are_run_again_on_resume(tmp_path, toy_registered):
     assert again.ran == 1 and again.rows[0]["error"].startswith("RuntimeError: the toy task was asked to fail")
 
 
+def results_csv_apart_from_machine_columns(folder):
+    """results.csv's bytes with the columns that measure the machine blanked (the header kept)."""
+    import csv
+    import io
+
+    from novelty.bench.results import MACHINE_COLUMNS
+
+    text = (folder / "results.csv").read_text(encoding="utf-8")
+    rows = list(csv.reader(io.StringIO(text)))
+    blank = [j for j, name in enumerate(rows[0]) if name in MACHINE_COLUMNS]
+    assert blank, "the timing columns are in the file"
+    return [rows[0]] + [[("" if j in blank else c) for j, c in enumerate(r)] for r in rows[1:]]
+
+
 def test_joblib_gives_the_serial_numbers(tmp_path, suite):
     serial = run_bench(suite, tmp_path / "serial", quiet=True, plots=False)
     parallel = run_bench(suite, tmp_path / "joblib", backend="joblib", jobs=2, quiet=True, plots=False)
     assert metric_table(parallel.rows) == metric_table(serial.rows)
     assert all(r["status"] == "ok" for r in parallel.rows)
+    # the same file, row for row and byte for byte, apart from times, speeds, memory and the clock
+    assert results_csv_apart_from_machine_columns(tmp_path / "joblib") == \
+        results_csv_apart_from_machine_columns(tmp_path / "serial")
+
+
+def test_results_csv_rows_are_in_canonical_order_whatever_order_cells_finish(tmp_path, suite):
+    from novelty.bench.results import ResultsStore, canonical_order
+
+    run_bench(suite, tmp_path, quiet=True, plots=False)
+    store = ResultsStore(tmp_path)
+    rows = store.rows()
+    before = (tmp_path / "results.csv").read_bytes()
+    store.write_csv(list(reversed(rows)))
+    assert (tmp_path / "results.csv").read_bytes() == before
+    assert [(r["detector"], r["seed"]) for r in canonical_order(rows)] == [
+        ("gwr-stanley", 0), ("gwr-stanley", 1), ("hsom-4x4", 0), ("hsom-4x4", 1)]
 
 
 def test_dask_local_cluster_gives_the_serial_numbers(tmp_path, suite):
@@ -130,6 +160,8 @@ def test_dask_local_cluster_gives_the_serial_numbers(tmp_path, suite):
                            quiet=True, plots=False)
     assert metric_table(report.rows) == metric_table(serial.rows)
     assert all(r["status"] == "ok" for r in report.rows)
+    assert results_csv_apart_from_machine_columns(tmp_path / "dask") == \
+        results_csv_apart_from_machine_columns(tmp_path / "serial")
 
 
 def test_progress_lines_when_not_a_terminal(tmp_path, suite, capsys):
