@@ -178,6 +178,7 @@ ACROSS = {
     "test_plugin.py": "a third-party plugin package, listed and benchmarked",
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
+    "fuzz/test_files.py": "hostile save targets, suite files and standard input",
 }
 
 

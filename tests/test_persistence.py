@@ -720,7 +720,9 @@ def test_saved_files_get_the_usual_mode(tmp_path):
 _FAST = {"autoencoder-filter": {"max_iter": 20}, "gmm": {"n_components": 2},
          "isolation-forest": {"n_estimators": 10}}
 CORRUPTIONS = ("bit flips", "header bit flips", "truncation", "random bytes", "member swap",
-               "json edit", "array edit")
+               "json edit", "array edit", "huge count")
+#: counts a small file may declare: trees, units, iterations, components
+HUGE_COUNTS = [10**6, 10**9, 2**31 - 1, 2**53, 2**63 - 1, 2**70]
 
 
 def header_offsets(data: bytes) -> list[int]:
@@ -765,6 +767,13 @@ def json_paths(node, path=()):
     items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
     for key, child in items:
         yield from json_paths(child, path + (key,))
+
+
+def _is_count(meta, path) -> bool:
+    node = meta
+    for key in path:
+        node = node[key]
+    return isinstance(node, int) and not isinstance(node, bool) and "format_version" not in path
 
 
 def edit_json(meta, path, value, delete):
@@ -841,6 +850,11 @@ def corruptions(draw, files):
         return name, kind, rebuild(data, lambda members: members.update({target: npy_bytes(array)}))
     with zipfile.ZipFile(io.BytesIO(data)) as zf, zf.open("meta.npy") as fh:
         meta = json.loads(np.lib.format.read_array(fh).tobytes())
+    if kind == "huge count":  # an integer of the metadata (a parameter, a counter) made huge
+        counts = [p for p in json_paths(meta) if p and _is_count(meta, p)]
+        meta = edit_json(meta, draw(st.sampled_from(counts)), draw(st.sampled_from(HUGE_COUNTS)), False)
+        text = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
+        return name, kind, rebuild(data, lambda members: members.update({"meta.npy": npy_bytes(text)}))
     path = draw(st.sampled_from(list(json_paths(meta))))
     depth = draw(st.sampled_from([0, 0, 0, 50, 5_000, 100_000]))  # a value nested this deep
     value = "<deep>" if depth else draw(json_values())

@@ -168,7 +168,7 @@ options = { path = "data/scans.csv", train_rows = 2 }
 
 
 @pytest.mark.parametrize("task, message", [
-    ('path = "missing.csv"', "data file not found: .*missing.csv"),
+    ('path = "missing.csv"', "Data file not found: .*missing.csv"),
     ('name = "files"', "the 'files' task needs path="),
     ('name = "uci-sonar"\npath = "x.csv"', "a task with a 'path' is the 'files' task; got name 'uci-sonar'"),
 ])
