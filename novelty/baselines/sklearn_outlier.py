@@ -38,9 +38,12 @@ The refit is the one cost of a load that the file could choose, so it is
 capped by the library (storing the fitted forest or support vectors instead
 would mean evaluating scikit-learn's internals here, and following them from
 version to version): at most :data:`MAX_REFIT_SAMPLES` training inputs and
-:data:`MAX_REFIT_VALUES` values, and for the isolation forest at most
+:data:`MAX_REFIT_VALUES` values; for the isolation forest at most
 :data:`MAX_REFIT_TREE_SAMPLES` trees x samples per tree (1000 trees of the
-default 256). A model beyond the caps is refused by ``save`` (which reads
+default 256), for the one-class SVM at most :data:`MAX_REFIT_KERNEL_WORK`
+inputs^2 x features (its kernel matrix) and for the elliptic envelope at most
+:data:`MAX_REFIT_COVARIANCE_WORK` inputs x features^2 (its covariances).
+Each cap is a load of about 10 s on two busy cores. A model beyond the caps is refused by ``save`` (which reads
 the file back as ``load`` does) and by ``load``, before anything is fitted;
 fitting it is not limited. A :class:`SklearnOutlierDetector`
 wrapping an arbitrary estimator instance cannot be saved (its parameter is
@@ -84,11 +87,17 @@ MAX_REFIT_SAMPLES = 20_000
 MAX_REFIT_VALUES = 2**20
 #: the most trees x samples per tree an isolation-forest file may make ``load`` grow
 MAX_REFIT_TREE_SAMPLES = 1000 * 256
+#: the most inputs^2 x features a one-class-svm file may make ``load`` refit on (8,192 inputs of 32)
+MAX_REFIT_KERNEL_WORK = 2**31
+#: the most inputs x features^2 an elliptic-envelope file may make ``load`` refit on (4,096 inputs of 16)
+MAX_REFIT_COVARIANCE_WORK = 2**20
 
 __all__ = [
     "MAX_REFIT_SAMPLES",
     "MAX_REFIT_VALUES",
     "MAX_REFIT_TREE_SAMPLES",
+    "MAX_REFIT_KERNEL_WORK",
+    "MAX_REFIT_COVARIANCE_WORK",
     "SklearnOutlierDetector",
     "IsolationForestDetector",
     "OneClassSVMDetector",
@@ -212,6 +221,15 @@ class SklearnOutlierDetector(CalibratedDetector):
                 f"{MAX_REFIT_VALUES} values, so that reading it costs seconds (fit on fewer to save it)."
             )
 
+    def _check_refit_work(self, work: int, cap: int, what: str) -> None:
+        if work > cap:
+            n, d = self.samples_.shape
+            raise StateError(
+                f"{type(self).__name__} keeps {n} training inputs of {d} features, which loading would "
+                f"refit on: {work} {what}; a model file holds at most {cap}, so that reading it costs "
+                "seconds (fit on fewer to save it)."
+            )
+
 
 class IsolationForestDetector(SklearnOutlierDetector):
     """Isolation forest (Liu, Ting & Zhou 2008) through the scikit-learn adapter.
@@ -319,6 +337,11 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         self.threshold = threshold
         self.contamination = contamination
 
+    def _check_state(self) -> None:
+        super()._check_state()
+        n, d = self.samples_.shape
+        self._check_refit_work(n * n * d, MAX_REFIT_KERNEL_WORK, "inputs^2 x features")
+
     def _build_estimator(self):
         # deferred: sklearn.svm takes 0.15 s to import, needed only by this detector
         from sklearn.svm import OneClassSVM
@@ -417,6 +440,11 @@ class EllipticEnvelopeDetector(SklearnOutlierDetector):
         self.random_state = random_state
         self.threshold = threshold
         self.contamination = contamination
+
+    def _check_state(self) -> None:
+        super()._check_state()
+        n, d = self.samples_.shape
+        self._check_refit_work(n * d * d, MAX_REFIT_COVARIANCE_WORK, "inputs x features^2")
 
     def _build_estimator(self):
         # deferred: sklearn.covariance takes 0.1 s to import, needed only by this detector

@@ -131,3 +131,15 @@ def test_training_inputs_beyond_the_refit_cap_are_refused_at_load_and_at_save(tm
 def test_parameters_beyond_what_the_estimator_takes_are_a_value_error(name, param, value):
     with pytest.raises(ValueError, match=rf"'{param}' parameter .* must be an int in \[\d+, 2\*\*31 - 1\]"):
         novelty.make(name, **{param: value}).fit(np.random.default_rng(0).uniform(size=(20, 2)))
+
+
+@pytest.mark.parametrize("name, cap, work", [("one-class-svm", "MAX_REFIT_KERNEL_WORK", 40 * 40 * 3),
+                                             ("elliptic-envelope", "MAX_REFIT_COVARIANCE_WORK", 40 * 3 * 3)])
+def test_a_refit_beyond_its_work_cap_is_refused(tmp_path, monkeypatch, name, cap, work):
+    det = novelty.make(name).fit(np.random.default_rng(0).normal(size=(40, 3)))
+    monkeypatch.setattr(sklearn_outlier, cap, work)  # exactly at the cap: saved and read
+    det.save(tmp_path / "m.npz")
+    novelty.load(tmp_path / "m.npz")
+    monkeypatch.setattr(sklearn_outlier, cap, work - 1)
+    with pytest.raises(ModelFileError, match=rf"{work} inputs.* a model file holds at most {work - 1}"):
+        novelty.load(tmp_path / "m.npz")
