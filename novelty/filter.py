@@ -161,15 +161,6 @@ class HabituatingFilter(NoveltyDetector):
         before then; a model that has learned fewer scans scores with the
         scale of those it has (a first batch of one scan: the efficacy).
 
-    Parameters of the parts set after fitting (``set_params(synapse__alpha=1.5)``,
-    or a new ``clusterer``) take effect at the next :meth:`fit`: the fitted
-    ``clusterer_`` and ``synapse_`` keep the values they learned with, and
-    learning on (:meth:`stream`, :meth:`partial_fit`, :meth:`learn_one`) is
-    refused until the model is refitted or the values are set back, so that
-    no scan is learned under parameters other than those it reports. Scoring
-    reads the fitted state. The filter's own parameters (``stimulus``,
-    ``threshold``, ``novelty_rule``, ...) apply from the next call.
-
     Attributes
     ----------
     clusterer_ : Clusterer
@@ -184,6 +175,17 @@ class HabituatingFilter(NoveltyDetector):
         after; at most ``calibration_scans``).
     n_features_in_ : int
         Number of features of the inputs.
+
+    Notes
+    -----
+    Parameters of the parts set after fitting (``set_params(synapse__alpha=1.5)``,
+    or a new ``clusterer``) take effect at the next :meth:`fit`: the fitted
+    ``clusterer_`` and ``synapse_`` keep the values they learned with, and
+    learning on (:meth:`stream`, :meth:`partial_fit`, :meth:`learn_one`) is
+    refused until the model is refitted or the values are set back, so that
+    no scan is learned under parameters other than those it reports. Scoring
+    reads the fitted state. The filter's own parameters (``stimulus``,
+    ``threshold``, ``novelty_rule``, ...) apply from the next call.
 
     References
     ----------
