@@ -10,6 +10,8 @@ import novelty
 from novelty.registry import clusterers, synapses
 from novelty.testing import conformance_checks, installed_detectors
 
+from ..registered import detector_params
+
 
 def _cases():
     cases = []
@@ -22,6 +24,9 @@ def _cases():
         det = novelty.make(name)
         cases += [pytest.param(check, id=f"detector:{name}:{check.__name__}")
                   for check in conformance_checks(det)]
+    # a detector whose optional dependency is missing shows as skipped, with the extra to install
+    cases += [pytest.param(None, marks=p.marks, id=f"detector:{p.values[0]}")
+              for p in detector_params() if p.marks]
     return cases
 
 
