@@ -103,7 +103,8 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
     open doors excepted) and placed at least 3 m from the recurring ones. From
     patrol ``change_at`` on, ``recurring-0`` is replaced by an object of
     another kind at the same place (``recurring-0-changed``): a known place
-    that changes again, for the re-detection score.
+    that changes again, for the re-detection score. ``recurring-0``'s place is
+    drawn where an object of another kind stands clear too.
     """
     if difficulty not in DIFFICULTIES:
         raise ValueError(f"Unknown difficulty {difficulty!r}; expected one of {', '.join(DIFFICULTIES)}.")
@@ -113,9 +114,11 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
     clean = generate_corridor(seed, length)
     rng = np.random.default_rng(np.random.SeedSequence([int(seed), 0x7A7, list(DIFFICULTIES).index(difficulty)]))
     makers = {k: m for k, m in DIFFICULTIES[difficulty].items() if m is not None}
-    recurring = []
-    for i in range(2):
-        recurring.append(place_object(clean, makers, rng, f"recurring-{i}", recurring))
+    # recurring-0 is replaced later at the same place, so its place must also clear an object
+    # of another kind (a person fits between two doors where a box of 0.6 m may not)
+    recurring = [place_object(clean, makers, rng, "recurring-0", [],
+                              fits=lambda side, item: bool(_replacements(clean, side, item, makers)))]
+    recurring.append(place_object(clean, makers, rng, "recurring-1", recurring))
     changed = _swap(clean, recurring[0], makers, rng, "recurring-0-changed")
     legs = [Leg(clean.build())] * warmup
     for p in range(patrols):
@@ -131,14 +134,19 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
         difficulty=difficulty)
 
 
-def place_object(plan: CorridorPlan, makers: dict, rng, id: str, avoid: list, min_separation: float = 3.0):
-    """(side, item): an object of a random kind at a random clear place of ``plan``."""
+def place_object(plan: CorridorPlan, makers: dict, rng, id: str, avoid: list, min_separation: float = 3.0,
+                 fits=None):
+    """(side, item): an object of a random kind at a random clear place of ``plan``.
+
+    ``fits(side, item)``, when given, is a further condition the place must meet.
+    """
     for _attempt in range(500):
         kind = str(rng.choice(sorted(makers)))
         side = str(rng.choice(["right", "left"]))
         x = float(rng.uniform(1.5, plan.length - 1.5))
         item = replace(makers[kind](0), id=id, x=round(x, 3))
-        if all(abs(x - other.x) >= min_separation for _, other in avoid) and _clear(plan, side, item):
+        if (all(abs(x - other.x) >= min_separation for _, other in avoid) and _clear(plan, side, item)
+                and (fits is None or fits(side, item))):
             return side, item
     raise RuntimeError(f"Could not place {id!r} in {plan.name}; use a longer corridor.")
 
@@ -148,12 +156,20 @@ def _clear(plan: CorridorPlan, side: str, item, gap: float = 0.3) -> bool:
     return all(c + gap < it.extent()[0] or a - gap > it.extent()[1] for it in plan.items(side))
 
 
+def _other_kinds(makers: dict, item) -> list[str]:
+    return [k for k in sorted(makers) if type(makers[k](0)) is not type(item)
+            or makers[k](0).description != item.description]
+
+
+def _replacements(plan: CorridorPlan, side: str, item, makers: dict) -> list[str]:
+    """The kinds other than ``item``'s whose object would stand clear at ``item``'s place."""
+    return [k for k in _other_kinds(makers, item) if _clear(plan, side, replace(makers[k](0), x=item.x))]
+
+
 def _swap(plan: CorridorPlan, placed: tuple, makers: dict, rng, id: str) -> tuple:
     """The object at ``placed``'s place replaced by one of another kind."""
     side, item = placed
-    kinds = [k for k in sorted(makers) if type(makers[k](0)) is not type(item)
-             or makers[k](0).description != item.description]
-    for kind in rng.permutation(kinds):
+    for kind in rng.permutation(_other_kinds(makers, item)):
         new = replace(makers[str(kind)](0), id=id, x=item.x)
         if _clear(plan, side, new):
             return side, new

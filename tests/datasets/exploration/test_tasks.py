@@ -49,6 +49,17 @@ def test_a_new_object_each_patrol():
     assert task.metadata["exploration"]["changes"] == {"recurring-0-changed": "recurring-0"}
 
 
+@pytest.mark.parametrize("seed, difficulty", [(9, "easy"), (32, "easy"), (8, "medium"), (0, "easy")])
+def test_a_patrol_builds_where_the_first_place_drawn_leaves_no_room_for_the_change(seed, difficulty):
+    # seeds 9 and 32 (easy), 8 (medium): the first place drawn for recurring-0 is clear for it but
+    # for no object of another kind, so the replacement could not stand there
+    task = patrol(seed=seed, difficulty=difficulty, warmup=1, patrols=3, change_at=1)
+    feature, run = task.columns["feature"], task.run
+    assert set(run[feature == "recurring-0"].tolist()) <= {1}
+    assert set(run[feature == "recurring-0-changed"].tolist()) == {2, 3}
+    assert sorted(set(run[feature == "recurring-1"].tolist())) == [1, 2, 3]
+
+
 def test_registered_by_name():
     names = datasets.available()
     for name in ("exploration-tour", "exploration-open-door", "exploration-patrol"):
