@@ -353,6 +353,9 @@ _DATASETS = {
     "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
     "files": "novelty.datasets.files:files",
     "recording": "novelty.io.tasks:recording_task",
+    "exploration-radish-intel": "novelty.io.radish:radish_intel",
+    "exploration-radish-aces": "novelty.io.radish:radish_aces",
+    "exploration-radish-csail": "novelty.io.radish:radish_csail",
 }
 
 datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)

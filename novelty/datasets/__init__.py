@@ -17,7 +17,11 @@ Built in:
   length=15.0``);
 - exploration tasks, runs in order with every scan's tracked feature and its
   exposure count (:mod:`novelty.datasets.exploration`): ``exploration-tour``,
-  ``exploration-open-door``, ``exploration-patrol``;
+  ``exploration-open-door``, ``exploration-patrol``, ``exploration-irregular``,
+  ``exploration-return``, ``exploration-moving``; from the Radish robot logs
+  (:mod:`novelty.io.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
+  ``exploration-radish-intel``, ``exploration-radish-aces``,
+  ``exploration-radish-csail``;
 - real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
   ``uci-sonar-mines``;

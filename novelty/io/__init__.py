@@ -13,6 +13,10 @@
 - :mod:`novelty.io.tasks`: runs, features marked from a CSV or places on a
   grid, visit counts from poses, and exploration tasks from recordings
   (the registered dataset ``recording``).
+- :mod:`novelty.io.places`: places and visits from a robot's poses, and the
+  exploration task of places met for the first time and again;
+  :mod:`novelty.io.radish` that task on the Radish logs
+  (``exploration-radish-intel``, ``-aces``, ``-csail``).
 
 Every reader is a generator: it reads the file as the messages are asked
 for, a message at a time.

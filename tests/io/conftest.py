@@ -16,7 +16,7 @@ def radish_folder() -> Path | None:
     return next((c for c in candidates if (c / "intel-corrected.log.gz").is_file()), None)
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def radish():
     folder = radish_folder()
     if folder is None:
