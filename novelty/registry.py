@@ -293,6 +293,7 @@ synapses = Registry(
     builtins={
         "stanley": "novelty.habituation.stanley:StanleySynapse",
         "wang-hsu": "novelty.habituation.wang_hsu:WangHsuSynapse",
+        "staddon-higa": "novelty.habituation.staddon_higa:StaddonHigaSynapse",
     },
 )
 
