@@ -269,7 +269,12 @@ def synapse_options(draw, name):
     method = draw(st.sampled_from(["euler", "exact"]))
     options = {"method": method, "others": draw(st.sampled_from(["hold", "forget"])),
                "tau_forget": draw(st.one_of(st.none(), st.floats(6.0, 40, **finite)))}
-    if name == "wang-hsu":
+    if name == "staddon-higa":  # one discretisation only: the difference equation
+        del options["method"]
+        options.update(fast_gain=draw(st.floats(0.05, 1, **finite)), slow_gain=draw(st.floats(0, 2, **finite)),
+                       slowness=draw(st.floats(1, 40, **finite)),
+                       tau_winner=draw(st.floats(1, 30, **finite)))
+    elif name == "wang-hsu":
         options["beta"] = draw(st.floats(0, 2, **finite))
         options["gamma"] = draw(st.floats(0, 0.5, **finite))
         options["tau_winner"] = draw(st.floats(3.1 if method == "euler" else 0.5, 30, **finite))
