@@ -12,7 +12,9 @@ the slash is the table: ``ranking`` (the ranked table of ``novelty bench``),
 ``per-task`` (ROC AUC per task, mean ± sd over seeds), ``overview`` (the
 ranking's ROC AUC beside each task's mean), ``paired`` (each detector against
 the suite's reference), or, for a suite of the exploration protocol,
-a task's name (its table of first encounters and habituation). The region
+``verdicts`` (each detector's mean first-encounter AUC over the tasks and
+the tasks on which it flags, habituates, or both) or a task's name (its
+table of first encounters and habituation). The region
 holds a one-line caption (the command, the suite, its seeds, the versions and
 revision that made the results) and the table, both formatted now from the
 committed rows by the package's own report functions, so a change of the
@@ -135,6 +137,30 @@ def overview_text(rows: list[dict]) -> str:
     return format_table(["#", "detector", "ROC AUC", *tasks], body)
 
 
+def verdicts_text(rows: list[dict]) -> str:
+    """Exploration: each detector's mean first-encounter AUC over the tasks and where it flags and habituates."""
+    from novelty.bench.exploration.summary import exploration_records
+    from novelty.bench.reports.format import format_table
+
+    records = exploration_records(rows)
+    tasks = list(records)
+    by_detector: dict[str, dict[str, dict]] = {}
+    for task, found in records.items():
+        for record in found:
+            by_detector.setdefault(record["detector"], {})[task] = record
+
+    def where(detector: str, verdict: str) -> str:
+        names = [t.removeprefix("exploration-") for t in tasks if by_detector[detector].get(t, {}).get(verdict)]
+        return str(len(names)) + (f" ({', '.join(names)})" if names else "")
+
+    mean_auc = {d: sum(r["auc"] for r in found.values()) / len(found) for d, found in by_detector.items()}
+    order = sorted(by_detector, key=lambda d: (-mean_auc[d], d))
+    body = [[f"`{d}`", f"{mean_auc[d]:.3f}", where(d, "flags"), where(d, "habituates"), where(d, "both")]
+            for d in order]
+    return format_table(["detector", "mean first-encounter AUC", f"flags (of {len(tasks)} tasks)", "habituates",
+                         "both"], body)
+
+
 def _reference(suite: str) -> str | None:
     """The suite's reference detector (``reference`` in its [suite] table), as its summary pairs with."""
     from novelty.bench import load_suite
@@ -160,10 +186,13 @@ def table(suite: str, name: str, rows: list[dict]) -> str:
     if name == "overview":
         return overview_text(rows)
     tasks = sorted({r["task"] for r in rows})
-    if name in tasks and any(r.get("policy") for r in rows):
+    exploring = any(r.get("policy") for r in rows)
+    if name == "verdicts" and exploring:
+        return verdicts_text(rows)
+    if name in tasks and exploring:
         return _table_lines(exploration_text([r for r in rows if r["task"] == name]))
     raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview', 'paired'"
-                   + (f", or a task: {', '.join(tasks)}" if any(r.get("policy") for r in rows) else "") + ".")
+                   + (f", 'verdicts', or a task: {', '.join(tasks)}" if exploring else "") + ".")
 
 
 def _seeds_text(seeds: list[int]) -> str:

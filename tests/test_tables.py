@@ -97,6 +97,22 @@ def test_check_reports_an_edited_table_with_a_diff(results):
     assert "-| a        | 0.870 ± 0.071 |" in diff and "+| a        | 0.850 ± 0.071 |" in diff
 
 
+def test_the_verdicts_table_counts_the_tasks_each_detector_flags_and_habituates():
+    def row(detector, task, auc, e1, e3, separation):
+        return {"detector": detector, "task": task, "seed": 0, "status": "ok", "policy": "online",
+                "first_encounter_auc": auc, "excess_1": e1, "excess_3": e3, "first_separation": separation}
+
+    # a flags (AUC >= 0.85) and habituates (3rd/1st <= 0.25) on the door, neither on the tour;
+    # b habituates to the door; it would flag the tour, but its first exposures lie within the familiar
+    # scans' spread there (separation 0.1)
+    rows = [row("a", "exploration-door", 0.9, 0.4, 0.08, 2.0), row("a", "exploration-tour", 0.7, 0.4, 0.4, 1.0),
+            row("b", "exploration-door", 0.6, 0.4, 0.04, 1.0), row("b", "exploration-tour", 0.9, 0.4, 0.4, 0.1)]
+    lines = tables.verdicts_text(rows).splitlines()
+    cells = [[c.strip() for c in line.strip("|").split("|")] for line in lines]
+    assert cells[0] == ["detector", "mean first-encounter AUC", "flags (of 2 tasks)", "habituates", "both"]
+    assert cells[2:] == [["`a`", "0.800", "1 (door)", "1 (door)", "1 (door)"], ["`b`", "0.750", "0", "1 (door)", "0"]]
+
+
 def test_unknown_tables_and_suites_are_named(results):
     with pytest.raises(KeyError, match="no table 'roc'; tables: 'ranking', 'per-task', 'overview', 'paired'"):
         tables.region_body("toy/roc")
