@@ -15,9 +15,9 @@ from typing import Any, NamedTuple
 import numpy as np
 from sklearn.base import BaseEstimator
 
-from ._validation import validate_parameters
+from ._validation import Interval, Options, validate_parameters
 
-__all__ = ["Component", "KernelSpec", "StateError", "declares"]
+__all__ = ["Component", "KernelSpec", "StateError", "declares", "option_code"]
 
 #: the capabilities a component class may declare (``_capabilities``), and what each promises
 CAPABILITIES = {
@@ -47,10 +47,15 @@ class KernelSpec(NamedTuple):
     state and parameters reach them:
 
     ``params``
-        attributes packed, in this order, into the float64 parameter vector
-        the steps read: numbers as they are, booleans as 0/1, None as NaN, a
-        string as its index among the ``Options`` of its parameter rule, a
-        nested component as its own vector (appended).
+        the parameters the steps read, by name, from their record ``p``: one
+        field per parameter, named and typed by the parameter's rule
+        (``p.learning_rate``; ``p.has_radius`` when it may be None; an option
+        string as an int64 whose values the step module names with
+        :func:`option_code`): the table is in
+        :mod:`novelty._kernels.params`. A nested component (see ``nested``)
+        is a field holding its own record. A synapse's record also holds the
+        schedule's parameters, which its base class declares
+        (``_kernel_base_params``).
     ``arrays``
         per-unit state arrays, in the order of the tuple the steps receive
         (a dotted name reaches into a nested component).
@@ -65,6 +70,10 @@ class KernelSpec(NamedTuple):
         ``(attribute, steps)`` pairs: a nested component (named in
         ``params``) that the steps drive with the step functions of module
         ``steps``, so it must declare those (else the reference runs).
+    ``fitted``
+        ``(name, type)`` pairs for the names in ``params`` that are values
+        fitted from the data, not parameters (no rule gives their type):
+        ``float``, ``int`` or ``bool``.
 
     A synapse's ``steps`` module defines only its equation, ``advance`` and
     ``fresh`` (the schedule of who is stimulated and when is the driver's, with
@@ -80,6 +89,49 @@ class KernelSpec(NamedTuple):
     counters: tuple = ()
     ignores: tuple = ()
     nested: tuple = ()
+    fitted: tuple = ()
+
+
+def option_code(cls: type, name: str, option: str) -> int:
+    """The int64 by which the steps of ``cls`` read ``option`` of the parameter ``name``: its
+    position among the strings of the parameter's rule. A step module names each option it
+    tests, ``LINEAR = option_code(SOM, "decay", "linear")``, and compares ``p.decay == LINEAR``
+    (:mod:`novelty._kernels.params` tells which field holds each parameter)."""
+    strings = field_kind(cls, name)[1]
+    if option not in strings:
+        raise ValueError(f"{option!r} is not an option of {cls.__name__}.{name}: {strings}")
+    return strings.index(option)
+
+
+def field_kind(cls: type, name: str) -> tuple:
+    """``(number, strings, flag, none)`` of the parameter ``name`` of ``cls``, read from its
+    rule: the type of the numbers it takes (``int``, ``float`` or None), the strings among
+    its options, whether it takes True/False, whether it takes None."""
+    rule = cls._parameter_rules.get(name)
+    if rule is None:
+        raise TypeError(f"{cls.__name__}._kernel names {name!r}, which has no rule "
+                        "(_parameter_rules) and no declared type (KernelSpec.fitted)")
+    number, strings, flag, none = None, [], False, False
+    for alt in rule if isinstance(rule, tuple) else (rule,):
+        if isinstance(alt, Interval):
+            number = int if alt.kind is numbers.Integral and number is not float else float
+            none = none or alt.allow_none
+        elif isinstance(alt, Options):
+            for v in alt.values:
+                if v is None:
+                    none = True
+                elif isinstance(v, bool):
+                    flag = True
+                elif isinstance(v, str) and v.isidentifier():
+                    strings.append(v)
+                else:
+                    raise TypeError(f"{cls.__name__}.{name}: the option {v!r} has no field type")
+        else:
+            raise TypeError(f"{cls.__name__}.{name}: no record field holds a value of a "
+                            f"{type(alt).__name__} rule (declare it in KernelSpec.ignores)")
+    if flag and (number is not None or strings):
+        raise TypeError(f"{cls.__name__}.{name}: True/False mixed with other values")
+    return number, tuple(strings), flag, none
 
 
 class StateError(ValueError):
@@ -102,6 +154,9 @@ class Component(BaseEstimator):
     #: the kind of component (``"detector"``, ``"clusterer"``, ``"synapse"``): the registry
     #: that names it in a model file (:func:`novelty.registry.of_kind`); set by the three bases
     _kind: str | None = None
+    #: parameters that a base class's compiled code reads from the record of every subclass
+    #: that declares steps (:class:`KernelSpec`), before the subclass's own: a synapse's schedule
+    _kernel_base_params: tuple = ()
 
     def _validate_params(self) -> None:
         validate_parameters(self)

@@ -14,9 +14,16 @@ False
 "one of 'hold', 'forget'"
 
 Every parameter needs a rule: the conformance suite checks it
-(:func:`novelty.testing.check_conformance`).
+(:func:`novelty.testing.check_conformance`). The rule also says how compiled steps
+read the parameter (a field of their record ``p``, see the guide's page on the
+compiled loop); an option string is read as an int, :func:`option_code`:
+
+>>> from novelty import SOM
+>>> option_code(SOM, "decay", "linear")
+1
 """
 
+from ._component import option_code
 from ._validation.parameters import Bounds, Instance, Interval, Options, validate_parameters
 
-__all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters"]
+__all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters", "option_code"]

@@ -45,8 +45,9 @@ def test_readme_custom_clusterer_passes_conformance():
 
 
 def test_guide_fading_synapse_passes_conformance(tmp_path, monkeypatch):
-    """The guide's synapse gives only its equation: the schedule and its parameters are the base
-    class's, so it passes every synapse check, the compiled one among them."""
+    """The guide's synapse gives only its equation and its own parameter's rule: the schedule and
+    its parameters are the base class's, so it passes every synapse check, the compiled one among
+    them, whatever its gain."""
     block = next(b for b in python_blocks(GUIDE / "extending.md") if b.startswith("# fading.py"))
     (tmp_path / "fading.py").write_text(block, encoding="utf-8")
     monkeypatch.syspath_prepend(str(tmp_path))
@@ -54,8 +55,11 @@ def test_guide_fading_synapse_passes_conformance(tmp_path, monkeypatch):
     from fading import Fading
 
     novelty.testing.check_conformance(Fading())
+    novelty.testing.check_conformance(Fading(gain=2.5, others="forget"))
     assert Fading(others="forget", tau_forget=20.0).get_params() == {
-        "tau_winner": 3.0, "tau_neighbour": 12.0, "others": "forget", "tau_forget": 20.0}
+        "gain": 1.0, "tau_winner": 3.0, "tau_neighbour": 12.0, "others": "forget", "tau_forget": 20.0}
+    with pytest.raises(ValueError, match="The 'gain' parameter of Fading must be a float in"):
+        Fading(gain=0).initialize(3)
     with pytest.raises(ValueError, match="The 'others' parameter of Fading must be one of"):
         Fading(others="recover").initialize(3)
 

@@ -1,22 +1,44 @@
 """What a component hands its compiled steps: its declaration, parameters and state arrays.
 
 Everything here is read from the component's own :class:`~novelty._component.KernelSpec`
-(``_kernel``, declared in the component's class body): no list of any
-component's parameters lives in the kernels.
+(``_kernel``, declared in the component's class body) and parameter rules
+(``_parameter_rules``): no list of any component's parameters lives in the kernels.
+
+The parameters reach the steps as one record, ``p`` (a numpy structured array of one
+element, a numba ``Record`` in the steps), with a named, typed field per parameter
+(:func:`pack`); the rule of the parameter says which:
+
+===================================================  ===========================================
+the parameter takes                                  its fields
+===================================================  ===========================================
+an int (``Interval(numbers.Integral, ...)``)         ``name``: int64
+a float (``Interval(numbers.Real, ...)``)            ``name``: float64
+True or False (``Options((True, False))``)           ``name``: bool
+one of some strings (``Options(("a", "b"))``)        ``name``: int64, the option's code
+a number or one of some strings                      ``name``: the number (0 for a string), and
+                                                     ``name_is_a``: bool, for each string
+None too (``allow_none``, ``Options((None,))``)      also ``has_name``: bool (``name`` holds 0)
+a value fitted from the data (``KernelSpec.fitted``)  ``name``: its declared type
+a nested component                                   ``name``: the nested component's own record
+===================================================  ===========================================
+
+So a step reads ``p.learning_rate``, ``p.neighbour_learning_rate if
+p.has_neighbour_learning_rate else lr``, ``p.decay == LINEAR`` with ``LINEAR =
+option_code(SOM, "decay", "linear")`` in its module (:func:`novelty.rules.option_code`),
+``p.firing_.tau_winner``.
 """
 
 from __future__ import annotations
 
-import math
 import numbers
 import operator
 from typing import Callable
 
 import numpy as np
 
-from .._component import Component, KernelSpec
+from .._component import Component, KernelSpec, field_kind
 
-__all__ = ["spec_of", "pack", "attribute", "arrays_of", "getter", "nested_ready"]
+__all__ = ["spec_of", "pack", "param_names", "attribute", "arrays_of", "getter", "nested_ready"]
 
 
 def spec_of(component) -> KernelSpec | None:
@@ -44,39 +66,69 @@ def getter(names: tuple) -> Callable:
     return operator.attrgetter(*names) if names else (lambda obj: ())
 
 
-def _encode(component, name: str, value) -> list[float] | np.ndarray:
-    if type(value) is float or type(value) is int:  # the common case first
-        return [float(value)]
+def param_names(component) -> tuple:
+    """The names of the parameters the component's steps read: the base class's (a synapse's
+    schedule, ``_kernel_base_params``), then its own class's ``_kernel.params``."""
+    return type(component)._kernel_base_params + spec_of(component).params
+
+
+def _fields(component, name: str, value) -> list[tuple[str, object, object]]:
+    """The record fields ``(field, type, value)`` of one parameter (the module docstring's
+    table)."""
+    cls = type(component)
     if isinstance(value, Component):
         if spec_of(value) is None:
             raise TypeError(f"{type(value).__name__} declares no kernel")
-        return pack(value)
-    if value is None:
-        return [math.nan]
-    if isinstance(value, (bool, np.bool_)):
-        return [float(value)]
-    if isinstance(value, str):
-        owner_path, _, leaf = name.rpartition(".")  # a dotted name: the nested component's rule
-        owner = attribute(component, owner_path) if owner_path else component
-        rules = owner._parameter_rules.get(leaf, ())
-        for rule in rules if isinstance(rules, tuple) else (rules,):
-            options = getattr(rule, "values", ())
-            if value in options:
-                return [float(options.index(value))]
-        raise ValueError(f"{type(component).__name__}.{name} = {value!r} is not among its options")
-    if isinstance(value, numbers.Real):
-        return [float(value)]
-    raise TypeError(f"{type(component).__name__}.{name} = {value!r} cannot be packed")
+        packed = pack(value)
+        return [(name, packed.dtype, packed[0])]
+    fitted = dict(spec_of(component).fitted)
+    if name in fitted:
+        return [(name, _NUMPY[fitted[name]], _convert(cls, name, fitted[name], value))]
+    number, strings, flag, none = field_kind(cls, name)
+    if isinstance(value, str) and value not in strings:
+        raise ValueError(f"{cls.__name__}.{name} = {value!r} is not among its options")
+    given = value is not None
+    if number is not None:
+        out = [(name, _NUMPY[number], _convert(cls, name, number, value)
+                if given and not isinstance(value, str) else 0)]
+        out += [(f"{name}_is_{s}", np.bool_, value == s) for s in strings]
+    elif strings:
+        out = [(name, np.int64, strings.index(value) if given else 0)]
+    else:
+        out = [(name, np.bool_, bool(value))]
+    if none:
+        out.append((f"has_{name}", np.bool_, given))
+    return out
+
+
+_NUMPY = {float: np.float64, int: np.int64, bool: np.bool_}
+
+
+def _convert(cls: type, name: str, kind: type, value):
+    try:
+        converted = kind(value)
+        if kind is int and not _INT64.min <= converted <= _INT64.max:
+            raise OverflowError
+        return converted
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"{cls.__name__}.{name} = {value!r} is not {_WHAT[kind]} the compiled "
+                         "steps can hold") from None
+
+
+_INT64 = np.iinfo(np.int64)
+_WHAT = {float: "a float", int: "an int64", bool: "a truth value"}
 
 
 def pack(component) -> np.ndarray:
-    """The float64 vector of the component's ``_kernel.params`` (see KernelSpec), nested
-    components' vectors appended in place. (An engine packs again when a value changed.)"""
-    spec = spec_of(component)
-    parts: list[float] = []
-    for name, value in zip(spec.params, getter(spec.params)(component)):
-        parts.extend(_encode(component, name, value))
-    return np.array(parts, dtype=np.float64)
+    """The component's parameters as its steps read them: a record (an array of one element)
+    with one named, typed field per parameter (the module docstring's table), in the order of
+    :func:`param_names`. (An engine packs again when a value changed.)"""
+    names = param_names(component)
+    fields = [f for name, value in zip(names, getter(names)(component))
+              for f in _fields(component, name, value)]
+    record = np.zeros(1, dtype=np.dtype([(name, kind) for name, kind, _ in fields], align=True))
+    record[0] = tuple(value for _, _, value in fields)
+    return record
 
 
 def arrays_of(component, spec: KernelSpec, n_units: int) -> list | None:

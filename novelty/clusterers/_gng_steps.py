@@ -3,7 +3,7 @@
 ``match`` and ``adapt`` do what ``GrowingNeuralGas.match`` and ``.adapt`` do
 (steps 2-9), on arrays with room for more units: ``state`` is ``(errors_,
 edge_ages_, unit_ids_)``, ``counters`` ``(n_inputs_, next_unit_id_)``, ``p``
-the vector of ``GrowingNeuralGas._kernel.params``.
+the record of ``GrowingNeuralGas._kernel.params`` (``p.epsilon_b``, ...).
 """
 
 from __future__ import annotations
@@ -14,10 +14,6 @@ from ._graph import NO_EDGE
 from .base import move_towards
 from .gng import GrowingNeuralGas
 
-_P = GrowingNeuralGas._kernel.params
-EPS_B, EPS_N, INTERVAL, INS_DECAY, ERR_DECAY, MAX_AGE, MAX_UNITS = (
-    _P.index(name) for name in ("epsilon_b", "epsilon_n", "insertion_interval",
-                                "insertion_error_decay", "error_decay", "max_age", "max_units"))
 N_INPUTS, NEXT_ID = (GrowingNeuralGas._kernel.counters.index(name)
                      for name in ("n_inputs_", "next_unit_id_"))
 
@@ -34,8 +30,8 @@ def match(d, n, state, counters, p, nb):
 @step
 def room(d, winner, n, state, counters, p):
     """One unit when this input is an insertion step (step 8) below ``max_units``."""
-    due = (counters[N_INPUTS] + 1) % int(p[INTERVAL]) == 0
-    return 1 if due and n < p[MAX_UNITS] else 0
+    due = (counters[N_INPUTS] + 1) % p.insertion_interval == 0
+    return 1 if due and n < p.max_units else 0
 
 
 @step
@@ -45,18 +41,18 @@ def adapt(WT, x, d, s1, s2, nb, k, n, state, counters, p, gone):
     graph.age_edges(A, n, s1)                                           # step 3
     E[s1] += d[s1]  # step 4: ((x - w)**2).sum() is d[s1], the same numbers in the same order
     for f in range(WT.shape[0]):                                        # step 5
-        WT[f, s1] = _move(WT[f, s1], x[f], p[EPS_B])
+        WT[f, s1] = _move(WT[f, s1], x[f], p.epsilon_b)
     for m in range(k):
         j = nb[m]
         for f in range(WT.shape[0]):
-            WT[f, j] = _move(WT[f, j], x[f], p[EPS_N])
+            WT[f, j] = _move(WT[f, j], x[f], p.epsilon_n)
     graph.connect(A, s1, s2, 0)                                         # step 6
-    removed = graph.prune(A, n, s1, int(p[MAX_AGE]), gone)              # step 7
+    removed = graph.prune(A, n, s1, p.max_age, gone)                    # step 7
     if removed:
         n = graph.delete_units(n, gone, WT, A, ids, E)
     counters[N_INPUTS] += 1
     added = 0
-    if counters[N_INPUTS] % int(p[INTERVAL]) == 0 and n < p[MAX_UNITS]:   # step 8
+    if counters[N_INPUTS] % p.insertion_interval == 0 and n < p.max_units:  # step 8
         q = 0
         for j in range(1, n):
             if E[j] > E[q]:
@@ -67,8 +63,8 @@ def adapt(WT, x, d, s1, s2, nb, k, n, state, counters, p, gone):
                 f = j
         if f < 0:  # cannot happen after the first input: every unit has an edge
             raise RuntimeError("GrowingNeuralGas: the unit of largest error has no neighbour.")
-        E[q] *= p[INS_DECAY]
-        E[f] *= p[INS_DECAY]
+        E[q] *= p.insertion_error_decay
+        E[f] *= p.insertion_error_decay
         r = n
         for c in range(WT.shape[0]):
             WT[c, r] = 0.5 * (WT[c, q] + WT[c, f])
@@ -82,5 +78,5 @@ def adapt(WT, x, d, s1, s2, nb, k, n, state, counters, p, gone):
         graph.connect(A, r, f, 0)
         added = 1
     for j in range(n):                                                  # step 9
-        E[j] *= 1.0 - p[ERR_DECAY]
+        E[j] *= 1.0 - p.error_decay
     return n, removed, added, False

@@ -3,11 +3,12 @@
 ``match`` and ``adapt`` do what ``GrowWhenRequired.match`` and ``.adapt`` do
 (steps 3-11), on arrays with room for more units: ``state`` is
 ``(firing_.efficacy_, edge_ages_, unit_ids_)``, ``counters``
-``(next_unit_id_,)``, ``p`` the vector of ``GrowWhenRequired._kernel.params``
-followed by the firing counters' (a Stanley bank: its equation is
-:mod:`novelty.habituation._stanley_steps`, its schedule the one every synapse
-follows, :mod:`novelty.habituation._schedule`, with the bank's own schedule
-parameters).
+``(next_unit_id_,)``, ``p`` the record of ``GrowWhenRequired._kernel.params``:
+``p.max_units`` (``p.has_max_units`` false for None), ``p.activity_threshold_``
+(fitted), and ``p.firing_``, the firing counters' own record (a Stanley bank:
+its equation is :mod:`novelty.habituation._stanley_steps`, its schedule the one
+every synapse follows, :mod:`novelty.habituation._schedule`, with the bank's own
+schedule parameters, ``p.firing_.tau_winner`` and the rest).
 """
 
 from __future__ import annotations
@@ -24,14 +25,6 @@ from ._graph import NO_EDGE
 from .base import move_towards
 from .gwr import GrowWhenRequired
 
-_P = GrowWhenRequired._kernel.params
-A_T, H_T, EPS_B, EPS_N, MAX_AGE, MAX_UNITS, FIRING_CONDITION, NEW_WINS, FIRING = (
-    _P.index(name) for name in ("activity_threshold_", "habituation_threshold", "epsilon_b",
-                                "epsilon_n", "max_age", "max_units", "firing_condition",
-                                "new_unit_wins", "firing_"))
-F_TAU_W, F_TAU_N, F_TAU_F, F_OTHERS = (
-    _P.index(name) for name in ("firing_.tau_winner", "firing_.tau_neighbour", "firing_.tau_forget",
-                                "firing_.others"))
 NEXT_ID = GrowWhenRequired._kernel.counters.index("next_unit_id_")
 
 _move = compiled(move_towards)
@@ -59,8 +52,9 @@ def room(d, s, n, state, counters, p):
     reference, which may differ in the last bit (it matters only at a_T exactly)."""
     activity = math.exp(-math.sqrt(d[s]))
     h = state[0]
-    grow = (activity < p[A_T] and (h[s] < p[H_T] or p[FIRING_CONDITION] == 0.0)
-            and (math.isnan(p[MAX_UNITS]) or n < p[MAX_UNITS]))
+    grow = (activity < p.activity_threshold_
+            and (h[s] < p.habituation_threshold or not p.firing_condition)
+            and (not p.has_max_units or n < p.max_units))
     return 1 if grow else 0
 
 
@@ -68,7 +62,7 @@ def room(d, s, n, state, counters, p):
 def adapt(WT, x, d, s, t, nb, k, n, state, counters, p, gone):
     """Steps 5-11; returns (units, removed, added, new unit wins)."""
     h, A, ids = state
-    ph = p[FIRING:]
+    ph = p.firing_
     grow = room(d, s, n, state, counters, p) == 1  # step 6, before step 5 changes nothing it reads
     graph.connect(A, s, t, 0)                                           # step 5
     r = n
@@ -85,21 +79,20 @@ def adapt(WT, x, d, s, t, nb, k, n, state, counters, p, gone):
         graph.connect(A, s, t, NO_EDGE)
     else:                                                               # step 8
         for f in range(WT.shape[0]):
-            WT[f, s] = _move(WT[f, s], x[f], p[EPS_B] * h[s])
+            WT[f, s] = _move(WT[f, s], x[f], p.epsilon_b * h[s])
         for j in range(n):
             if A[s, j] >= 0:
                 for f in range(WT.shape[0]):
-                    WT[f, j] = _move(WT[f, j], x[f], p[EPS_N] * h[j])
+                    WT[f, j] = _move(WT[f, j], x[f], p.epsilon_n * h[j])
     graph.age_edges(A, n, s)                                            # step 9
     around = np.empty(n, dtype=np.int64)                                # step 10
     rows = np.empty(n, dtype=np.int64)
-    tau_f = p[F_TAU_N] if math.isnan(p[F_TAU_F]) else p[F_TAU_F]
     stimulate(firing.advance, (h,), n, s, around, graph.neighbours(A, n, s, around), 1.0, 1.0,
-              p[F_TAU_W], p[F_TAU_N], tau_f, p[F_OTHERS] != 0.0, ph, gone, rows)
-    new_wins = grow and p[NEW_WINS] != 0.0
+              ph, gone, rows)
+    new_wins = grow and p.new_unit_wins
     if new_wins:  # the new unit fires for the input too
-        fire(firing.advance, (h,), r, 1.0, 1.0, p[F_TAU_W], ph, rows)
-    removed = graph.prune(A, n, s, int(p[MAX_AGE]), gone)               # step 11
+        fire(firing.advance, (h,), r, 1.0, 1.0, ph, rows)
+    removed = graph.prune(A, n, s, p.max_age, gone)               # step 11
     if removed:
         n = graph.delete_units(n, gone, WT, A, ids, h)
     return n, removed, 1 if grow else 0, new_wins

@@ -1,21 +1,19 @@
 """Online k-means in the filter's compiled loop (see :mod:`novelty._kernels.drivers`).
 
 ``state`` is ``(counts_, unit_ids_)``, ``counters`` ``(next_unit_id_,)``; ``p``
-the vector of ``OnlineKMeans._kernel.params`` (a learning rate of 0 stands for
-``"count"``, which no constant rate is).
+the record of ``OnlineKMeans._kernel.params`` (``p.learning_rate_is_count`` for
+``learning_rate="count"``, ``p.init`` a code, ``p.placement_radius_`` fitted).
 """
 
 from __future__ import annotations
 
+from .._component import option_code
 from .._jit import compiled, step
 from ._graph_steps import nearest
 from .base import move_towards
 from .kmeans import OnlineKMeans
 
-_P = OnlineKMeans._kernel.params
-N_CLUSTERS, LR, INIT, RADIUS = (_P.index(name) for name in ("n_clusters", "learning_rate", "init",
-                                                              "placement_radius_"))
-FIRST = OnlineKMeans._parameter_rules["init"].values.index("first")
+FIRST = option_code(OnlineKMeans, "init", "first")
 NEXT_ID = OnlineKMeans._kernel.counters.index("next_unit_id_")
 
 _move = compiled(move_towards)
@@ -30,8 +28,8 @@ def match(d, n, state, counters, p, nb):
 @step
 def room(d, winner, n, state, counters, p):
     """One unit while ``init="first"`` places inputs farther than the placement radius."""
-    r = p[RADIUS]
-    return 1 if p[INIT] == FIRST and n < p[N_CLUSTERS] and d[winner] > 0.0 and d[winner] > r * r else 0
+    r = p.placement_radius_
+    return 1 if p.init == FIRST and n < p.n_clusters and d[winner] > 0.0 and d[winner] > r * r else 0
 
 
 @step
@@ -47,7 +45,7 @@ def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
         counters[NEXT_ID] += 1
         return n + 1, 0, 1, True
     counts[winner] += 1
-    rate = 1.0 / counts[winner] if p[LR] == 0.0 else p[LR]
+    rate = 1.0 / counts[winner] if p.learning_rate_is_count else p.learning_rate
     for f in range(WT.shape[0]):
         WT[f, winner] = _move(WT[f, winner], x[f], rate)
     return n, 0, 0, False

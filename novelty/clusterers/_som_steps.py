@@ -3,24 +3,22 @@
 :func:`~novelty.clusterers.som.scheduled` and
 :func:`~novelty.clusterers.base.move_towards` compiled as they are; ``match``
 and ``adapt`` do what ``SOM.match`` and ``SOM.adapt`` do. ``p`` is the
-vector of ``SOM._kernel.params``; ``counters`` holds ``n_updates_`` and the
-grid radius in use.
+record of ``SOM._kernel.params`` (``p.learning_rate``, ``p.decay`` one of
+the codes below, ``p.has_neighbour_learning_rate`` false for None);
+``counters`` holds ``n_updates_`` and the grid radius in use.
 """
 
 from __future__ import annotations
 
 import math
 
+from .._component import option_code
 from .._jit import compiled, step
 from ._graph_steps import nearest
 from .base import move_towards
 from .som import SOM, scheduled
 
-_P = SOM._kernel.params
-N_ROWS, N_COLUMNS, LR, NLR, RADIUS, DECAY, DECAY_STEPS, LR_FINAL, RADIUS_FINAL = (
-    _P.index(name) for name in ("n_rows", "n_columns", "learning_rate", "neighbour_learning_rate",
-                                "radius", "decay", "decay_steps", "learning_rate_final",
-                                "radius_final"))
+CONSTANT = option_code(SOM, "decay", "constant")
 T, TABLE_RADIUS = (SOM._kernel.counters.index(name) for name in ("n_updates_", "_table_radius"))
 
 _scheduled = compiled(scheduled)
@@ -31,8 +29,8 @@ _move = compiled(move_towards)
 def match(d, n, state, counters, p, nb):
     """The winner and its square grid neighbourhood, ascending, into ``nb`` (SOM.match)."""
     winner = nearest(d, n)
-    n_columns = int(p[N_COLUMNS])
-    n_rows = int(p[N_ROWS])
+    n_columns = p.n_columns
+    n_rows = p.n_rows
     radius = counters[TABLE_RADIUS]
     wr = winner // n_columns
     wc = winner - wr * n_columns
@@ -55,10 +53,9 @@ def room(d, winner, n, state, counters, p):
 @step
 def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
     """SOM.adapt: the winner and ``nb[:k]`` move towards ``x``; the schedules advance."""
-    decay = int(p[DECAY])
     t = counters[T]
-    lr = _scheduled(decay, p[LR], p[LR_FINAL], t, p[DECAY_STEPS])
-    lr_n = lr if math.isnan(p[NLR]) else p[NLR]
+    lr = _scheduled(p.decay, p.learning_rate, p.learning_rate_final, t, p.decay_steps)
+    lr_n = p.neighbour_learning_rate if p.has_neighbour_learning_rate else lr
     for m in range(k):
         j = nb[m]
         for f in range(WT.shape[0]):
@@ -66,9 +63,7 @@ def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
     for f in range(WT.shape[0]):
         WT[f, winner] = _move(WT[f, winner], x[f], lr)
     counters[T] = t + 1
-    if decay != 0:
-        r = _scheduled(decay, p[RADIUS], p[RADIUS_FINAL], t + 1, p[DECAY_STEPS])
+    if p.decay != CONSTANT:
+        r = _scheduled(p.decay, p.radius, p.radius_final, t + 1, p.decay_steps)
         counters[TABLE_RADIUS] = int(math.floor(r + 0.5))
     return n, 0, 0, False
-
-

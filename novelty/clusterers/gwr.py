@@ -208,9 +208,7 @@ class GrowWhenRequired(Clusterer):
     _kernel = KernelSpec(
         steps="novelty.clusterers._gwr_steps",
         params=("activity_threshold_", "habituation_threshold", "epsilon_b", "epsilon_n",
-                "max_age", "max_units", "firing_condition", "new_unit_wins",
-                "firing_.tau_winner", "firing_.tau_neighbour", "firing_.tau_forget",
-                "firing_.others", "firing_"),  # the nested bank's vector last: it is appended
+                "max_age", "max_units", "firing_condition", "new_unit_wins", "firing_"),
         arrays=("firing_.efficacy_", "edge_ages_", "unit_ids_"),
         square=("edge_ages_",),
         counters=("next_unit_id_",),
@@ -218,6 +216,7 @@ class GrowWhenRequired(Clusterer):
         # and firing_
         ignores=("activity_threshold", "insertion_radius", "firing", "init", "init_range"),
         nested=(("firing_", "novelty.habituation._stanley_steps"),),
+        fitted=(("activity_threshold_", float),),
     )
 
     def __init__(

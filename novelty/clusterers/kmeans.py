@@ -126,12 +126,12 @@ class OnlineKMeans(Clusterer):
 
     _kernel = KernelSpec(
         steps="novelty.clusterers._kmeans_steps",
-        # "count" packs as 0, which no constant rate is; init: only "first" changes learning;
-        # placement_radius acts through placement_radius_
+        # init: only "first" changes learning; placement_radius acts through placement_radius_
         params=("n_clusters", "learning_rate", "init", "placement_radius_"),
         arrays=("counts_", "unit_ids_"),
         counters=("next_unit_id_",),
         ignores=("init_range",),
+        fitted=(("placement_radius_", float),),
     )
 
     def __init__(self, n_clusters=10, learning_rate="count", init="sample", init_range=(0.0, 1.0),

@@ -5,10 +5,11 @@ This is :meth:`Synapse.step <novelty.habituation.base.Synapse.step>` and
 every synapse model: the model supplies only its equation, ``advance(state,
 rows, count, stimulus, tau, dt, p)`` (the units ``rows[:count]`` integrated
 over ``dt`` under a constant stimulus with time constant ``tau``; ``p`` its
-packed parameters), passed in as ``advance``. The schedule's own parameters
-(``tau_winner``, ``tau_neighbour``, ``tau_forget``, ``others``) are the base
-class's, handed over by name: ``tau_forget`` already resolved (``tau_neighbour``
-when None) and ``forget`` true for ``others="forget"``.
+parameters), passed in as ``advance``. The schedule's own parameters are the
+base class's, fields of every synapse's record ``p``: ``p.tau_winner``,
+``p.tau_neighbour``, ``p.others`` (the code of "hold" or of ``FORGET``) and
+``p.tau_forget`` (``p.tau_neighbour`` when ``p.has_tau_forget`` is false, as
+``Synapse.schedule`` resolves it).
 
 The functions are inlined into the driver that calls them, where ``advance``
 is a compile-time constant (a global of the driver's module).
@@ -16,15 +17,18 @@ is a compile-time constant (a global of the driver's module).
 
 from __future__ import annotations
 
+from .._component import option_code
 from .._jit import step as _step
+from .base import Synapse
+
+FORGET = option_code(Synapse, "others", "forget")
 
 
 @_step
-def stimulate(advance, state, n, winner, nb, k, stimulus, dt, tau_winner, tau_neighbour,
-              tau_forget, forget, p, mark, rows):
+def stimulate(advance, state, n, winner, nb, k, stimulus, dt, p, mark, rows):
     """Synapse.step: the other units (when forgetting) recover, the neighbours ``nb[:k]``
     habituate, then the winner. ``mark`` (all False) and ``rows`` are scratch of ``n`` items."""
-    if forget:
+    if p.others == FORGET:
         mark[winner] = True
         for m in range(k):
             mark[nb[m]] = True
@@ -37,14 +41,15 @@ def stimulate(advance, state, n, winner, nb, k, stimulus, dt, tau_winner, tau_ne
             mark[nb[m]] = False
         mark[winner] = False
         if count:
+            tau_forget = p.tau_forget if p.has_tau_forget else p.tau_neighbour
             advance(state, rows, count, 0.0, tau_forget, dt, p)
     if k:
-        advance(state, nb, k, stimulus, tau_neighbour, dt, p)
-    fire(advance, state, winner, stimulus, dt, tau_winner, p, rows)
+        advance(state, nb, k, stimulus, p.tau_neighbour, dt, p)
+    fire(advance, state, winner, stimulus, dt, p, rows)
 
 
 @_step
-def fire(advance, state, row, stimulus, dt, tau_winner, p, rows):
+def fire(advance, state, row, stimulus, dt, p, rows):
     """Synapse.fire: the unit at ``row`` habituates alone, as a winner (``rows``: scratch)."""
     rows[0] = row
-    advance(state, rows, 1, stimulus, tau_winner, dt, p)
+    advance(state, rows, 1, stimulus, p.tau_winner, dt, p)

@@ -5,16 +5,16 @@ The equations are :func:`~novelty.habituation.stanley.euler_steps` and
 :func:`advance` applies them to a set of units as ``StanleySynapse._advance``
 does, and the schedule (:mod:`._schedule`) decides which units and when.
 ``state`` is ``(efficacy,)`` with room for more units; ``p`` is the
-parameter vector of ``StanleySynapse._kernel.params``.
+record of the synapse's parameters (``p.alpha``, ``p.y0``, ``p.method``).
 """
 
 from __future__ import annotations
 
+from .._component import option_code
 from .._jit import compiled, step as _step
 from .stanley import StanleySynapse, euler_steps, exact_step
 
-_P = StanleySynapse._kernel.params
-ALPHA, Y0, METHOD = (_P.index(name) for name in ("alpha", "y0", "method"))
+EXACT = option_code(StanleySynapse, "method", "exact")
 
 _euler = compiled(euler_steps)
 _exact = compiled(exact_step)
@@ -24,16 +24,16 @@ _exact = compiled(exact_step)
 def advance(state, rows, count, stimulus, tau, dt, p):
     """The efficacies of the units ``rows[:count]`` after ``dt`` (StanleySynapse._advance)."""
     y = state[0]
-    exact = p[METHOD] != 0.0
+    exact = p.method == EXACT
     for m in range(count):
         j = rows[m]
         if exact:
-            y[j] = _exact(y[j], stimulus, tau, dt, p[ALPHA], p[Y0])
+            y[j] = _exact(y[j], stimulus, tau, dt, p.alpha, p.y0)
         else:
-            y[j] = _euler(y[j], stimulus, tau, dt, p[ALPHA], p[Y0])
+            y[j] = _euler(y[j], stimulus, tau, dt, p.alpha, p.y0)
 
 
 @_step
 def fresh(state, row, p):
     """An unhabituated synapse at ``row`` (Synapse._fresh)."""
-    state[0][row] = p[Y0]
+    state[0][row] = p.y0

@@ -6,8 +6,8 @@ they are: each advances a group of synapses together (the closed form of a
 long gap depends on the whole group), so the units of a step are gathered
 into a group, advanced and scattered back, as ``WangHsuSynapse._advance``
 does; the schedule (:mod:`._schedule`) decides which units and when.
-``state`` is ``(efficacy, recovery)``; ``p`` the vector of
-``WangHsuSynapse._kernel.params``.
+``state`` is ``(efficacy, recovery)``; ``p`` the record of the synapse's
+parameters (``p.alpha``, ..., ``p.method``).
 """
 
 from __future__ import annotations
@@ -15,12 +15,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .._component import option_code
 from .._jit import compiled, step as _step
 from . import wang_hsu as _model
 
-_P = _model.WangHsuSynapse._kernel.params
-ALPHA, BETA, GAMMA, Y0, Z0, L, METHOD = (
-    _P.index(name) for name in ("alpha", "beta", "gamma", "y0", "z0", "l", "method"))
+EXACT = option_code(_model.WangHsuSynapse, "method", "exact")
 
 _n_substeps = compiled(_model._n_substeps)
 _level = compiled(_model.level)
@@ -39,10 +38,10 @@ def advance(state, rows, count, stimulus, tau, dt, p):
     for m in range(count):
         y[m] = state[0][rows[m]]
         z[m] = state[1][rows[m]]
-    if p[METHOD] != 0.0:  # "exact"
-        y, z = _exact(y, z, stimulus, tau, dt, p[ALPHA], p[BETA], p[GAMMA], p[Y0], p[L])
+    if p.method == EXACT:
+        y, z = _exact(y, z, stimulus, tau, dt, p.alpha, p.beta, p.gamma, p.y0, p.l)
     else:
-        y, z = _euler(y, z, stimulus, tau, dt, p[ALPHA], p[BETA], p[GAMMA], p[Y0], p[L])
+        y, z = _euler(y, z, stimulus, tau, dt, p.alpha, p.beta, p.gamma, p.y0, p.l)
     for m in range(count):
         state[0][rows[m]] = y[m]
         state[1][rows[m]] = z[m]
@@ -51,5 +50,5 @@ def advance(state, rows, count, stimulus, tau, dt, p):
 @_step
 def fresh(state, row, p):
     """An unhabituated synapse at ``row`` (WangHsuSynapse._fresh)."""
-    state[0][row] = p[Y0]
-    state[1][row] = p[Z0]
+    state[0][row] = p.y0
+    state[1][row] = p.z0

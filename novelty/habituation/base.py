@@ -86,6 +86,8 @@ class Synapse(Component):
     #: added to them
     _common_rules = _SCHEDULE_RULES
     _parameter_rules = _SCHEDULE_RULES
+    #: the compiled schedule (:mod:`._schedule`) reads them from every synapse's record
+    _kernel_base_params = tuple(SCHEDULE)
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)

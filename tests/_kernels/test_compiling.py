@@ -89,13 +89,18 @@ def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
             "compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()\n"
             "cached = compiled._cached()\n"
             "assert compiled.wait(timeout=600) is not None, compiled.error\n"
-            "print(compiled.file, cached, compiled.thread is None)\n")
+            "stats = compiled.module.drive.stats\n"
+            "print(compiled.file, cached, compiled.thread is None, len(stats.cache_misses),\n"
+            "      sum(stats.cache_hits.values()))\n")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     runs = [subprocess.run([sys.executable, "-c", code], env=env, check=True, timeout=900,
                            capture_output=True, text=True).stdout.split() for _ in range(2)]
     assert runs[0][0] == runs[1][0] and runs[0][0].startswith(str(tmp_path / "cache"))
-    assert runs[0][1:] == ["False", "False"]  # cold: compiled by a child, in the background
-    assert runs[1][1:] == ["True", "True"]  # warm: loaded at once
+    assert runs[0][1:3] == ["False", "False"]  # cold: compiled by a child, in the background
+    assert runs[1][1:3] == ["True", "True"]  # warm: loaded at once
+    # and this process compiled nothing: the machine code, parameter records and all, came from
+    # numba's cache (the child's in the first run)
+    assert runs[0][3:] == runs[1][3:] == ["0", "1"]
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork()")

@@ -1,6 +1,6 @@
 """The drivers compose a plugin's steps: the guide's new synapse (``fading.py``) runs compiled
-inside hsom's map, as the reference does, under the base class's schedule (hold or forget), and
-scores compiled; the drivers' folder is pruned."""
+inside hsom's map, as the reference does, under the base class's schedule (hold or forget) and
+with its own parameter read by name, and scores compiled; the drivers' folder is pruned."""
 
 from __future__ import annotations
 
@@ -22,8 +22,8 @@ pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba ke
 EXTENDING = Path(__file__).resolve().parents[2] / "docs" / "guide" / "extending.md"
 
 
-@pytest.mark.parametrize("others", ["hold", "forget"])
-def test_the_guide_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatch, others):
+@pytest.mark.parametrize("others, gain", [("hold", 1.0), ("forget", 3.0)])
+def test_the_guide_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatch, others, gain):
     block = next(b for b in re.findall(r"```python\n(.*?)```", EXTENDING.read_text(encoding="utf-8"),
                                        flags=re.S) if b.startswith("# fading.py\n"))
     (tmp_path / "fading.py").write_text(block, encoding="utf-8")
@@ -31,19 +31,22 @@ def test_the_guide_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatc
     monkeypatch.delitem(sys.modules, "fading", raising=False)
     Fading = importlib.import_module("fading").Fading
     X = corridor(400)
-    fast = novelty.HabituatingFilter(clusterer="som", synapse=Fading(others=others)).fit(X[:1])
+    # its own parameter, gain, is read by name in the compiled steps (p.gain)
+    fast = novelty.HabituatingFilter(clusterer="som", synapse=Fading(others=others, gain=gain)).fit(X[:1])
     assert fast.compiled_ == "compiled"
     assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None  # the pair's driver
     assert _kernels.scorer(fast.clusterer_, fast.synapse_) is not None  # batch scoring compiled
     got = fast.stream(X[1:]), fast.novelty(X)
     with reference_only():
-        slow = novelty.HabituatingFilter(clusterer="som", synapse=Fading(others=others)).fit(X[:1])
+        slow = novelty.HabituatingFilter(clusterer="som", synapse=Fading(others=others, gain=gain)).fit(X[:1])
         assert slow.compiled_ == "reference (NOVELTY_NO_KERNELS)"
         expected = slow.stream(X[1:]), slow.novelty(X)
     np.testing.assert_array_equal(got[0], expected[0])
     np.testing.assert_array_equal(got[1], expected[1])
     assert_same_filter(fast, slow)
-    assert np.all(got[0] <= 1.0) and got[0].min() < 0.6  # it habituates towards 0.5
+    # it habituates towards 1 / (1 + gain), below which it never falls
+    assert np.all(got[0] <= 1.0) and got[0].min() < 1.0 / (1.0 + gain) + 0.1
+    assert got[0].min() >= 1.0 / (1.0 + gain)
 # ------------------------------------------------------------------ the drivers' folder
 def test_prune_keeps_the_recently_used_drivers_of_each_pair(tmp_path, monkeypatch):
     import os

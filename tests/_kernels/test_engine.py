@@ -368,7 +368,7 @@ def test_every_registered_component_declares_its_kernel_fully():
             component = registry_.make(name)
             spec = type(component).__dict__["_kernel"]
             params = {p.split(".")[0].rstrip("_") for p in spec.params}
-            if registry_ is registry.synapses:  # the schedule's, which the driver reads by name
+            if registry_ is registry.synapses:  # the schedule's: the base class's fields of the record
                 params |= set(SCHEDULE)
             assert set(component.get_params()) <= params | set(spec.ignores), name
             assert not set(spec.ignores) & set(spec.params), name
