@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import math
 from pathlib import Path
 
 import numpy as np
@@ -177,8 +178,10 @@ def growing_filters(draw):
         params["firing"] = novelty.StanleySynapse(**firing)
     synapse = novelty.StanleySynapse(**draw(stanley_params()))
     clusterer = novelty.registry.clusterers.make(kind, **params)
-    return HabituatingFilter(clusterer=clusterer, synapse=synapse,
-                             stimulus=draw(st.floats(0, 1, **finite)) * synapse.alpha * synapse.y0,
+    stimulus = draw(st.floats(0, 1, **finite)) * synapse.alpha * synapse.y0
+    while synapse.y0 - stimulus / synapse.alpha < 0:  # alpha * y0 rounded up: the filter refuses it
+        stimulus = math.nextafter(stimulus, 0.0)
+    return HabituatingFilter(clusterer=clusterer, synapse=synapse, stimulus=stimulus,
                              random_state=draw(st.integers(0, 100)), **draw(rules))
 
 
