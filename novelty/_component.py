@@ -15,9 +15,9 @@ from typing import Any, NamedTuple
 import numpy as np
 from sklearn.base import BaseEstimator
 
-from ._validation import Interval, Options, validate_parameters
+from ._validation import validate_parameters
 
-__all__ = ["Component", "KernelSpec", "StateError", "declares", "option_code"]
+__all__ = ["Component", "KernelSpec", "StateError", "declares"]
 
 #: the capabilities a component class may declare (``_capabilities``), and what each promises
 CAPABILITIES = {
@@ -51,7 +51,7 @@ class KernelSpec(NamedTuple):
         field per parameter, named and typed by the parameter's rule
         (``p.learning_rate``; ``p.has_radius`` when it may be None; an option
         string as an int64 whose values the step module names with
-        :func:`option_code`): the table is in
+        :func:`novelty.rules.option_code`): the table is in
         :mod:`novelty._kernels.params`. A nested component (see ``nested``)
         is a field holding its own record. A synapse's record also holds the
         schedule's parameters, which its base class declares
@@ -90,48 +90,6 @@ class KernelSpec(NamedTuple):
     ignores: tuple = ()
     nested: tuple = ()
     fitted: tuple = ()
-
-
-def option_code(cls: type, name: str, option: str) -> int:
-    """The int64 by which the steps of ``cls`` read ``option`` of the parameter ``name``: its
-    position among the strings of the parameter's rule. A step module names each option it
-    tests, ``LINEAR = option_code(SOM, "decay", "linear")``, and compares ``p.decay == LINEAR``
-    (:mod:`novelty._kernels.params` tells which field holds each parameter)."""
-    strings = field_kind(cls, name)[1]
-    if option not in strings:
-        raise ValueError(f"{option!r} is not an option of {cls.__name__}.{name}: {strings}")
-    return strings.index(option)
-
-
-def field_kind(cls: type, name: str) -> tuple:
-    """``(number, strings, flag, none)`` of the parameter ``name`` of ``cls``, read from its
-    rule: the type of the numbers it takes (``int``, ``float`` or None), the strings among
-    its options, whether it takes True/False, whether it takes None."""
-    rule = cls._parameter_rules.get(name)
-    if rule is None:
-        raise TypeError(f"{cls.__name__}._kernel names {name!r}, which has no rule "
-                        "(_parameter_rules) and no declared type (KernelSpec.fitted)")
-    number, strings, flag, none = None, [], False, False
-    for alt in rule if isinstance(rule, tuple) else (rule,):
-        if isinstance(alt, Interval):
-            number = int if alt.kind is numbers.Integral and number is not float else float
-            none = none or alt.allow_none
-        elif isinstance(alt, Options):
-            for v in alt.values:
-                if v is None:
-                    none = True
-                elif isinstance(v, bool):
-                    flag = True
-                elif isinstance(v, str) and v.isidentifier():
-                    strings.append(v)
-                else:
-                    raise TypeError(f"{cls.__name__}.{name}: the option {v!r} has no field type")
-        else:
-            raise TypeError(f"{cls.__name__}.{name}: no record field holds a value of a "
-                            f"{type(alt).__name__} rule (declare it in KernelSpec.ignores)")
-    if flag and (number is not None or strings):
-        raise TypeError(f"{cls.__name__}.{name}: True/False mixed with other values")
-    return number, tuple(strings), flag, none
 
 
 class StateError(ValueError):

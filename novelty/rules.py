@@ -23,7 +23,7 @@ compiled loop); an option string is read as an int, :func:`option_code`:
 1
 """
 
-from ._component import option_code
+from ._kernels.params import option_code
 from ._validation.parameters import Bounds, Instance, Interval, Options, validate_parameters
 
 __all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters", "option_code"]

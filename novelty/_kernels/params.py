@@ -36,9 +36,11 @@ from typing import Callable
 
 import numpy as np
 
-from .._component import Component, KernelSpec, field_kind
+from .._component import Component, KernelSpec
+from .._validation import Interval, Options
 
-__all__ = ["spec_of", "pack", "param_names", "attribute", "arrays_of", "getter", "nested_ready"]
+__all__ = ["spec_of", "pack", "param_names", "option_code", "field_kind", "attribute", "arrays_of",
+           "getter", "nested_ready"]
 
 
 def spec_of(component) -> KernelSpec | None:
@@ -70,6 +72,48 @@ def param_names(component) -> tuple:
     """The names of the parameters the component's steps read: the base class's (a synapse's
     schedule, ``_kernel_base_params``), then its own class's ``_kernel.params``."""
     return type(component)._kernel_base_params + spec_of(component).params
+
+
+def option_code(cls: type, name: str, option: str) -> int:
+    """The int64 by which the steps of ``cls`` read ``option`` of the parameter ``name``: its
+    position among the strings of the parameter's rule. A step module names each option it
+    tests, ``LINEAR = option_code(SOM, "decay", "linear")``, and compares ``p.decay == LINEAR``
+    (:mod:`novelty._kernels.params` tells which field holds each parameter)."""
+    strings = field_kind(cls, name)[1]
+    if option not in strings:
+        raise ValueError(f"{option!r} is not an option of {cls.__name__}.{name}: {strings}")
+    return strings.index(option)
+
+
+def field_kind(cls: type, name: str) -> tuple:
+    """``(number, strings, flag, none)`` of the parameter ``name`` of ``cls``, read from its
+    rule: the type of the numbers it takes (``int``, ``float`` or None), the strings among
+    its options, whether it takes True/False, whether it takes None."""
+    rule = cls._parameter_rules.get(name)
+    if rule is None:
+        raise TypeError(f"{cls.__name__}._kernel names {name!r}, which has no rule "
+                        "(_parameter_rules) and no declared type (KernelSpec.fitted)")
+    number, strings, flag, none = None, [], False, False
+    for alt in rule if isinstance(rule, tuple) else (rule,):
+        if isinstance(alt, Interval):
+            number = int if alt.kind is numbers.Integral and number is not float else float
+            none = none or alt.allow_none
+        elif isinstance(alt, Options):
+            for v in alt.values:
+                if v is None:
+                    none = True
+                elif isinstance(v, bool):
+                    flag = True
+                elif isinstance(v, str) and v.isidentifier():
+                    strings.append(v)
+                else:
+                    raise TypeError(f"{cls.__name__}.{name}: the option {v!r} has no field type")
+        else:
+            raise TypeError(f"{cls.__name__}.{name}: no record field holds a value of a "
+                            f"{type(alt).__name__} rule (declare it in KernelSpec.ignores)")
+    if flag and (number is not None or strings):
+        raise TypeError(f"{cls.__name__}.{name}: True/False mixed with other values")
+    return number, tuple(strings), flag, none
 
 
 def _fields(component, name: str, value) -> list[tuple[str, object, object]]:

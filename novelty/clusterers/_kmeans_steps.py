@@ -7,8 +7,8 @@ the record of ``OnlineKMeans._kernel.params`` (``p.learning_rate_is_count`` for
 
 from __future__ import annotations
 
-from .._component import option_code
 from .._jit import compiled, step
+from .._kernels.params import option_code
 from ._graph_steps import nearest
 from .base import move_towards
 from .kmeans import OnlineKMeans

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import math
 
-from .._component import option_code
 from .._jit import compiled, step
+from .._kernels.params import option_code
 from ._graph_steps import nearest
 from .base import move_towards
 from .som import SOM, scheduled

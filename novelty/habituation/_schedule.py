@@ -17,8 +17,8 @@ is a compile-time constant (a global of the driver's module).
 
 from __future__ import annotations
 
-from .._component import option_code
 from .._jit import step as _step
+from .._kernels.params import option_code
 from .base import Synapse
 
 FORGET = option_code(Synapse, "others", "forget")

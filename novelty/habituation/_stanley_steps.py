@@ -10,8 +10,8 @@ record of the synapse's parameters (``p.alpha``, ``p.y0``, ``p.method``).
 
 from __future__ import annotations
 
-from .._component import option_code
 from .._jit import compiled, step as _step
+from .._kernels.params import option_code
 from .stanley import StanleySynapse, euler_steps, exact_step
 
 EXACT = option_code(StanleySynapse, "method", "exact")

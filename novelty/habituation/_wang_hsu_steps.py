@@ -15,8 +15,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .._component import option_code
 from .._jit import compiled, step as _step
+from .._kernels.params import option_code
 from . import wang_hsu as _model
 
 EXACT = option_code(_model.WangHsuSynapse, "method", "exact")

@@ -25,14 +25,14 @@ from sklearn.base import clone
 
 from .. import _kernels
 from .._component import declares
-from .._kernels.params import spec_of
+from .._kernels.params import field_kind, spec_of
 from ..clusterers.base import Clusterer
 from ..clusterers.gwr import GrowWhenRequired
 from ..filter import HabituatingFilter
 from ..habituation.stanley import StanleySynapse
 from ._helpers import _check, _data, _state_arrays
 
-__all__ = ["check_compiled_equals_reference"]
+__all__ = ["check_compiled_equals_reference", "check_kernel_declares_every_parameter"]
 
 
 def _pair(component) -> dict:
@@ -79,3 +79,32 @@ def check_compiled_equals_reference(component) -> None:
             _close(fast_state[key], slow_state[key], tolerance, f"{name}: '{key}'")
         else:
             assert np.array_equal(fast_state[key], slow_state[key]), f"{name}: '{key}' differs"
+
+
+@_check
+def check_kernel_declares_every_parameter(component) -> None:
+    """Every parameter reaches the compiled steps or is declared not to change what is learned,
+    and every name the steps read has a field of their record ``p`` to hold it.
+
+    A parameter reaches the steps when ``_kernel.params`` names it, or the value fitted from it
+    (``name_``), or the base class reads it (a synapse's schedule); else ``_kernel.ignores``
+    must name it (initialisation). Each name read needs a rule (:mod:`novelty.rules`), a
+    declared fitted type (``KernelSpec.fitted``) or to be a nested component (``nested``).
+    """
+    cls, spec = type(component), spec_of(component)
+    read = set(cls._kernel_base_params) | set(spec.params)
+    unread = sorted(name for name in component.get_params(deep=False)
+                    if name not in read and f"{name}_" not in read and name not in spec.ignores)
+    assert not unread, (f"{cls.__name__}'s compiled steps never read {unread}: name them in "
+                        "_kernel.params, or in _kernel.ignores if they do not change what is learned")
+    both = sorted(set(spec.ignores) & read)
+    assert not both, f"{cls.__name__}._kernel both reads and ignores {both}"
+    typed = dict(spec.nested) | dict(spec.fitted)
+    assert all(t in (float, int, bool) for t in dict(spec.fitted).values()), (
+        f"{cls.__name__}._kernel.fitted: each type is float, int or bool")
+    for name in cls._kernel_base_params + spec.params:
+        if name not in typed:
+            try:
+                field_kind(cls, name)
+            except TypeError as exc:
+                raise AssertionError(str(exc)) from None

@@ -30,7 +30,7 @@ from ..habituation.base import Synapse
 from ._helpers import N_FEATURES, _assert_same_state, _check, _data, _state_arrays  # noqa: F401  (read from here too)
 from .._component import declares
 from .._kernels.params import spec_of
-from .compiled_checks import check_compiled_equals_reference
+from .compiled_checks import check_compiled_equals_reference, check_kernel_declares_every_parameter
 from .clusterer_checks import (check_clusterer_adapt_moves_winner_closer, check_clusterer_deterministic,
                                check_clusterer_growth_is_consistent, check_clusterer_in_filter,
                                check_clusterer_initialize, check_clusterer_match, check_clusterer_match_is_pure,
@@ -43,7 +43,8 @@ from .synapse_checks import (check_synapse_dt, check_synapse_forget_rule, check_
                              check_synapse_initialize)
 
 __all__ = ["conformance_checks", "check_conformance", "installed_detectors",
-           "check_compiled_equals_reference", "check_rules_cover_every_parameter"]
+           "check_compiled_equals_reference", "check_rules_cover_every_parameter",
+           "check_kernel_declares_every_parameter"]
 
 
 def _named(fn: Callable, component) -> Callable:
@@ -99,13 +100,16 @@ def conformance_checks(component) -> Iterator[Callable[[], None]]:
 
     A clusterer or synapse whose class declares compiled steps, or a clusterer that declares
     nearest-unit scoring, is also checked against its reference
-    (:func:`check_compiled_equals_reference`).
+    (:func:`check_compiled_equals_reference`); one that declares compiled steps, for a field of
+    their parameters' record for each parameter (:func:`check_kernel_declares_every_parameter`).
     """
     for base, checks in _CHECKS.items():
         if isinstance(component, base):
             for fn in checks:
                 yield _named(fn, component)
             yield _named(check_rules_cover_every_parameter, component)
+            if base is not NoveltyDetector and spec_of(component) is not None:
+                yield _named(check_kernel_declares_every_parameter, component)
             if base is not NoveltyDetector and (spec_of(component) is not None
                                                 or declares(component, "nearest-unit")):
                 yield _named(check_compiled_equals_reference, component)
