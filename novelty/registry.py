@@ -306,6 +306,7 @@ detectors = Registry(
         "gwr-novelty": "novelty.presets:gwr_novelty",
         "gwr-explore": "novelty.presets:gwr_explore",
         "gwr-explore-wang-hsu": "novelty.presets:gwr_explore_wang_hsu",
+        "gwr-explore-staddon-higa": "novelty.presets:gwr_explore_staddon_higa",
         "explore": "novelty.presets:explore",
         "gng-stanley": "novelty.presets:gng_stanley",
         "som-wang-hsu": "novelty.presets:som_wang_hsu",
