@@ -1,6 +1,7 @@
 """The drivers compose a plugin's steps: the guide's new synapse (``fading.py``) runs compiled
 inside hsom's map, as the reference does, under the base class's schedule (hold or forget) and
-with its own parameter read by name, and scores compiled; the drivers' folder is pruned."""
+with its own parameter read by name, and scores compiled; so does a plugin clusterer whose
+parameters include None and an option string; the drivers' folder is pruned."""
 
 from __future__ import annotations
 
@@ -47,6 +48,98 @@ def test_the_guide_synapse_learns_compiled_as_the_reference(tmp_path, monkeypatc
     # it habituates towards 1 / (1 + gain), below which it never falls
     assert np.all(got[0] <= 1.0) and got[0].min() < 1.0 / (1.0 + gain) + 0.1
     assert got[0].min() >= 1.0 / (1.0 + gain)
+#: a plugin clusterer with compiled steps, in a file of its own: online k-means whose runner-up
+#: learns too when mode="pair", at its own rate or, when that is None, the winner's
+TINY = """
+import numbers
+import numpy as np
+from numba import njit
+import novelty
+from novelty import KernelSpec
+from novelty.clusterers import Clusterer, Growth, Match
+from novelty.rules import Interval, Options, option_code
+
+class Tiny(Clusterer):
+    _parameter_rules = {"n_units": Interval(numbers.Integral, 1, None),
+                        "rate": Interval(numbers.Real, 0, 1),
+                        "runner_up_rate": Interval(numbers.Real, 0, 1, allow_none=True),
+                        "mode": Options(("winner", "pair"))}
+    _capabilities = frozenset({"nearest-unit"})
+    _kernel = KernelSpec(steps="tiny", params=("rate", "runner_up_rate", "mode"), ignores=("n_units",))
+    def __init__(self, n_units=5, rate=0.25, runner_up_rate=None, mode="pair"):
+        self.n_units, self.rate, self.runner_up_rate, self.mode = n_units, rate, runner_up_rate, mode
+    def _initialize(self, X, rng):
+        self.weights_ = rng.uniform(0, 1, (self.n_units, X.shape[1]))
+    def match(self, x):
+        d = novelty.squared_distances(self.weights_, x)
+        w = int(d.argmin())
+        distance = float(d[w])
+        if self.mode == "winner" or len(d) < 2:
+            return Match(w, distance, np.empty(0, dtype=np.intp))
+        d[w] = np.inf
+        return Match(w, distance, np.array([int(d.argmin())], dtype=np.intp))
+    def adapt(self, x, match):
+        rate = self.rate if self.runner_up_rate is None else self.runner_up_rate
+        for j in match.neighbours:
+            self.weights_[j] += rate * (x - self.weights_[j])
+        self.weights_[match.winner] += self.rate * (x - self.weights_[match.winner])
+        return Growth()
+
+PAIR = option_code(Tiny, "mode", "pair")
+
+@njit
+def match(d, n, state, counters, p, nb):
+    s = 0
+    for j in range(1, n):
+        if d[j] < d[s]:
+            s = j
+    if p.mode != PAIR or n < 2:
+        return s, -1, 0
+    t = -1
+    for j in range(n):
+        if j != s and (t < 0 or d[j] < d[t]):
+            t = j
+    nb[0] = t
+    return s, t, 1
+
+@njit
+def room(d, winner, n, state, counters, p):
+    return 0
+
+@njit
+def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
+    rate = p.runner_up_rate if p.has_runner_up_rate else p.rate
+    for m in range(k):
+        for f in range(WT.shape[0]):
+            WT[f, nb[m]] += rate * (x[f] - WT[f, nb[m]])
+    for f in range(WT.shape[0]):
+        WT[f, winner] += p.rate * (x[f] - WT[f, winner])
+    return n, 0, 0, False
+"""
+
+
+@pytest.mark.parametrize("params", [{}, {"runner_up_rate": 0.5}, {"mode": "winner", "rate": 0.75}])
+def test_a_plugin_clusterer_reads_its_parameters_by_name_compiled(tmp_path, monkeypatch, params):
+    """A clusterer of one's own, with a parameter that may be None and an option string, learns
+    and scores compiled, bit for bit as its reference, with any synapse."""
+    (tmp_path / "tiny.py").write_text(TINY, encoding="utf-8")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.delitem(sys.modules, "tiny", raising=False)
+    Tiny = importlib.import_module("tiny").Tiny
+    novelty.testing.check_kernel_declares_every_parameter(Tiny(**params))
+    novelty.testing.check_compiled_equals_reference(Tiny(**params))  # paired with a forgetting bank
+    X = corridor(200)
+    fast = novelty.HabituatingFilter(clusterer=Tiny(**params), synapse="wang-hsu").fit(X[:1])
+    assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None
+    assert fast.compiled_ == "compiled"
+    got = fast.stream(X[1:])
+    with reference_only():
+        slow = novelty.HabituatingFilter(clusterer=Tiny(**params), synapse="wang-hsu").fit(X[:1])
+        expected = slow.stream(X[1:])
+    np.testing.assert_array_equal(got, expected)
+    assert_same_filter(fast, slow)
+
+
 # ------------------------------------------------------------------ the drivers' folder
 def test_prune_keeps_the_recently_used_drivers_of_each_pair(tmp_path, monkeypatch):
     import os
