@@ -18,7 +18,7 @@ one of some strings (``Options(("a", "b"))``)        ``name``: int64, the option
 a number or one of some strings                      ``name``: the number (0 for a string), and
                                                      ``name_is_a``: bool, for each string
 None too (``allow_none``, ``Options((None,))``)      also ``has_name``: bool (``name`` holds 0)
-a value fitted from the data (``KernelSpec.fitted``)  ``name``: its declared type
+a value fitted from data (``KernelSpec.fitted``)     ``name``: its declared type
 a nested component                                   ``name``: the nested component's own record
 ===================================================  ===========================================
 
