@@ -26,7 +26,7 @@ MiniSom's ``quantization`` with winners and distances identical to ``match``
 synapse pair learning compiled at least 10x its numpy reference loop (the
 filter's readable loop, run through :func:`reference_loops`; a pair that
 runs the reference both times shows "not compiled" and fails); online HSOM
-at least 50x MiniSom's ``winner`` + ``update``; no module of ``novelty/``
+at least 100x MiniSom's ``winner`` + ``update``; no module of ``novelty/``
 over 300 lines without a reason in its docstring (a docstring that speaks of
 its length counts as one); and what the ``duplicates`` tool lists on the
 package, when it is installed (it lists shared lines, not equations: a reader
