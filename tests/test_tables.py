@@ -14,6 +14,7 @@ import csv
 import importlib.util
 import io
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -33,9 +34,12 @@ MACHINE_COLUMNS = {"train_time_s", "train_scans_per_s", "score_time_s", "score_s
 
 #: (detector label, task, seed) re-run per suite: cheap cells, one of them a row the documents discuss
 SLICES = {
-    "exploration": [("kmeans-stanley", "exploration-open-door", 0), ("hsom (frozen)", "exploration-open-door", 1)],
+    "exploration": [("kmeans-stanley", "exploration-open-door", 0), ("hsom (frozen)", "exploration-open-door", 1),
+                    ("hsom", "exploration-radish-aces", 2)],
     "detection": [("hsom-mismatch", "paper-a-to-a-star", 0), ("parzen", "paper-a-to-a-star", 0)],
 }
+#: the shared data beside the repository, where the suites' real-data tasks read from
+SHARED = ROOT.parent / "shared" / "datasets"
 COMMITTED = sorted(p.name for p in tables.RESULTS.iterdir() if (p / tables.RESULTS_CSV).exists()) \
     if tables.RESULTS.exists() else []
 
@@ -151,7 +155,11 @@ def _committed_text(suite: str) -> dict[tuple, dict[str, str]]:
 
 @pytest.mark.parametrize("suite, detector, task, seed",
                          [(s, *cell) for s in COMMITTED for cell in SLICES.get(s, [])])
-def test_a_slice_of_the_suite_gives_the_committed_rows(suite, detector, task, seed):
+def test_a_slice_of_the_suite_gives_the_committed_rows(suite, detector, task, seed, monkeypatch):
+    if task.startswith("exploration-radish-") and not os.environ.get("NOVELTY_DATA_DIR"):
+        if not (SHARED / "radish-carmen-logs").is_dir():
+            pytest.skip(f"the Radish logs of {task} are not in {SHARED}/radish-carmen-logs")
+        monkeypatch.setenv("NOVELTY_DATA_DIR", str(SHARED))
     cells = [c for c in load_suite(tables.SUITES / f"{suite}.toml").cells()
              if (c.detector.label, c.task.label, c.seed) == (detector, task, seed)]
     assert len(cells) == 1, f"{suite}: no cell {detector} / {task} / seed {seed} in the suite"
