@@ -45,7 +45,7 @@ Solutions used and tested
 -------------------------
 From a fresh synapse (``F = L = 0``) under a constant stimulus ``S`` with
 ``c_f <= 1`` (checked), ``F`` rises to ``c_f S <= S``, so the threshold of
-(2) never cuts and, with ``h = 1``,
+(2) never cuts and, with ``h = 1``::
 
     F(n) = c_f S (1 - a_f^n)                                              (5)
     L(n) = c_s (1 - c_f) S (1 - a_s^n)
