@@ -98,8 +98,15 @@ def first_least(d, n):
     Non-negative floats (no NaN, no -0.0: squared distances) order as their
     bits read as integers do, and integer minima vectorise (a float minimum
     would not, without fast-math): two vectorised passes instead of one
-    comparison at a time, which halved the winner search of the online SOM.
+    comparison at a time, which halved the winner search of the online SOM
+    (100 units); below 64 units the single pass is kept (faster there).
     """
+    if n < 64:  # few units: one comparison at a time costs less than two passes
+        s = 0
+        for j in range(1, n):
+            if d[j] < d[s]:
+                s = j
+        return s
     keys = d.view(np.int64)
     least = keys[0]
     for j in range(1, n):
