@@ -21,10 +21,13 @@ scored. Definitions:
   1st; at most 0.25 is what this project calls habituated;
 - **first-exposure separation**: how far the typical first-exposure scan
   lies above the typical familiar scan, in units of the familiar scans'
-  spread: ``(median(first) - median(familiar)) / IQR(familiar)``, over the
-  scans of the first-encounter detection (``inf`` when the familiar scans
-  do not spread and the first-exposure median is above theirs). It does not
-  depend on the detector's scale. A detector **flags** first encounters when
+  spread: ``(median(first) - median(familiar)) / max(IQR(familiar), r)``,
+  over the scans of the first-encounter detection, where ``r`` is a
+  millionth (``RESOLUTION``) of the range of the detector's novelty over the
+  whole exploration, warm-up included: a difference below that is no
+  difference a threshold could use (a detector whose every scan lies below
+  1e-35 would otherwise separate by ratios of numbers near 1e-151). It does
+  not depend on the detector's scale (``a * novelty + b`` gives the same). A detector **flags** first encounters when
   the first-encounter ROC AUC is at least 0.85 *and* the separation at least
   0.5, and **habituates** when the habituation ratio is at most 0.25 *and*
   the separation at least 0.5: ranks decided by differences far below the
@@ -61,7 +64,7 @@ from ..holdout import metrics as bench_metrics
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
            "integrated_per_run", "warmup_threshold", "recurring", "first_exposure_separation", "return_ratio",
-           "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES"]
+           "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES", "RESOLUTION"]
 
 #: An excess at most this share of the first-exposure excess counts as habituated.
 HABITUATED = 0.25
@@ -71,6 +74,8 @@ FLAGS_FIRST = 0.85
 RECURRING = 3
 #: The least first-exposure separation (in familiar IQRs) with which AUC and ratio count.
 SEPARATES = 0.5
+#: The share of the detector's own range of novelty below which a spread counts as none.
+RESOLUTION = 1e-6
 
 
 def _arrays(novelty, run, feature, exposure=None):
@@ -147,9 +152,11 @@ def first_encounter_auc(novelty, run, feature, exposure, warmup: int) -> float:
 
 
 def first_exposure_separation(novelty, run, feature, exposure, warmup: int) -> float:
-    """``(median(first) - median(familiar)) / IQR(familiar)`` over the scans of the first-encounter AUC.
+    """``(median(first) - median(familiar)) / max(IQR(familiar), r)`` over the scans of the first-encounter AUC.
 
-    Familiar 0.1, 0.2, 0.3, 0.4 (median 0.25, IQR 0.325 - 0.175), first 0.8, 0.9:
+    ``r`` is ``RESOLUTION`` times the range of ``novelty`` (every scan given,
+    warm-up included; module docstring). Familiar 0.1, 0.2, 0.3, 0.4 (median
+    0.25, IQR 0.325 - 0.175), first 0.8, 0.9:
 
     >>> s = first_exposure_separation([0.9, 0.1, 0.3, 0.8, 0.2, 0.4], [1] * 6, ["d", "", "", "d", "", ""],
     ...                               [0, -1, -1, 0, -1, -1], 1)
@@ -165,9 +172,12 @@ def first_exposure_separation(novelty, run, feature, exposure, warmup: int) -> f
         return float("nan")
     q25, q50, q75 = np.percentile(novelty[familiar], [25, 50, 75])
     above = float(np.median(novelty[first]) - q50)
-    if q75 > q25:
-        return above / float(q75 - q25)
-    return math.inf if above > 0 else 0.0
+    finite = novelty[np.isfinite(novelty)]
+    resolution = RESOLUTION * float(finite.max() - finite.min()) if finite.size else 0.0
+    spread = max(float(q75 - q25), resolution)
+    if spread > 0:
+        return above / spread
+    return 0.0  # every scan scored alike: nothing is separated
 
 
 def return_ratio(curves: dict, returns: dict) -> float:

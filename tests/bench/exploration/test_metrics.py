@@ -112,6 +112,23 @@ def test_first_exposure_separation_does_not_depend_on_the_scale():
     nov[feature == "d"] += 0.5
     one = xm.first_exposure_separation(nov, run, feature, exposure, 1)
     assert one == pytest.approx(xm.first_exposure_separation(3.0 * nov - 7.0, run, feature, exposure, 1))
+    assert one == pytest.approx(xm.first_exposure_separation(1e-120 * nov, run, feature, exposure, 1))
+    # familiar scans that do not spread: the spread is a millionth of the novelty's range, 0.1
     flat = np.where(feature == "d", 0.2, 0.1)
-    assert xm.first_exposure_separation(flat, run, feature, exposure, 1) == np.inf
+    assert xm.first_exposure_separation(flat, run, feature, exposure, 1) == pytest.approx(1e6)
     assert xm.first_exposure_separation(np.full(40, 0.1), run, feature, exposure, 1) == 0.0
+
+
+def test_first_exposure_separation_ignores_differences_below_the_detectors_resolution():
+    """Scans ranked by differences of 1e-84 against a spread of 1e-151, in a detector whose novelty
+    spans 3e-35 (first runs) to 0: the ranks are perfect, the separation is nil."""
+    rng = np.random.default_rng(1)
+    run = np.repeat([0, 1, 2], 20)
+    feature = np.where((run > 0) & (np.arange(60) % 5 == 0), "d", "")
+    exposure = np.where(feature == "d", 0, -1)
+    nov = np.where(feature == "d", 1e-84, 1e-151 * rng.random(60))
+    nov[run == 0] = np.linspace(3e-35, 0.0, 20)  # the warm-up: the detector's own range
+    assert xm.first_encounter_auc(nov, run, feature, exposure, 1) == 1.0
+    separation = xm.first_exposure_separation(nov, run, feature, exposure, 1)
+    assert 0 < separation < 1e-40  # 1e-84 over a millionth of 3e-35
+    assert separation == pytest.approx((1e-84 - np.median(nov[(run > 0) & (feature == "")])) / 3e-41)
