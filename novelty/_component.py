@@ -115,6 +115,22 @@ class Component(BaseEstimator):
     #: parameters that a base class's compiled code reads from the record of every subclass
     #: that declares steps (:class:`KernelSpec`), before the subclass's own: a synapse's schedule
     _kernel_base_params: tuple = ()
+    #: how many times an attribute was set on this object (see :meth:`__setattr__`)
+    _changes = 0
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        """Set an attribute and count the change: a compiled engine holding this component's
+        state and parameters (:mod:`novelty._kernels.engine`), and a filter holding it as a part,
+        compare one count instead of every value to know whether anything was replaced or set
+        since they last read it. Changes made in place inside an array are not counted (nothing
+        needs them to be: the engine reads arrays in place); the engine writes the counters it
+        owns back without counting (through ``vars``)."""
+        object.__setattr__(self, name, value)
+        vars(self)["_changes"] = self._changes + 1
+
+    def __delattr__(self, name: str) -> None:
+        object.__delattr__(self, name)
+        vars(self)["_changes"] = self._changes + 1
 
     def _validate_params(self) -> None:
         validate_parameters(self)

@@ -24,6 +24,7 @@ The per-scan loop is :func:`learn_stream`, on plain arrays, in one place.
 from __future__ import annotations
 
 import difflib
+import math
 import numbers
 import warnings
 import weakref
@@ -35,7 +36,7 @@ from ._component import StateError, check_array_state
 from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
 from .distances import squared_distances
-from .detector import NoveltyDetector
+from .detector import NoveltyDetector, _lock_of
 from .habituation.base import Synapse
 from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
 from .registry import InvalidParameterError, build, check_parameters, of_kind
@@ -74,6 +75,9 @@ def learn_stream(clusterer: Clusterer, synapse: Synapse, X: np.ndarray, dt: np.n
                 synapse.fire(synapse.n_units_ - 1, stimulus, dt[i])
     return novelty
 
+
+#: the type of the scans the compiled single-scan call takes as they are
+_FLOAT64 = np.dtype(np.float64)
 
 #: the detectors already warned of their scans' range: once per detector object, kept out of
 #: its state (a model file, a copy and a comparison of states do not see it)
@@ -235,6 +239,9 @@ class HabituatingFilter(NoveltyDetector):
         super()._validate_params()
         synapse = self.synapse if isinstance(self.synapse, Synapse) else build("synapse", self.synapse)
         synapse._validate_params()
+        self._check_efficacy_range(synapse)
+
+    def _check_efficacy_range(self, synapse: Synapse) -> None:
         low, high = synapse.efficacy_range(float(self.stimulus))
         if (np.isfinite(low) and low < 0) or (np.isfinite(high) and high > 1):
             raise ValueError(
@@ -320,6 +327,12 @@ class HabituatingFilter(NoveltyDetector):
         if self._is_fitted():
             self._parts_changed = self._changed_parts()
 
+    def _parts_counts(self) -> tuple:
+        """How many times attributes were set on the parts, templates and fitted ones
+        (:meth:`novelty._component.Component.__setattr__`)."""
+        return (getattr(self.clusterer, "_changes", 0), getattr(self.synapse, "_changes", 0),
+                self.clusterer_._changes, self.synapse_._changes)
+
     def _changed_parts(self) -> list[str]:
         """The parameters of the parts that differ from those the fitted parts learned with."""
         changed = []
@@ -334,7 +347,20 @@ class HabituatingFilter(NoveltyDetector):
         return changed
 
     def _check_online(self) -> None:
+        """Refuse to learn on after a part's parameters changed (the class notes), noticing also
+        those set directly on the parts since the last call: on ``clusterer`` or ``synapse`` as
+        ``set_params`` notes them, on the fitted ``clusterer_`` or ``synapse_`` checked against
+        their rules (and then used)."""
         super()._check_online()
+        counts = self._parts_counts()
+        seen = getattr(self, "_parts_seen", None)
+        if counts != seen:
+            if seen is None or counts[2:] != seen[2:]:
+                self.clusterer_._validate_params()
+                self.synapse_._validate_params()
+                self._check_efficacy_range(self.synapse_)
+            if seen is None or counts[:2] != seen[:2]:
+                self._parts_changed = self._changed_parts()
         changed = getattr(self, "_parts_changed", None)
         if changed:
             self._validate_params()  # a value that is wrong anyway is named as such first
@@ -343,6 +369,8 @@ class HabituatingFilter(NoveltyDetector):
                 "values they learned with, so learning on would mix the two. Refit (fit) to learn with the "
                 "new values, or set them back."
             )
+        if counts != seen:
+            self._parts_seen = counts
 
     def _adopt(self, new: "HabituatingFilter") -> None:
         super()._adopt(new)
@@ -403,6 +431,7 @@ class HabituatingFilter(NoveltyDetector):
         if not hasattr(self, "match_scale_"):  # a model file written before the scale existed
             self.match_scale_ = None
         self._parts_changed = self._changed_parts()  # a file saved after set_params
+        self._parts_seen = self._parts_counts()
         scans = getattr(self, "calibration_scans_", None)
         self._calibration = None if scans is None else ScaleCalibration(
             scans, self.calibration_scans, self.match_quantile, self._calibration_rule())
@@ -471,7 +500,57 @@ class HabituatingFilter(NoveltyDetector):
         engine = getattr(self, "_engine", None)
         if engine is None or engine.clusterer is not self.clusterer_ or engine.synapse is not self.synapse_:
             engine = self._engine = _kernels.engine_for(self.clusterer_, self.synapse_)
+            if engine is not None:
+                engine.lock = _lock_of(self)  # the single-scan call takes it from there
         return engine
+
+    def score_learn_one(self, x, t=None) -> float:
+        if t is None and type(x) is np.ndarray:
+            out = self._learn_one_compiled(x)
+            if out is not None:
+                return out
+        return super().score_learn_one(x, t)
+
+    score_learn_one.__doc__ = NoveltyDetector.score_learn_one.__doc__
+
+    def _learn_one_compiled(self, x: np.ndarray) -> float | None:
+        """The novelty of the scan ``x``, learned by the engine in one compiled call that also
+        checks it; None, with nothing learned, when the call cannot take this path (a scan the
+        check refuses, timestamps, calibrating, the engine not built or compiled yet): the
+        general path then checks and learns it, and says what is wrong with it."""
+        engine = vars(self).get("_engine")
+        if engine is None or x.ndim != 1 or x.dtype is not _FLOAT64:
+            return None
+        flags = x.flags
+        if not (flags.c_contiguous and flags.writeable):
+            return None
+        with engine.lock:
+            seen = (self._changes, getattr(self.clusterer, "_changes", 0),
+                    getattr(self.synapse, "_changes", 0))
+            if seen != engine.owner_seen or not engine.unchanged():
+                # something was set on the filter or a part: checked as the general path does
+                self._check_online()
+                if not (self._served_by(engine) and engine.current()):
+                    return None
+                engine.owner_seen = (self._changes, getattr(self.clusterer, "_changes", 0),
+                                     getattr(self.synapse, "_changes", 0))
+            if not engine.learn_one(x, float(self.stimulus)):
+                return None
+            if self.novelty_rule == "efficacy":
+                out = engine.novelty1.item()
+            else:
+                out = float(self._combine(engine.novelty1.copy(), engine.distance1.copy())[0])
+            if not math.isfinite(out):
+                self._finite(np.array([out]))
+            return out
+
+    def _served_by(self, engine) -> bool:
+        """Whether the engine learns the next scan as the general path would: it is this
+        filter's, of its fitted parts, and the scan needs no timestamp and no calibration."""
+        calibration = self._calibration
+        return (vars(self).get("_engine") is engine and engine.clusterer is self.clusterer_
+                and engine.synapse is self.synapse_ and self.last_time_ is None
+                and (calibration is None or calibration.full))
 
     def _learn_block(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         return self._combine(*self._learn_raw(X, dt))
@@ -505,6 +584,10 @@ class HabituatingFilter(NoveltyDetector):
             # the winners' distances as match() computes them (winners() expands the square)
             distances[:] = squared_distances(X, self.clusterer_.weights_[rows])
             efficacy = self.synapse_.efficacy_[rows]
+        return self._novelty_of(rows, distances, efficacy)
+
+    def _novelty_of(self, rows: np.ndarray, distances: np.ndarray, efficacy: np.ndarray) -> np.ndarray:
+        """The novelty of scans from their winners' rows, squared distances and efficacies."""
         new = self.clusterer_.grows_for(rows, distances)
         if new is not None:
             efficacy = np.where(new, self.synapse_.fresh_efficacy, efficacy)
@@ -512,6 +595,42 @@ class HabituatingFilter(NoveltyDetector):
 
     def _novelty_one(self, x: np.ndarray) -> float:
         return float(self._novelty(x[None, :])[0])
+
+    def score_one(self, x) -> float:
+        if type(x) is np.ndarray:
+            out = self._score_one_compiled(x)
+            if out is not None:
+                return out
+        return super().score_one(x)
+
+    score_one.__doc__ = NoveltyDetector.score_one.__doc__
+
+    def _score_one_compiled(self, x: np.ndarray) -> float | None:
+        """The novelty of the scan ``x`` scored by the engine in one compiled call that also
+        checks it; None when the call cannot take this path (a scan the check refuses, no
+        engine or scoring kernel loaded yet, the state changed since the engine read it): the
+        general path then checks and scores it, and says what is wrong with it."""
+        engine = vars(self).get("_engine")
+        if engine is None or not engine.nearest_unit or x.ndim != 1 or x.dtype is not _FLOAT64:
+            return None
+        flags = x.flags
+        kernels = _kernels.scoring_kernels()
+        if not (flags.c_contiguous and flags.writeable) or kernels is None:
+            return None
+        with engine.lock:
+            if (vars(self).get("_engine") is not engine or engine.clusterer is not self.clusterer_
+                    or engine.synapse is not self.synapse_ or not engine.unchanged()
+                    or not engine.score_one(kernels, x)):
+                return None
+            efficacy, distance, row = engine.scored1.tolist()
+            if self.novelty_rule == "efficacy" and type(self.clusterer_).grows_for is Clusterer.grows_for:
+                out = efficacy
+            else:
+                out = float(self._novelty_of(np.array([int(row)]), np.array([distance]),
+                                             np.array([efficacy]))[0])
+            if not math.isfinite(out):
+                self._finite(np.array([out]))
+            return out
 
     @property
     def compiled_(self) -> str:

@@ -45,7 +45,8 @@ def state(det):
     out = {"n_features_in_": det.n_features_in_, "last_time_": det.last_time_}
     for part in ("clusterer_", "synapse_"):
         for name, value in vars(getattr(det, part)).items():
-            out[f"{part}.{name}"] = value.copy() if isinstance(value, np.ndarray) else value
+            if name != "_changes":  # not state: the count of attributes set
+                out[f"{part}.{name}"] = value.copy() if isinstance(value, np.ndarray) else value
     return out
 
 

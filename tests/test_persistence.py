@@ -67,9 +67,9 @@ def all_state(det):
     out = {}
     for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
         for name, value in vars(obj).items():
-            # the compiled loop's engine is not state: built on first use, it reads the parts'
-            # arrays and parameters on every call (a loaded model builds its own)
-            if name in ("clusterer_", "synapse_", "_engine"):
+            # the compiled loop's engine is not state: built on first use (a loaded model builds
+            # its own); nor are the counts of attributes set (Component.__setattr__)
+            if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen"):
                 continue
             out[owner + name] = value
     return out

@@ -43,8 +43,8 @@ from .engine import Engine, engine_for
 from .params import nested_ready, spec_of
 from .scoring import score
 
-__all__ = ["Engine", "engine_for", "learner", "scorer", "kernels_enabled", "wait", "path",
-           "reference_loops"]
+__all__ = ["Engine", "engine_for", "learner", "scorer", "scoring_kernels", "kernels_enabled", "wait",
+           "path", "reference_loops"]
 
 _NEAREST = Compiled("novelty._kernels._nearest")  # batch scoring (see .scoring)
 
@@ -144,6 +144,12 @@ def scorer(clusterer, synapse) -> Callable | None:
     if disabled() or (_NEAREST.module is None and _NEAREST.get() is None):
         return None
     return _score
+
+
+def scoring_kernels():
+    """The compiled batch-scoring module (:mod:`._nearest`) when it is loaded already, else
+    None (kernels disabled, or not compiled yet: :func:`scorer` starts that)."""
+    return None if disabled() else _NEAREST.module
 
 
 def _score(net, syn, X, winners=None, distances=None):

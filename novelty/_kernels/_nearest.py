@@ -83,6 +83,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .._validation.scans import CLEARED as _CLEARED
 from ._distances import distances_cols, transposed
 
 #: scans pre-filtered together, the lanes the loops over scans vectorise on (128
@@ -103,6 +104,10 @@ PREFILTER_MATH = {"contract"}
 #: the one signature compiled: callers pass exactly these types
 SIGNATURE = ("int64(float64[:, ::1], float64[::1], float64[:, ::1], int64[::1], float64[::1], "
              "float64[::1])")
+#: :func:`nearest_one`'s
+ONE_SIGNATURE = "int64(float64[:, ::1], float64[::1], int64, float64[::1], float64[::1])"
+#: a scan's sum of squares at most this clears it of the norm bound (novelty._validation.scans)
+CLEARED = _CLEARED
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -380,3 +385,37 @@ def nearest(W, y, X, winners, novelty, distances):
                 novelty[i] = y[a]
                 distances[i] = best
     return n_exact
+
+
+@njit(ONE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
+def nearest_one(W, y, n_units, x, out):
+    """One scan (``score_one``), checked first as the learning driver checks a single scan:
+    as many features as ``W`` has and a sum of squares within :data:`CLEARED`. Then its
+    nearest of the first ``n_units`` units, by :func:`row_distance` unit by unit (no
+    transposed copy, no pre-filter: for one scan they cost more than they save), the first of
+    the least as ``match`` takes it: ``out`` receives ``[efficacy, squared distance,
+    winner]``.
+
+    Returns 0, or -1 (nothing written) when the check fails: the caller's general check then
+    says why.
+    """
+    n = W.shape[1]
+    if x.shape[0] != n:
+        return -1
+    total = 0.0
+    for k in range(n):
+        total += x[k] * x[k]
+    if not total <= CLEARED:
+        return -1
+    X = x.reshape((1, n))
+    a = 0
+    best = row_distance(W, 0, X, 0)
+    for j in range(1, n_units):
+        d = row_distance(W, j, X, 0)
+        if d < best:
+            a = j
+            best = d
+    out[0] = y[a]
+    out[1] = best
+    out[2] = a
+    return 0

@@ -52,6 +52,7 @@ import tempfile
 
 import numpy as np
 
+from .._validation.scans import CLEARED
 from .compiling import Compiled, cache_files
 
 __all__ = ["TEMPLATE", "driver_for", "folder", "prune"]
@@ -82,8 +83,24 @@ def _delete_rows(a, gone, n):
             keep += 1
 
 
+#: a sum of squares at most this clears a scan of the norm bound (novelty._validation.scans)
+CLEARED = {cleared!r}
+
+
 @njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
-def drive(W, cstate, counters, cp, sstate, sp, X, dt, stimulus, n, winners, novelty, distances):
+def drive(W, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, novelty, distances,
+          check):
+    if check:  # the scans' check that only the caller can explain: done = -1 when one fails it
+        if X.shape[1] != W.shape[1]:
+            return -1, n
+        for i in range(X.shape[0]):
+            total = 0.0
+            for k in range(X.shape[1]):
+                total += X[i, k] * X[i, k]
+            if not total <= CLEARED:
+                return -1, n
+    cstate = ({c_tuple})
+    sstate = ({s_tuple})
     c = cp.view(C_PARAMS)[0]  # the clusterer's parameters, a record: c.learning_rate
     s = sp.view(S_PARAMS)[0]  # the synapse's: s.tau_winner
     cap = W.shape[0]
@@ -129,18 +146,16 @@ def _type(a: np.ndarray) -> str:
     return f"types.{a.dtype.name}[{', '.join([':'] * (a.ndim - 1) + ['::1'])}]"
 
 
-def _tuple(arrays) -> str:
-    return f"types.Tuple(({''.join(_type(a) + ', ' for a in arrays)}))"
-
-
 def signature(W, c_arrays, s_arrays) -> str:
     """The driver's signature, as the Python expression its module evaluates (the
-    parameters' records come as bytes, viewed as the module's ``C_PARAMS`` and ``S_PARAMS``)."""
-    return (f"types.UniTuple(types.int64, 2)(\n    {_type(W)}, {_tuple(c_arrays)}, "
-            f"types.int64[::1], types.uint8[::1],\n    {_tuple(s_arrays)}, "
+    parameters' records come as bytes, viewed as the module's ``C_PARAMS`` and ``S_PARAMS``;
+    the state arrays one by one: a tuple of arrays costs numba several times as much to
+    recognise at every call)."""
+    return (f"types.UniTuple(types.int64, 2)(\n    {_type(W)}, {''.join(_type(a) + ', ' for a in c_arrays)}"
+            f"types.int64[::1], types.uint8[::1],\n    {''.join(_type(a) + ', ' for a in s_arrays)}"
             "types.uint8[::1], types.float64[:, ::1], types.float64[::1],\n"
             "    types.float64, types.int64, types.int64[::1], types.float64[::1], "
-            "types.float64[::1])")
+            "types.float64[::1], types.boolean)")
 
 
 def folder() -> str:
@@ -200,12 +215,18 @@ def _module_file(name: str) -> str:
     return spec.origin
 
 
-def _source(c_steps: str, s_steps: str, label: str, sig: str, n_synapse_arrays: int,
-            c_params: np.dtype, s_params: np.dtype) -> str:
+def _source(c_steps: str, s_steps: str, label: str, sig: str, n_clusterer_arrays: int,
+            n_synapse_arrays: int, c_params: np.dtype, s_params: np.dtype) -> str:
     rows = "".join(f"            _delete_rows(sstate[{i}], gone, n)\n"
                    for i in range(n_synapse_arrays))
+    c_names = [f"c{i}" for i in range(n_clusterer_arrays)]
+    s_names = [f"s{i}" for i in range(n_synapse_arrays)]
     return TEMPLATE.format(label=label, c_steps=c_steps, s_steps=s_steps, signature=sig,
-                           delete_rows=rows.rstrip("\n"), c_params=c_params, s_params=s_params)
+                           delete_rows=rows.rstrip("\n"), c_params=c_params, s_params=s_params,
+                           cleared=CLEARED, c_args="".join(name + ", " for name in c_names),
+                           s_args="".join(name + ", " for name in s_names),
+                           c_tuple="".join(name + ", " for name in c_names).rstrip(" "),
+                           s_tuple="".join(name + ", " for name in s_names).rstrip(" "))
 
 
 _drivers: dict[tuple, Compiled] = {}
@@ -222,7 +243,8 @@ def driver_for(c_steps: str, s_steps: str, c_class: type, s_class: type, W, c_ar
     if compiled is None:
         sig = signature(W, c_arrays, s_arrays)
         label = f"{c_class.__name__} x {s_class.__name__}"
-        source = _source(c_steps, s_steps, label, sig, len(s_arrays), c_params, s_params)
+        source = _source(c_steps, s_steps, label, sig, len(c_arrays), len(s_arrays), c_params,
+                         s_params)
         h = hashlib.sha256(source.encode() + _package_digest().encode())
         for module in sorted({c_steps, s_steps, c_class.__module__, s_class.__module__}):
             with open(_module_file(module), "rb") as f:

@@ -1,45 +1,56 @@
-"""A fitted pair's compiled loop: the engine a habituating filter owns.
+"""A fitted pair's compiled loop: the engine a habituating filter owns, holding the pair's state.
 
 An :class:`Engine` is built in one place (:func:`engine_for`) for a
 (clusterer, synapse) pair whose classes both declare compiled steps
-(``_kernel``, a :class:`~novelty._component.KernelSpec`), and holds what the
-pair's driver needs: the two declarations, functions that read the state
-arrays, parameters and counters in one call each, the parameter records
-packed from them (:func:`.params.pack`: a named field per parameter), and the driver (a :class:`.compiling.Compiled`). The filter
-keeps one in ``_engine``; ``set_params`` and ``load`` drop it and the next
-call builds a new one.
+(``_kernel``, a :class:`~novelty._component.KernelSpec`). It holds what the
+pair's driver needs: the state arrays (with spare rows for a growing
+network), the counters, the parameter records packed from the components
+(:func:`.params.pack`: a named field per parameter), the driver (a
+:class:`.compiling.Compiled`) and a single scan's arguments. The filter keeps
+one in ``_engine``; ``set_params`` and ``load`` drop it and the next call
+builds a new one.
 
-The components stay the owners of their state (``weights_``, ``efficacy_``
-are theirs, and may be replaced or changed by anyone), so on every call the
-engine reads the arrays and parameters it is about to hand over and compares
-them with those it checked last time: the very same arrays, of the same
-shapes and types, are used as they are; anything else is checked again
-(the reference runs when the state is not in the declared layout); the
-parameter records are packed again when a value changed.
+**Who sees the state.** The components' attributes (``weights_``,
+``efficacy_``, the declared arrays and counters) always show the current
+state: the arrays are views of the first ``n`` units of the engine's own
+arrays; the counters are written back after every call. Writing into those
+arrays in place is seen by the next call, which reads them in place.
 
-The driver works on the components' own arrays while it adds no unit; when
-an input needs room it stops, and :meth:`Engine.learn` copies the state into
-arrays with spare rows (at most doubling them, so few are wasted) and
-resumes, until the batch is done; then the arrays, trimmed, are the
-components' again.
+**Noticing a change.** Setting an attribute of a component counts a change
+(:meth:`novelty._component.Component.__setattr__`), so the engine compares
+one count per component with those it saw when it last read them: equal,
+and its arrays, counters and packed parameters are still the components';
+different (an array replaced, a parameter or counter set, by anyone), and
+it reads and checks them again, into arrays of its own (the reference runs
+when the state is not in the declared layout). Giving the components views
+of its arrays counts too, and the engine takes those counts as seen: another
+engine of the same components reads them again before it works on arrays
+they no longer show. The counters are written back through ``vars``,
+uncounted.
+
+**Growth.** The driver stops when an input needs a unit it has no room
+for; :meth:`Engine.learn` then moves the state into buffers with more rows
+(at least doubling, so few are wasted and few moves happen) and resumes.
 """
 
 from __future__ import annotations
 
 import operator
+import threading
 from typing import Callable
 
 import numpy as np
 
+from .._component import declares
 from .compiling import disabled
 from .drivers import driver_for
 from .handover import handing_over
-from .params import arrays_of, attribute, getter, nested_ready, pack, param_names, spec_of
+from .params import arrays_of, attribute, getter, nested_ready, pack, spec_of
 
 __all__ = ["Engine", "engine_for"]
 
-#: what identifies an array's layout for the checks: its shape and type
-_LAYOUT = operator.attrgetter("shape", "dtype")
+#: a component's count of changes (see the module docstring)
+_CHANGES = operator.attrgetter("_changes")
 
 
 def engine_for(clusterer, synapse) -> "Engine | None":
@@ -52,18 +63,8 @@ def engine_for(clusterer, synapse) -> "Engine | None":
     return Engine(clusterer, synapse, c_spec, s_spec)
 
 
-def _values_getter(component, spec) -> Callable:
-    """The values of the parameters the steps read, nested components' included, in one tuple."""
-    own = getter(param_names(component))
-    nested = [(name, _values_getter(getattr(component, name), spec_of(getattr(component, name))))
-              for name, _ in spec.nested]
-    if not nested:
-        return own
-    return lambda c: own(c) + tuple(v for name, read in nested for v in read(getattr(c, name)))
-
-
 class Engine:
-    """The compiled loop of one (clusterer, synapse) pair (module docstring)."""
+    """The compiled loop of one (clusterer, synapse) pair, and its state (module docstring)."""
 
     def __init__(self, clusterer, synapse, c_spec, s_spec):
         self.clusterer, self.synapse = clusterer, synapse
@@ -71,40 +72,87 @@ class Engine:
         self._read_c = getter(("weights_",) + c_spec.arrays)
         self._read_s = getter(s_spec.arrays)
         self._read_counters = getter(c_spec.counters)
-        self._read_cv = _values_getter(clusterer, c_spec)
-        self._read_sv = getter(param_names(synapse))
-        self._arrays = self._layout = None  # the arrays checked last, and their layout
-        self._compiled = None  # the driver for those arrays' types
-        self._cv = self._sv = None  # the parameter values packed last, with their types
-        self._cp = self._sp = None  # and the bytes of the records packed from them
+        self._c_square = tuple(name in c_spec.square for name in c_spec.arrays)
+        self._counter_names = c_spec.counters
+        self._seen = None  # the parts' counts of changes when the engine last read them
+        self._parts: tuple = ()  # those parts: the pair and its nested components
+        self._compiled = None  # the driver for the arrays' types
+        self._types = None  # and those types
+        # the state: arrays with room for ``capacity`` units, of which the first ``n`` are units
+        self.n = self.capacity = 0
+        self._shown = -1  # how many units the components' views show
+        self._W = None
+        self._c_arrays: list = []
+        self._s_arrays: list = []
+        self._counters = None
+        self._head: tuple = ()  # the driver's arguments before the scans, in one tuple
+        #: the parameter records packed last (:func:`.params.pack`): ``c_record["learning_rate"]``
+        self.c_record = self.s_record = None
+        # a single scan's arguments, kept between calls
+        self._dt1 = np.ones(1)
+        self._winner1 = np.empty(1, dtype=np.int64)
+        self.novelty1 = np.empty(1)
+        self.distance1 = np.empty(1)
+        self._one = (self._dt1,)  # the driver's arguments for one scan, around stimulus and n
+        self._out1 = (self._winner1, self.novelty1, self.distance1)
+        #: whether a scan is scored by its nearest unit (the clusterer declares it), and the
+        #: single-scan scoring call's output: efficacy, squared distance, winner
+        self.nearest_unit = declares(clusterer, "nearest-unit")
+        self.scored1 = np.empty(3)
+        #: the owner's lock (calls from other threads wait), and what the owner last saw when it
+        #: confirmed that this engine serves its single-scan calls (both set by the owner)
+        self.lock = threading.RLock()
+        self.owner_seen = None
 
     # ------------------------------------------------------------- the state
-    def state(self) -> tuple | None:
-        """``(W, c_arrays, s_arrays, counters)`` as the driver takes them now, or None when
-        the state is not in the declared layout."""
+    def current(self) -> bool:
+        """Whether the engine holds the pair's state and parameters as they are now, read again
+        if a part changed since; False when the state is not in the declared layout."""
+        return self.unchanged() or self._read()
+
+    def unchanged(self) -> bool:
+        """Whether no part was set since the engine read them (so it holds them as they are)."""
+        return self._seen is not None and tuple(map(_CHANGES, self._parts)) == self._seen
+
+    def _read(self) -> bool:
+        self._seen = None
         c, s = self.clusterer, self.synapse
-        if self.c_spec.nested and not nested_ready(c, self.c_spec):
-            return None
+        if not nested_ready(c, self.c_spec):
+            return False
         try:
             c_read, s_read = self._read_c(c), self._read_s(s)
-            counters = self._read_counters(c)
-        except AttributeError:
-            return None
-        arrays = c_read + s_read
-        if not (self._arrays is not None and all(map(operator.is_, arrays, self._arrays))
-                and tuple(map(_LAYOUT, arrays)) == self._layout):
-            if not self._check(c_read, s_read):
-                self._arrays = None
-                return None
-            types = tuple(map(_LAYOUT, arrays))
-            if self._layout is None or [t[1] for t in types] != [t[1] for t in self._layout]:
-                self._compiled = None  # other types: another driver (or none yet)
-            self._arrays, self._layout = arrays, types
-        try:
-            counter_array = np.array(counters, dtype=np.int64)
-        except (TypeError, ValueError, OverflowError):
-            return None
-        return c_read[0], c_read[1:], s_read, counter_array
+            counters = np.array(self._read_counters(c), dtype=np.int64)
+        except (AttributeError, TypeError, ValueError, OverflowError):
+            return False
+        if not self._check(c_read, s_read) or counters.ndim != 1:
+            return False
+        n = c_read[0].shape[0]
+        # the engine's own copies: nobody else holds them, so nobody can make them read-only or
+        # strided; the components see views of them
+        arrays = [np.array(a, order="C") for a in c_read + s_read]
+        self._W, self._c_arrays = arrays[0], arrays[1:len(c_read)]
+        self._s_arrays = arrays[len(c_read):]
+        self.n = self.capacity = n
+        self._counters = counters
+        self._pack()
+        self._show(n)
+        return True
+
+    def _pack(self) -> None:
+        """The parameters as the driver takes them: the bytes of their records (``c_record``,
+        ``s_record``: :func:`.params.pack`), which the driver views as the records again (numba
+        types a plain byte array at once; a structured array by a slower path, 0.1 us a call
+        each)."""
+        c, s = self.clusterer, self.synapse
+        self.c_record, self.s_record = pack(c), pack(s)
+        types = tuple(a.dtype for a in [self._W, *self._c_arrays, *self._s_arrays,
+                                        self.c_record, self.s_record])
+        if types != self._types:  # other types (another nested part's record): another driver
+            self._compiled, self._types = None, types
+        self._head = (self._W, *self._c_arrays, self._counters, self.c_record.view(np.uint8),
+                      *self._s_arrays, self.s_record.view(np.uint8))
+        nested = tuple(getattr(c, name) for name, _ in self.c_spec.nested)
+        self._parts = (c, s) + nested
 
     def _check(self, c_read, s_read) -> bool:
         W = c_read[0]
@@ -119,41 +167,52 @@ class Engine:
         return s_read[0] is getattr(self.synapse, "efficacy_", None) and all(
             a.dtype == np.float64 and a.ndim == 1 for a in s_read)
 
-    def params(self) -> tuple:
-        """The clusterer's and the synapse's parameters as the driver takes them: the bytes of
-        their records (``c_record``, ``s_record``: :func:`.params.pack`), which the driver
-        views as the records again; packed again if a value changed. (numba types a plain
-        byte array at once; a structured array by a slower path, 0.1 us a call each.)"""
-        cv, sv = self._read_cv(self.clusterer), self._read_sv(self.synapse)
-        if cv != self._cv or tuple(map(type, cv)) != self._cv_types:
-            record = pack(self.clusterer)
-            if self.c_record is not None and record.dtype != self.c_record.dtype:
-                self._compiled = None  # another nested part: another record, another driver
-            self.c_record, self._cp = record, record.view(np.uint8)
-            self._cv, self._cv_types = cv, tuple(map(type, cv))
-        if sv != self._sv or tuple(map(type, sv)) != self._sv_types:
-            self.s_record = pack(self.synapse)
-            self._sp = self.s_record.view(np.uint8)
-            self._sv, self._sv_types = sv, tuple(map(type, sv))
-        return self._cp, self._sp
+    def _show(self, n: int) -> None:
+        """Give the components views of the first ``n`` units of the engine's arrays.
 
-    _cv_types = _sv_types = None
-    #: the parameter records packed last (:func:`.params.pack`): ``c_record["learning_rate"]``
-    c_record = s_record = None
+        Counted as changes, which the engine then takes as seen: another engine of the same
+        components (one asked for by :func:`novelty._kernels.wait`, say) reads them again
+        before it would work on arrays they no longer show."""
+        _put(self.clusterer, "weights_", self._W[:n])
+        for name, a, square in zip(self.c_spec.arrays, self._c_arrays, self._c_square):
+            _put(self.clusterer, name, a[:n, :n] if square else a[:n])
+        for name, a in zip(self.s_spec.arrays, self._s_arrays):
+            _put(self.synapse, name, a[:n])
+        self._shown = n
+        self._seen = tuple(map(_CHANGES, self._parts))
+
+    def _grow(self, capacity: int) -> None:
+        """Move the state into arrays with room for ``capacity`` units."""
+        n = self.n
+        self._W = _roomy(self._W, False, n, capacity)
+        self._c_arrays = [_roomy(a, sq, n, capacity) for a, sq in zip(self._c_arrays, self._c_square)]
+        self._s_arrays = [_roomy(a, False, n, capacity) for a in self._s_arrays]
+        self.capacity = capacity
+        self._shown = -1  # the components' views are of the old arrays
+        head = self._head
+        k = len(self._c_arrays)
+        self._head = (self._W, *self._c_arrays, *head[1 + k:3 + k], *self._s_arrays, head[-1])
+
+    def _finish(self, n: int) -> None:
+        """After the driver: the components see the units and counters it left (as
+        :meth:`learn_one` does, written out there)."""
+        self.n = n
+        if n != self._shown:
+            self._show(n)
+        if self._counter_names:
+            vars(self.clusterer).update(zip(self._counter_names, self._counters.tolist()))
 
     # ------------------------------------------------------------ the driver
-    def compiled(self, state: tuple | None = None):
+    def compiled(self):
         """The driver for the state's array types (a :class:`.compiling.Compiled`), or None."""
-        state = state or self.state()
-        if state is None:
+        if not self.current():
             return None
         if self._compiled is None:
-            W, c_arrays, s_arrays, _ = state
             try:
-                self.params()
                 self._compiled = driver_for(self.c_spec.steps, self.s_spec.steps,
-                                            type(self.clusterer), type(self.synapse), W, c_arrays,
-                                            s_arrays, self.c_record.dtype, self.s_record.dtype)
+                                            type(self.clusterer), type(self.synapse), self._W,
+                                            self._c_arrays, self._s_arrays, self.c_record.dtype,
+                                            self.s_record.dtype)
             except (OSError, ImportError):  # no folder to write the driver to; a steps module missing
                 return None
         return self._compiled
@@ -164,8 +223,7 @@ class Engine:
         :mod:`.handover`), or None when the pair runs the reference now."""
         if disabled():
             return None
-        state = self.state()
-        compiled = self.compiled(state)
+        compiled = self.compiled()
         if compiled is None:
             return None
         if compiled.module is not None or compiled.get() is not None:
@@ -178,63 +236,84 @@ class Engine:
     def run(self, reference: Callable, X: np.ndarray, dt: np.ndarray, stimulus: float,
             distances: np.ndarray | None = None) -> np.ndarray:
         """Learn the rows of ``X``: compiled when the driver is ready, else by ``reference``
-        (``learn_stream``; block by block while the driver compiles). The state is read once."""
-        state = None if disabled() else self.state()
-        compiled = None if state is None else self.compiled(state)
+        (``learn_stream``; block by block while the driver compiles)."""
+        compiled = None if disabled() else self.compiled()
         if compiled is not None:
             if compiled.module is not None or compiled.get() is not None:
-                return self.learn(X, dt, stimulus, distances, state=state)
+                return self.learn(X, dt, stimulus, distances)
             if compiled.compiling:
                 return handing_over(compiled, self._learn, reference)(
                     self.clusterer, self.synapse, X, dt, stimulus, distances=distances)
         return reference(self.clusterer, self.synapse, X, dt, stimulus, distances=distances)
 
     def learn(self, X: np.ndarray, dt: np.ndarray, stimulus: float,
-              distances: np.ndarray | None = None, winners: np.ndarray | None = None,
-              state: tuple | None = None) -> np.ndarray:
+              distances: np.ndarray | None = None, winners: np.ndarray | None = None) -> np.ndarray:
         """Learn the rows of ``X`` compiled; return their novelty (the winners' efficacies).
 
         ``distances`` and ``winners`` (int64), if given, receive each row's squared
-        distance to its winner and the winner's row (at the time of the row). ``state``:
-        what :meth:`state` answers now, if known.
+        distance to its winner and the winner's row (at the time of the row).
         """
-        state = state or self.state()
-        W, c_arrays, s_arrays, counters = state
-        drive = self.compiled(state).module.drive
-        cp, sp = self.params()
+        drive = self.compiled().module.drive
         X, dt = _c(X), _c(dt)
         m = X.shape[0]
         novelty = np.empty(m)
         d = np.empty(m) if distances is None else distances
         rows = np.empty(m, dtype=np.int64) if winners is None else winners
         stimulus = float(stimulus)
-        n = n_before = W.shape[0]
-        # in place on the components' own arrays when they are plain; else on copies
-        copies = not (_plain(W) and all(map(_plain, c_arrays)) and all(map(_plain, s_arrays)))
-        c_square = [name in self.c_spec.square for name in self.c_spec.arrays]
-        s_square = [False] * len(s_arrays)
+        n = self.n
         start = 0
-        stopped = False  # the driver stopped for want of room
         while True:
-            if copies:  # with room for what stopped the driver, if it stopped
-                cap = n + max(1, min(m - start, max(n, 16))) if stopped else n
-                (W,) = _roomy([W], [False], n, cap)
-                c_arrays = _roomy(c_arrays, c_square, n, cap)
-                s_arrays = _roomy(s_arrays, s_square, n, cap)
-            done, n = drive(W, tuple(c_arrays), counters, cp, tuple(s_arrays), sp, X[start:],
-                            dt[start:], stimulus, n, rows[start:], novelty[start:], d[start:])
+            done, n = drive(*self._head, X[start:], dt[start:], stimulus, n, rows[start:],
+                            novelty[start:], d[start:], False)
             start += done
             if start >= m:
                 break
-            copies = stopped = True
-        if copies or n != n_before:  # the arrays, trimmed, are the components' again
-            (W,) = _trimmed([W], [False], n)
-            self.clusterer.weights_ = W
-            _set(self.clusterer, self.c_spec.arrays, _trimmed(c_arrays, c_square, n))
-            _set(self.synapse, self.s_spec.arrays, _trimmed(s_arrays, s_square, n))
-        for name, value in zip(self.c_spec.counters, counters.tolist()):
-            setattr(self.clusterer, name, value)
+            # no room for the unit the next input adds: at least double, at most one per input
+            self.n = n
+            self._grow(n + max(1, min(m - start, max(n, 16))))
+        self._finish(n)
         return novelty
+
+    def learn_one(self, x: np.ndarray, stimulus: float) -> bool:
+        """Learn one scan compiled, the driver checking it first; its novelty (the winner's
+        efficacy) and squared distance to its winner are then ``novelty1[0]`` and
+        ``distance1[0]``. False, with nothing learned, when the driver is not loaded yet or the
+        check fails: the caller then takes its general path, which checks the scan and says
+        what is wrong with it.
+
+        The caller holds the owner's lock, has made sure the engine is :meth:`current`, and
+        passes a C-contiguous, writable 1-D float64 array. The driver's check: as many features
+        as the units have, and a sum of squares within the norm bound with a margin
+        (``novelty._validation.scans.CLEARED``, far wider than rounding), so that NaN, infinity
+        and too large values all fail it. (False too while ``NOVELTY_NO_KERNELS`` asks for the
+        reference.)
+        """
+        compiled = self._compiled
+        if compiled is None or compiled.module is None or disabled():
+            return False
+        drive = compiled.module.drive
+        X = x[None, :]
+        while True:
+            done, n = drive(*self._head, X, *self._one, stimulus, self.n, *self._out1, True)
+            if done:
+                break
+            self._grow(self.n + max(self.n, 16))  # no room for the unit it adds
+        if done < 0:
+            return False
+        self.n = n
+        if n != self._shown:
+            self._show(n)
+        if self._counter_names:
+            vars(self.clusterer).update(zip(self._counter_names, self._counters.tolist()))
+        return True
+
+    def score_one(self, kernels, x: np.ndarray) -> bool:
+        """Score one scan compiled (``kernels``: the compiled :mod:`._nearest`), checked first as
+        :meth:`learn_one` checks it: its nearest unit's efficacy, squared distance and row are
+        then ``scored1``. False, with nothing written, when the check fails. The caller holds
+        the owner's lock, has made sure the engine is :meth:`unchanged` and its clusterer a
+        ``"nearest-unit"`` one, and passes a C-contiguous, writable 1-D float64 array."""
+        return kernels.nearest_one(self._W, self._s_arrays[0], self.n, x, self.scored1) == 0
 
     def __reduce__(self):
         # an engine is scratch: a copy or a pickle of its filter builds its own
@@ -254,31 +333,17 @@ def _c(a: np.ndarray) -> np.ndarray:
     return np.array(a, dtype=np.float64, order="C")
 
 
-def _plain(a) -> bool:
-    flags = a.flags
-    return flags.c_contiguous and flags.writeable
+def _roomy(a: np.ndarray, square: bool, n: int, capacity: int) -> np.ndarray:
+    """The first ``n`` units of ``a`` in a new array with room for ``capacity``."""
+    b = np.zeros((capacity, capacity) if square else (capacity,) + a.shape[1:], dtype=a.dtype)
+    if square:
+        b[:n, :n] = a[:n, :n]
+    else:
+        b[:n] = a[:n]
+    return b
 
 
-def _roomy(arrays, square, n: int, cap: int) -> list:
-    out = []
-    for a, sq in zip(arrays, square):
-        b = np.zeros((cap, cap) if sq else (cap,) + a.shape[1:], dtype=a.dtype)
-        if sq:
-            b[:n, :n] = a[:n, :n]
-        else:
-            b[:n] = a[:n]
-        out.append(b)
-    return out
-
-
-def _trimmed(arrays, square, n: int) -> list:
-    return [np.ascontiguousarray(a[:n, :n] if sq else a[:n]) if a.shape[0] != n else a
-            for a, sq in zip(arrays, square)]
-
-
-def _set(component, names, arrays) -> None:
-    for name, a in zip(names, arrays):
-        owner_path, _, leaf = name.rpartition(".")
-        owner = attribute(component, owner_path) if owner_path else component
-        if getattr(owner, leaf) is not a:
-            setattr(owner, leaf, a)
+def _put(component, name: str, value) -> None:
+    """Set ``component.<name>`` (dotted: a nested component's)."""
+    owner_path, _, leaf = name.rpartition(".")
+    setattr(attribute(component, owner_path) if owner_path else component, leaf, value)

@@ -26,8 +26,9 @@ __all__ = ["check_batch", "check_one", "MAX_SCAN_NORM"]
 #: the largest Euclidean norm of a scan any detector accepts (see the module docstring)
 MAX_SCAN_NORM = 1e100
 _MAX_SQUARED_NORM = MAX_SCAN_NORM**2
-# a batch whose squared values sum to at most this has every row within the bound
-_CLEARED = _MAX_SQUARED_NORM * (1 - 1e-6)
+#: a batch (or scan) whose squared values sum to at most this, in any order, has every row
+#: within the bound: the margin is far wider than the rounding of any such sum
+CLEARED = _MAX_SQUARED_NORM * (1 - 1e-6)
 # arrays taken as they are (float32 converted): the dtypes of the common input
 _PLAIN_FLOATS = (np.dtype(np.float64), np.dtype(np.float32))
 
@@ -102,7 +103,7 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
         # BLAS may split over threads whose wake-up was seen to cost milliseconds on a busy
         # machine
         total = np.dot(flat, flat) if flat.shape[0] <= 4096 else np.einsum("i,i->", flat, flat)
-        if total <= _CLEARED:
+        if total <= CLEARED:
             return
         # One pass gives every row's squared norm.
         squared = np.einsum("ij,ij->i", X, X)

@@ -68,6 +68,15 @@ def both(clusterer, synapse):
     return (clusterer, synapse), (copy.deepcopy(clusterer), copy.deepcopy(synapse))
 
 
+def within_fixed_point(fraction: float, alpha: float, y0: float) -> float:
+    """A stimulus ``fraction`` of the way up to Stanley's fixed point at 0 (``S = alpha y0``),
+    never past it by a rounding (``y0 - S / alpha >= 0``, as the filter checks it)."""
+    stimulus = fraction * alpha * y0
+    while y0 - stimulus / alpha < 0:
+        stimulus = float(np.nextafter(stimulus, 0.0))
+    return stimulus
+
+
 def corridor(n_scans, n_features=16, seed=0):
     """A smooth random walk in [0, 1]^n_features, like sonar scans along corridors."""
     rng = np.random.default_rng(seed)

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import contextlib
 import copy
-import math
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +25,8 @@ from novelty.clusterers.gwr import GrowWhenRequired
 from novelty.filter import HabituatingFilter, learn_stream
 
 from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
-                            kernel_learn, reference_learn, reference_only, rules, streams)
+                            kernel_learn, reference_learn, reference_only, rules, streams,
+                            within_fixed_point)
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
 
@@ -79,7 +79,7 @@ def build(som, stanley, stimulus=1.0, seed=0, **rule):
        stimulus=st.floats(0, 1, **finite))
 def test_learning_equals_reference(som, stanley, data, stimulus):
     X, timestamps = data
-    stimulus *= stanley["alpha"] * stanley["y0"]  # up to Stanley's fixed point at 0
+    stimulus = within_fixed_point(stimulus, stanley["alpha"], stanley["y0"])
     det = build(som, stanley, stimulus)
     det._validate_params()
     det._begin(X)
@@ -177,10 +177,9 @@ def growing_filters(draw):
         params["firing"] = novelty.StanleySynapse(**firing)
     synapse = novelty.StanleySynapse(**draw(stanley_params()))
     clusterer = novelty.registry.clusterers.make(kind, **params)
-    stimulus = draw(st.floats(0, 1, **finite)) * synapse.alpha * synapse.y0
-    while synapse.y0 - stimulus / synapse.alpha < 0:  # alpha * y0 rounded up: the filter refuses it
-        stimulus = math.nextafter(stimulus, 0.0)
-    return HabituatingFilter(clusterer=clusterer, synapse=synapse, stimulus=stimulus,
+    return HabituatingFilter(clusterer=clusterer, synapse=synapse,
+                             stimulus=within_fixed_point(draw(st.floats(0, 1, **finite)), synapse.alpha,
+                                                         synapse.y0),
                              random_state=draw(st.integers(0, 100)), **draw(rules))
 
 
@@ -501,3 +500,126 @@ def test_the_filter_owns_its_engine_dropped_by_set_params_and_load(tmp_path):
     assert loaded._engine is None
     np.testing.assert_array_equal(loaded.stream(X[31:]), det.stream(X[31:]))
     assert loaded._engine.clusterer is loaded.clusterer_
+
+
+# ------------------------------------------------------------------ one scan at a time
+def _counting_single_scans(det, monkeypatch, method="learn_one"):
+    """What the engine's single-scan call (``learn_one`` or ``score_one``) answered, a list that
+    grows: True for a scan it took, False for one it left to the general path."""
+    answers = []
+    engine = det._engine
+    original = getattr(engine, method)
+
+    def counting(*args):
+        done = original(*args)
+        answers.append(done)
+        return done
+
+    monkeypatch.setattr(engine, method, counting)
+    return answers
+
+
+def test_single_scans_learn_and_score_compiled_as_the_reference(monkeypatch):
+    X = corridor(80, n_features=5, seed=4)
+    fast, slow = novelty.make("hsom", n_rows=4, n_columns=4), novelty.make("hsom", n_rows=4, n_columns=4)
+    fast.fit(X[:10])
+    assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None and _kernels.wait() is not None
+    learned = _counting_single_scans(fast, monkeypatch)
+    scored = _counting_single_scans(fast, monkeypatch, "score_one")
+    got = [fast.score_learn_one(x) for x in X[10:40]] + [fast.learn_one(x).score_one(x) for x in X[40:]]
+    with reference_only():
+        slow.fit(X[:10])
+        expected = [slow.score_learn_one(x) for x in X[10:40]] + [slow.learn_one(x).score_one(x) for x in X[40:]]
+    assert learned == [True] * 70 and scored == [True] * 40  # all by the single-scan calls
+    np.testing.assert_array_equal(got, expected)
+    assert_same_filter(fast, slow)
+
+
+NEAR_BOUND = np.full(4, 0.5e100 * (1 - 1e-7))  # within the bound, not within the drivers' margin
+
+
+@pytest.mark.parametrize("method", ["score_learn_one", "score_one"])
+@pytest.mark.parametrize("scan, message", [
+    (np.array([0.5, np.nan, 0.5, 0.5]), r"^Input x for HabituatingFilter contains NaN or infinity\.$"),
+    (np.array([0.5, 0.5, -np.inf, 0.5]), r"^Input x for HabituatingFilter contains NaN or infinity\.$"),
+    (np.full(4, 1e155), r"^Input x for HabituatingFilter has a scan of Euclidean norm above 1e\+100"),
+    (np.full(4, 0.6e100), r"^Input x for HabituatingFilter has a scan of Euclidean norm above 1e\+100"),
+    (np.full(5, 0.5), r"^x has 5 features, but HabituatingFilter is expecting 4 features as input\.$"),
+    (np.full(3, 0.5), r"^x has 3 features, but HabituatingFilter is expecting 4 features as input\.$"),
+    (NEAR_BOUND, None),
+])
+def test_the_single_scan_calls_leave_every_refusal_to_the_general_check(monkeypatch, method, scan, message):
+    """The compiled calls' own check of a scan lets through only what the general check
+    accepts; on anything else nothing is learned and the general path says what is wrong, as
+    before."""
+    X = corridor(20, n_features=4, seed=5)
+    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X)
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
+    slow = copy.deepcopy(det)
+    answers = _counting_single_scans(det, monkeypatch, "learn_one" if method == "score_learn_one" else method)
+    det.score_learn_one(X[0])
+    det.score_one(X[1])
+    with reference_only():
+        slow.score_learn_one(X[0])
+    assert answers == [True]
+    if message is None:
+        got = getattr(det, method)(scan)
+        with reference_only():
+            expected = getattr(slow, method)(scan)
+        assert got == expected
+    else:
+        with pytest.raises(ValueError, match=message):
+            getattr(det, method)(scan)
+    assert answers == [True, False]  # the compiled call refused it (and learned nothing)
+    assert_same_filter(det, slow)
+
+
+def test_the_components_show_the_engines_state():
+    """The fitted parts' arrays are views of the engine's: learning is seen through an array
+    read before it, and another engine of the same parts (asked for by wait) takes nothing away."""
+    X = corridor(60, n_features=5, seed=7)
+    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X[:10])
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None
+    det.learn_one(X[10])
+    weights, efficacy = det.clusterer_.weights_, det.synapse_.efficacy_
+    det.learn_one(X[11])
+    assert det.clusterer_.weights_ is weights and det.synapse_.efficacy_ is efficacy
+    assert np.shares_memory(weights, det._engine._W)
+    before = weights.copy()
+    det.partial_fit(X[12:20])
+    assert not np.array_equal(weights, before)  # learned in place
+    slow = copy.deepcopy(det)
+    _kernels.wait(det.clusterer_, det.synapse_)  # another engine reads the parts
+    det.partial_fit(X[20:40])
+    for x in X[40:]:
+        det.learn_one(x)
+    with reference_only():
+        slow.partial_fit(X[20:40])
+        for x in X[40:]:
+            slow.learn_one(x)
+    assert_same_filter(det, slow)
+    assert np.shares_memory(det.clusterer_.weights_, det._engine._W)
+
+
+@pytest.mark.parametrize("single", [False, True])
+def test_a_growing_network_gets_room_to_grow(single):
+    """Units added move the state into larger arrays only when the room is used up (at least
+    doubling): a few moves for a network grown from 2 units to a hundred."""
+    X = corridor(1500, n_features=3, seed=8) * np.array([40.0, 1.0, 1.0])
+    det = novelty.make("gng-stanley", insertion_interval=5).fit(X[:2])
+    slow = copy.deepcopy(det)
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None
+    moves, capacity = 0, det._kernel_engine().capacity
+    for block in np.array_split(X[2:], 50):
+        if single:
+            for x in block:
+                det.learn_one(x)
+        else:
+            det.partial_fit(block)
+        moves += det._engine.capacity != capacity
+        capacity = det._engine.capacity
+    with reference_only():
+        slow.partial_fit(X[2:])
+    assert_same_filter(det, slow)
+    n = det.clusterer_.n_units_
+    assert n >= 64 and capacity >= n and moves <= 8

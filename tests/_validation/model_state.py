@@ -16,12 +16,18 @@ def fitted():
     return det
 
 
+#: not state: how many times attributes were set (novelty._component.Component.__setattr__), and
+#: the counts the filter last checked its parts at
+BOOKKEEPING = ("_changes", "_parts_seen")
+
+
 def snapshot(det):
     """A deep copy of every attribute of the detector and of its fitted parts."""
-    snap = {"detector": copy.deepcopy({k: v for k, v in vars(det).items() if k not in ("clusterer_", "synapse_")})}
+    snap = {"detector": copy.deepcopy({k: v for k, v in vars(det).items()
+                                       if k not in ("clusterer_", "synapse_") + BOOKKEEPING})}
     for part in ("clusterer_", "synapse_"):
         if hasattr(det, part):
-            snap[part] = copy.deepcopy(vars(getattr(det, part)))
+            snap[part] = copy.deepcopy({k: v for k, v in vars(getattr(det, part)).items() if k not in BOOKKEEPING})
     return snap
 
 

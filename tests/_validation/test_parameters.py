@@ -208,3 +208,51 @@ def test_changed_rules_are_applied_to_a_value_that_passed_the_old_ones():
     rules["level"] = Interval(numbers.Integral, 0, 3)  # the same dict, changed in place
     with pytest.raises(ValueError, match=r"'level' parameter of _Ranged must be an int in \[0, 3\]"):
         validate_parameters(owner, rules)
+
+
+# ------------------------------------------- a part's parameter set directly after fitting
+@pytest.mark.parametrize("method", ["score_learn_one", "partial_fit", "stream"])
+def test_a_part_parameter_set_directly_after_fitting_is_noticed_as_set_params_notes_it(method):
+    """``det.synapse.alpha = x`` (the part the next fit builds from) refuses learning on, as
+    ``set_params(synapse__alpha=x)`` does, and an invalid value is named first; set back, the
+    detector learns on."""
+    det = fitted()
+    X = np.full((2, N_FEATURES), 0.5)
+    det.learn_one(X[0])
+    before = snapshot(det)
+    arg = X[0] if method == "score_learn_one" else X
+    det.synapse.alpha = 1.5
+    with pytest.raises(ValueError, match=r"^synapse__alpha changed after fitting"):
+        getattr(det, method)(arg)
+    det.synapse.alpha = -1.0
+    with pytest.raises(ValueError, match=r"^The 'alpha' parameter of StanleySynapse must be a float"):
+        getattr(det, method)(arg)
+    det.synapse.alpha = novelty.make("hsom").synapse.alpha  # set back
+    after = snapshot(det)
+    after["detector"]["_parts_changed"] = before["detector"]["_parts_changed"]
+    assert_equal_deep(before, after)
+    getattr(det, method)(arg)
+
+
+@pytest.mark.parametrize("method", ["score_learn_one", "partial_fit"])
+def test_an_invalid_parameter_set_on_a_fitted_part_is_refused_with_its_rule(method):
+    """``det.synapse_.alpha = x`` (the fitted part) is checked against its rule at the next
+    call, which leaves the model as it was; a valid value is learned with."""
+    det = fitted()
+    X = np.full((2, N_FEATURES), 0.5)
+    det.learn_one(X[0])
+    arg = X[0] if method == "score_learn_one" else X
+    before = snapshot(det)
+    det.synapse_.alpha = -1.0
+    with pytest.raises(ValueError, match=r"^The 'alpha' parameter of StanleySynapse must be a float"):
+        getattr(det, method)(arg)
+    det.clusterer_.learning_rate = 2.0
+    det.synapse_.alpha = before["synapse_"]["alpha"]
+    with pytest.raises(ValueError, match=r"^The 'learning_rate' parameter of SOM must be a float in \[0, 1\]"):
+        getattr(det, method)(arg)
+    after = snapshot(det)
+    after["clusterer_"]["learning_rate"] = before["clusterer_"]["learning_rate"]
+    assert_equal_deep(before, after)
+    det.clusterer_.learning_rate = 0.5
+    getattr(det, method)(arg)
+    assert det.clusterer_.learning_rate == 0.5
