@@ -41,6 +41,9 @@ pair). So each pair gets a small module written from :data:`TEMPLATE` into a
 cache folder, named by a hash of the template, the signature and the sources
 of the package and of the step modules (numba's cache does not notice edits
 to the functions a driver calls: a change makes a new file).
+
+One module although it is long (a third of it the template): the template, the signature a
+driver is compiled for and the folder that keeps the generated files are one job.
 """
 
 from __future__ import annotations
