@@ -500,8 +500,6 @@ class HabituatingFilter(NoveltyDetector):
         engine = getattr(self, "_engine", None)
         if engine is None or engine.clusterer is not self.clusterer_ or engine.synapse is not self.synapse_:
             engine = self._engine = _kernels.engine_for(self.clusterer_, self.synapse_)
-            if engine is not None:
-                engine.lock = _lock_of(self)  # the single-scan call takes it from there
         return engine
 
     def score_learn_one(self, x, t=None) -> float:
@@ -524,7 +522,11 @@ class HabituatingFilter(NoveltyDetector):
         flags = x.flags
         if not (flags.c_contiguous and flags.writeable):
             return None
-        with engine.lock:
+        with _lock_of(self):  # this filter's own lock (an engine adopted from a fit's clone has the clone's)
+            if vars(self).get("_engine") is not engine:
+                # another thread replaced the engine while this one waited for the lock: the
+                # one read above no longer holds the state
+                return None
             seen = (self._changes, getattr(self.clusterer, "_changes", 0),
                     getattr(self.synapse, "_changes", 0))
             if seen != engine.owner_seen or not engine.unchanged():
@@ -617,7 +619,7 @@ class HabituatingFilter(NoveltyDetector):
         kernels = _kernels.scoring_kernels()
         if not (flags.c_contiguous and flags.writeable) or kernels is None:
             return None
-        with engine.lock:
+        with _lock_of(self):  # this filter's own lock (an engine adopted from a fit's clone has the clone's)
             if (vars(self).get("_engine") is not engine or engine.clusterer is not self.clusterer_
                     or engine.synapse is not self.synapse_ or not engine.unchanged()
                     or not engine.score_one(kernels, x)):

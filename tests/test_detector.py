@@ -472,6 +472,25 @@ def test_a_damaged_state_raises_instead_of_returning_nan(name):
 
 
 # ------------------------------------------------------------------ threads
+@pytest.mark.parametrize("call", ["learn_one", "score_learn_one", "score_one"])
+def test_single_scan_calls_wait_for_the_detectors_own_lock(call):
+    """A fitted detector's engine comes from the clone its fit learned on; the single-scan calls
+    must still wait for this detector's lock (they once took the clone's, and raced stream)."""
+    from novelty._kernels import wait
+    from novelty.detector import _lock_of
+
+    det = make_quick("gng-stanley").fit(data(30))
+    wait(det.clusterer_, det.synapse_)
+    det.learn_one(data(1, seed=1)[0])  # the engine is built and serves single scans
+    done = threading.Event()
+    worker = threading.Thread(target=lambda: (getattr(det, call)(data(1, seed=2)[0]), done.set()))
+    with _lock_of(det):
+        worker.start()
+        assert not done.wait(0.3), f"{call} ran while another thread held the detector's lock"
+    worker.join(30)
+    assert done.is_set()
+
+
 @pytest.mark.parametrize("name", ["gng-stanley", "gwr-novelty", "hsom", "gng-wang-hsu"])
 def test_learning_from_several_threads_leaves_a_consistent_model(name, tmp_path):
     det = make_quick(name)

@@ -36,7 +36,6 @@ for; :meth:`Engine.learn` then moves the state into buffers with more rows
 from __future__ import annotations
 
 import operator
-import threading
 from typing import Callable
 
 import numpy as np
@@ -99,9 +98,9 @@ class Engine:
         #: single-scan scoring call's output: efficacy, squared distance, winner
         self.nearest_unit = declares(clusterer, "nearest-unit")
         self.scored1 = np.empty(3)
-        #: the owner's lock (calls from other threads wait), and what the owner last saw when it
-        #: confirmed that this engine serves its single-scan calls (both set by the owner)
-        self.lock = threading.RLock()
+        #: what the owner last saw when it confirmed that this engine serves its single-scan
+        #: calls (set by the owner, under the owner's lock: an engine holds no lock of its own,
+        #: since a fit's clone hands its engine to the detector it fitted)
         self.owner_seen = None
 
     # ------------------------------------------------------------- the state
