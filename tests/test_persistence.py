@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import novelty
@@ -25,6 +25,7 @@ from novelty.clusterers.som import SOM
 from novelty.filter import HabituatingFilter
 from novelty.persistence import FORMAT_VERSION, ModelFileError
 
+from ._kernels.kernel_helpers import within_fixed_point
 from .registered import missing_requirements
 
 
@@ -137,7 +138,9 @@ def random_models(draw):
         others=draw(st.sampled_from(["hold", "forget"])),
         method=method,
         threshold=draw(st.floats(-1.0, 1.0)),
-        stimulus=draw(st.floats(0.0, alpha * y0)),  # the efficacy stays in [0, 1]
+        # at most Stanley's fixed point y0 - S/alpha = 0, as the filter computes it: S = alpha * y0
+        # rounds above it for some (alpha, y0), and the filter refuses such a stimulus
+        stimulus=within_fixed_point(draw(st.floats(0.0, 1.0)), alpha, y0),
         n_epochs=draw(st.integers(1, 2)),
         random_state=draw(st.integers(0, 2**31 - 1)),
     )
@@ -149,8 +152,16 @@ def random_models(draw):
     return params, seed, n_features, timestamps
 
 
+AT_THE_FIXED_POINT = dict(  # the strategy's largest stimulus where alpha * y0 rounds past the fixed point
+    n_rows=2, n_columns=2, learning_rate=0.5, radius=1, decay="constant", decay_steps=3, learning_rate_final=0.1,
+    init="uniform", init_range=(0.0, 1.0), alpha=1.72, tau_winner=20.0, tau_neighbour=20.0, y0=0.956,
+    others="hold", method="euler", threshold=0.5, stimulus=within_fixed_point(1.0, 1.72, 0.956), n_epochs=2,
+    random_state=0)
+
+
 @settings(max_examples=25, deadline=None)
 @given(random_models())
+@example((AT_THE_FIXED_POINT, 0, 3, False))
 def test_round_trip_on_random_models_is_exact(case):
     params, seed, n_features, timestamps = case
     rng = np.random.default_rng(seed)
@@ -677,6 +688,30 @@ def test_efficacy_range_follows_the_stimulus(tmp_path):
     assert det.synapse_.efficacy_.min() < 1 - 1 / 1.05  # below the range of S = 1
     det.save(tmp_path / "m.npz")
     assert_identical(det, novelty.load(tmp_path / "m.npz"))
+
+
+def test_efficacies_the_model_reaches_below_its_fixed_point_load(tmp_path):
+    """S = alpha y0 with y0 - S/alpha exactly 0: the efficacy reaches a rounding below 0, and still loads."""
+    alpha, y0 = 1.05, 0.91
+    assert y0 - (alpha * y0) / alpha == 0.0  # the fixed point as the filter computes it
+    det = novelty.make("hsom", n_rows=1, n_columns=1, alpha=alpha, y0=y0, stimulus=alpha * y0,
+                       tau_winner=3.33)
+    scan = np.full(3, 0.5)
+    det.partial_fit(np.tile(scan, (120, 1)))
+    assert det.synapse_.efficacy_[0] == pytest.approx(-8.4e-18, rel=0.01)  # outside the range [0, y0]
+    det.save(tmp_path / "m.npz")
+    loaded = novelty.load(tmp_path / "m.npz")
+    assert_identical(det, loaded)
+    assert det.novelty(scan[None]).tobytes() == loaded.novelty(scan[None]).tobytes()
+
+
+def test_a_stimulus_past_the_fixed_point_by_a_rounding_is_refused_and_the_next_float_down_is_not():
+    alpha, y0 = 1.72, 0.956
+    assert y0 - (alpha * y0) / alpha < 0  # alpha * y0 rounds up past the fixed point
+    with pytest.raises(ValueError, match=r"efficacy is the novelty, on \[0, 1\]"):
+        novelty.make("hsom", alpha=alpha, y0=y0, stimulus=alpha * y0).fit(np.zeros((2, 3)))
+    assert within_fixed_point(1.0, alpha, y0) == np.nextafter(alpha * y0, 0.0)
+    novelty.make("hsom", alpha=alpha, y0=y0, stimulus=within_fixed_point(1.0, alpha, y0)).fit(np.zeros((2, 3)))
 
 
 def test_gwr_firing_counters_are_checked(tmp_path):
