@@ -47,7 +47,7 @@ def ensure_registered(components) -> None:
 
 
 @functools.lru_cache(maxsize=16)  # a suite cycles through its seeds task by task
-def _load_task_cached(name: str, options_json: str, seed: int):
+def _load_task_cached(name: str, factory, options_json: str, seed: int):
     options = json.loads(options_json)
     valid = registry.parameters(name)
     if "seed" not in options and (valid is None or "seed" in valid):
@@ -56,10 +56,11 @@ def _load_task_cached(name: str, options_json: str, seed: int):
 
 
 def load_task(cell: Cell):
-    """The cell's task (cached per process: datasets are immutable)."""
+    """The cell's task (cached per process: datasets are immutable; a name registered again is loaded again)."""
     if cell.task.data is not None:  # a task object given to the Python API, not registered
         return cell.task.data
-    return _load_task_cached(cell.task.name, json.dumps(cell.task.options, sort_keys=True), cell.seed)
+    return _load_task_cached(cell.task.name, registry.get(cell.task.name),
+                             json.dumps(cell.task.options, sort_keys=True), cell.seed)
 
 
 def build_detector(spec: DetectorSpec):

@@ -3,7 +3,9 @@
 ``results.jsonl`` is appended one line per finished cell, flushed at once, so
 an interrupted run loses at most the cells that were running; it is the resume
 record. A cell whose ``cell_id`` is there with ``status = "ok"`` is not run
-again; a failed cell is run again (its new line supersedes the old one).
+again, unless its row's ``definition`` differs from what the cell resolves to
+now (:mod:`novelty.bench.definition`); a failed cell is run again (its new
+line supersedes the old one).
 ``results.csv`` is rewritten from it after every run, its rows in a canonical
 order (detector, task, seed, threshold rule, cell id) and its columns in
 their order of first appearance down those rows, so that the files of one
@@ -211,9 +213,9 @@ class ResultsStore:
     def rows(self) -> list[dict]:
         return read_rows(self.jsonl)
 
-    def done(self) -> set[str]:
-        """Ids of the cells that finished without error."""
-        return {r["cell_id"] for r in self.rows() if r.get("status") == "ok"}
+    def finished(self) -> dict[str, dict]:
+        """The rows of the cells that finished without error, by cell id."""
+        return {r["cell_id"]: r for r in self.rows() if r.get("status") == "ok"}
 
     def append(self, row: dict, arrays: dict | None = None) -> None:
         if arrays:

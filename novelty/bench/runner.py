@@ -10,6 +10,7 @@ from typing import Sequence, TextIO
 from .._atomic import write_atomically
 from .backends import execute
 from .compare import compare_on_task, comparison_text
+from .definition import DEFINITION_COLUMN, definition_digest
 from .progress import Progress
 from .protocol import get_protocol
 from .reports.critical_difference import plot_critical_difference
@@ -30,6 +31,7 @@ class BenchReport:
     rows: list[dict]                    # every cell of the suite, old and new
     ran: int = 0
     skipped: int = 0
+    stale: int = 0                      # finished cells recomputed: their definition changed since
     failed: int = 0
     interrupted: bool = False
     files: list[Path] = field(default_factory=list)
@@ -50,7 +52,11 @@ def run_bench(suite: Suite, out, backend: str = "serial", jobs: int = 1, schedul
               client=None, command: str | None = None, compare_on: Sequence[str] = ()) -> BenchReport:
     """Run ``suite`` into the folder ``out`` and return a :class:`BenchReport`.
 
-    Cells already finished in ``out/results.jsonl`` are skipped (resume).
+    Cells already finished in ``out/results.jsonl`` are skipped (resume), but
+    for those whose detector or task resolves to something else now than
+    when their rows were computed (:mod:`novelty.bench.definition`; rows that
+    record no definition count as changed): these are recomputed, and the
+    run says how many.
     The run holds ``out`` (:meth:`ResultsStore.lock`): a second run into
     the same folder raises :class:`~novelty.bench.results.OutputBusyError`.
     ``backend`` is ``"serial"``, ``"joblib"`` (``jobs`` processes) or
@@ -80,14 +86,26 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
          plots: bool, progress: TextIO | None, quiet: bool, client, command: str | None,
          compare_on: list[str]) -> BenchReport:
     cells = list({c.id: c for c in suite.cells()}.values())
-    done = store.done()
-    todo = [c for c in cells if c.id not in done]
-    report = BenchReport(store.out, [], skipped=len(cells) - len(todo), reference=suite.reference,
-                         protocol=suite.protocol)
-    protocol = get_protocol(suite.protocol)
+    finished = store.finished()
+    found = [c for c in cells if c.id in finished]
     stream = progress if progress is not None else sys.stderr
+    if found and not quiet:  # each task is loaded again to be compared: seconds a task
+        print(f"Checking {len(found)} finished cells in {store.jsonl} against what their detectors and "
+              "tasks resolve to now.", file=stream)
+    stale = {c.id for c in found if not _still_defined(c, finished[c.id])}
+    todo = [c for c in cells if c.id not in finished or c.id in stale]
+    report = BenchReport(store.out, [], skipped=len(cells) - len(todo), stale=len(stale),
+                         reference=suite.reference, protocol=suite.protocol)
+    protocol = get_protocol(suite.protocol)
     if report.skipped and not quiet:
         print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
+    if stale:
+        notice = (f"{len(stale)} of the {len(found)} finished cells were computed by another definition of "
+                  "their detector or task than they resolve to now (a preset or a task changed since, or "
+                  "their rows record none); recomputing them.")
+        report.notes.append(notice)
+        if not quiet:
+            print(notice, file=stream)
     for notice in _skip_notices(suite):
         report.notes.append(notice)
         if not quiet:
@@ -127,6 +145,17 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
             report.files.extend(protocol.plots(report.rows, store.arrays, folder))
             report.files.extend(plot_critical_difference(report.rows, folder))
     return report
+
+
+def _still_defined(cell, row: dict) -> bool:
+    """Whether a finished cell's row was computed by what the cell resolves to now."""
+    recorded = row.get(DEFINITION_COLUMN)
+    if not recorded:
+        return False
+    try:
+        return definition_digest(cell) == recorded
+    except Exception:  # noqa: BLE001 - what cannot be built now is run again, and fails as a cell
+        return False
 
 
 def _comparisons(rows: list[dict], store: ResultsStore, tasks: list[str], reference: str | None) -> list[str]:

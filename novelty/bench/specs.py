@@ -210,7 +210,11 @@ class Cell:
 
     @property
     def id(self) -> str:
-        """A short stable hash of what the cell computes (the resume key)."""
+        """A short stable hash of the cell as the suite writes it (the resume key).
+
+        A preset's name hashes the same whatever it resolves to; a resume
+        also compares each row's :func:`~novelty.bench.definition.definition_digest`.
+        """
         return hashlib.sha256(_canonical(self.key).encode()).hexdigest()[:16]
 
 

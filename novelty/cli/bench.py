@@ -20,7 +20,9 @@ and Bayesian signed-rank tests over tasks, or why too few tasks allow no
 claim; the command and versions) and plots/ (with a critical-difference
 diagram). --compare-on-task TASK adds a paired bootstrap over that task's
 test scans. Name your tasks with name= (--task 'files path=a.csv name=lab-a'). Rerunning the same command
-resumes: finished cells are skipped. A cell that fails -- an error, a worker
+resumes: finished cells are skipped, except those whose detector or task
+resolves to something else now (a preset or task changed since): these are
+recomputed, and the run says how many. A cell that fails -- an error, a worker
 process that dies, a cell past --cell-timeout -- is recorded as failed and
 the run goes on; a rerun tries failed cells again. A suite is a TOML file (see
 benchmarks/suites/ in the source tree), the embedded --quick suite, or
