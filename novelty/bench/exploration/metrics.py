@@ -16,21 +16,34 @@ scored. Definitions:
 - **first-encounter detection**: ROC AUC of the scans at a feature's first
   exposure (positives) against the familiar scans of the runs holding a first
   encounter (negatives);
+- **resolution** ``r`` of a detector on an exploration: a millionth
+  (``RESOLUTION``) of the range of its novelty over the whole exploration,
+  warm-up included: a spread, or a difference, below that is no difference a
+  threshold could use;
 - **habituation ratio**: over the *recurring* features (met at least three
   times), the mean excess at the 3rd exposure divided by the mean excess at the
-  1st; at most 0.25 is what this project calls habituated;
+  1st; ``nan`` (no verdict) unless the 1st excess is above ``r``: a ratio to
+  nothing, or to a first exposure scored below the familiar scans, says
+  nothing of habituation. A feature is habituated when the ratio lies in
+  ``[-0.25, 0.25]``: its excess has fallen to within a quarter of the first
+  one, *on either side* of the familiar level. A 3rd exposure scored far
+  below the familiar scans (a ratio of -0.9: as far below as the first was
+  above) is still told apart from them, so it is not what this project calls
+  habituated. Excesses are differences of novelty, so the ratio, and with it
+  the verdict, is the same for ``a * novelty + b`` (any ``a > 0``, any
+  ``b``): a detector whose scores are all negative, or on any scale, is
+  judged as one whose scores lie in [0, 1];
 - **first-exposure separation**: how far the typical first-exposure scan
   lies above the typical familiar scan, in units of the familiar scans'
   spread: ``(median(first) - median(familiar)) / max(IQR(familiar), r)``,
-  over the scans of the first-encounter detection, where ``r`` is a
-  millionth (``RESOLUTION``) of the range of the detector's novelty over the
-  whole exploration, warm-up included: a difference below that is no
-  difference a threshold could use (a detector whose every scan lies below
-  1e-35 would otherwise separate by ratios of numbers near 1e-151). It does
-  not depend on the detector's scale (``a * novelty + b`` gives the same). A detector **flags** first encounters when
-  the first-encounter ROC AUC is at least 0.85 *and* the separation at least
-  0.5, and **habituates** when the habituation ratio is at most 0.25 *and*
-  the separation at least 0.5: ranks decided by differences far below the
+  over the scans of the first-encounter detection, with ``r`` the
+  detector's resolution (a detector whose every scan lies below 1e-35 would
+  otherwise separate by ratios of numbers near 1e-151). It does not depend
+  on the detector's scale (``a * novelty + b`` gives the same). A detector
+  **flags** first encounters when the first-encounter ROC AUC is at least
+  0.85 *and* the separation at least 0.5, and **habituates** when the
+  habituation ratio lies within 0.25 of 0 *and* the separation is at least
+  0.5: ranks decided by differences far below the
   familiar scans' own spread (a network whose every scan sits at its
   synapses' floor, its first encounters lifted by the few scans that add a
   unit) neither flag nor habituate;
@@ -39,9 +52,10 @@ scored. Definitions:
   its excess at the first exposure: near 1 a detector that forgot it, near
   its habituated level one that remembers;
 - **exposures to habituate** of a feature: the first exposure k at which its
-  excess is at most ``tolerance`` (default 0.25, the same quarter) times its
-  first-exposure excess; ``nan`` if that never happens within its exposures or
-  the first exposure was not above the familiar level;
+  excess lies within ``tolerance`` (default 0.25, the same quarter) times its
+  first-exposure excess of the familiar level, on either side; ``nan`` if that
+  never happens within its exposures or the first exposure was not above the
+  familiar level by more than ``r``;
 - **false-alarm rate**: the share of the familiar scans of the scored runs
   whose novelty is strictly above a threshold set from the last warm-up run
   (:func:`novelty.bench.holdout.metrics.training_threshold` of its novelty);
@@ -64,9 +78,9 @@ from ..holdout import metrics as bench_metrics
 __all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
            "integrated_per_run", "warmup_threshold", "recurring", "first_exposure_separation", "return_ratio",
-           "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES", "RESOLUTION"]
+           "resolution", "novelty_range", "habituated", "ratio_to_first", "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES", "RESOLUTION"]
 
-#: An excess at most this share of the first-exposure excess counts as habituated.
+#: An excess within this share of the first-exposure excess (either side of the familiar level) is habituated.
 HABITUATED = 0.25
 #: A first-encounter ROC AUC at least this flags first encounters.
 FLAGS_FIRST = 0.85
@@ -172,12 +186,26 @@ def first_exposure_separation(novelty, run, feature, exposure, warmup: int) -> f
         return float("nan")
     q25, q50, q75 = np.percentile(novelty[familiar], [25, 50, 75])
     above = float(np.median(novelty[first]) - q50)
-    finite = novelty[np.isfinite(novelty)]
-    resolution = RESOLUTION * float(finite.max() - finite.min()) if finite.size else 0.0
-    spread = max(float(q75 - q25), resolution)
+    spread = max(float(q75 - q25), resolution(novelty))
     if spread > 0:
         return above / spread
     return 0.0  # every scan scored alike: nothing is separated
+
+
+def resolution(novelty) -> float:
+    """``RESOLUTION`` times the range of the finite values of ``novelty`` (every scan of the exploration).
+
+    >>> resolution([0.5, -1.5, np.inf, 2.5])
+    4e-06
+    """
+    return RESOLUTION * novelty_range(novelty)
+
+
+def novelty_range(novelty) -> float:
+    """The range (max - min) of the finite values of ``novelty``; 0 if none is finite."""
+    novelty = np.asarray(novelty, dtype=np.float64)
+    finite = novelty[np.isfinite(novelty)]
+    return float(finite.max() - finite.min()) if finite.size else 0.0
 
 
 def return_ratio(curves: dict, returns: dict) -> float:
@@ -209,30 +237,50 @@ def excess_at(curves: dict, k: int, min_exposures: int = RECURRING) -> float:
     return float(np.mean(values)) if values else float("nan")
 
 
-def habituation_ratio(curves: dict, k: int = RECURRING) -> float:
+def habituation_ratio(curves: dict, k: int = RECURRING, resolution: float = 0.0) -> float:
     """Mean excess at the k-th exposure over the mean at the first, recurring features only.
 
     ``nan`` when no feature recurs or the first exposures were not above the
-    familiar level on average.
+    familiar level by more than ``resolution`` on average (the detector's
+    resolution, :func:`resolution`: a ratio to nothing is no ratio).
     """
     first, later = excess_at(curves, 1, k), excess_at(curves, k, k)
-    if math.isnan(first) or first <= 0:
+    return ratio_to_first(later, first, resolution)
+
+
+def ratio_to_first(later: float, first: float, resolution: float = 0.0) -> float:
+    """``later / first``, or ``nan`` unless ``first`` is above ``resolution`` (and above 0)."""
+    if math.isnan(first) or first <= max(resolution, 0.0):
         return float("nan")
     return later / first
 
 
-def exposures_to_habituate(excess, tolerance: float = HABITUATED) -> float:
-    """First exposure (1-based) whose excess is at most ``tolerance`` x the first one's.
+def habituated(ratio: float, tolerance: float = HABITUATED) -> bool:
+    """Whether a habituation ratio lies within ``tolerance`` of 0, on either side (``nan``: no).
+
+    >>> habituated(0.1), habituated(-0.1), habituated(-0.9), habituated(float("nan"))
+    (True, True, False, False)
+    """
+    return bool(abs(ratio) <= tolerance)
+
+
+def exposures_to_habituate(excess, tolerance: float = HABITUATED, resolution: float = 0.0) -> float:
+    """First exposure (1-based) whose excess lies within ``tolerance`` x the first one's of 0, either side.
+
+    ``nan`` if none does, or if the first excess is not above ``resolution``
+    (and 0).
 
     >>> exposures_to_habituate([0.8, 0.4, 0.1])
     3.0
     >>> exposures_to_habituate([0.8, 0.7, 0.6])
     nan
+    >>> exposures_to_habituate([0.8, -0.7, 0.1])  # -0.7: told apart from the familiar scans still
+    3.0
     """
     excess = np.asarray(excess, dtype=np.float64)
-    if excess.size == 0 or not excess[0] > 0:
+    if excess.size == 0 or not excess[0] > max(resolution, 0.0):
         return float("nan")
-    hit = np.flatnonzero(excess <= tolerance * excess[0])
+    hit = np.flatnonzero(np.abs(excess) <= tolerance * excess[0])
     return float(hit[0] + 1) if hit.size else float("nan")
 
 

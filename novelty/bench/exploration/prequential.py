@@ -54,7 +54,7 @@ EXPLORATION_COLUMNS = [
     "exposures_to_habituate", "habituated_fraction", "first_separation", "flags_first", "habituates",
     "flags_first_auc_only", "habituates_ratio_only", "return_ratio",
     "threshold", "false_alarms", "false_alarm_rate", "redetection_auc",
-    "integrated_novelty", "integrated_per_run", "exposure_curve", "max_novelty",
+    "integrated_novelty", "integrated_per_run", "exposure_curve", "max_novelty", "novelty_range",
     "resting_novelty", "n_units",
 ]
 
@@ -167,12 +167,13 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
     """Every metric of :mod:`novelty.bench.exploration.metrics` for one exploration, as a row."""
     curves = xm.exposure_curves(novelty, run, feature, exposure, warmup)
     recurring = xm.recurring(curves)
-    to_habituate = [xm.exposures_to_habituate(curves[f]["excess"]) for f in recurring]
+    resolution = xm.resolution(novelty)
+    to_habituate = [xm.exposures_to_habituate(curves[f]["excess"], resolution=resolution) for f in recurring]
     done = [k for k in to_habituate if not np.isnan(k)]
     threshold = xm.warmup_threshold(novelty, run, warmup, threshold_rule)
     rate, count = xm.false_alarm_rate(novelty, run, feature, warmup, threshold)
     auc = xm.first_encounter_auc(novelty, run, feature, exposure, warmup)
-    ratio = xm.habituation_ratio(curves)
+    ratio = xm.habituation_ratio(curves, resolution=resolution)
     longest = max((curves[f]["excess"].size for f in recurring), default=0)
     scored = np.asarray(run) >= warmup
     separation = xm.first_exposure_separation(novelty, run, feature, exposure, warmup)
@@ -189,9 +190,9 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
         "habituated_fraction": len(done) / len(recurring) if recurring else float("nan"),
         "first_separation": separation,
         "flags_first": bool(auc >= xm.FLAGS_FIRST) and separates,
-        "habituates": bool(ratio <= xm.HABITUATED) and separates,
+        "habituates": xm.habituated(ratio) and separates,
         "flags_first_auc_only": bool(auc >= xm.FLAGS_FIRST),
-        "habituates_ratio_only": bool(ratio <= xm.HABITUATED),
+        "habituates_ratio_only": xm.habituated(ratio),
         "return_ratio": xm.return_ratio(curves, returns or {}),
         "threshold": threshold,
         "false_alarms": count,
@@ -201,6 +202,7 @@ def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: d
         "integrated_per_run": json.dumps(np.round(xm.integrated_per_run(novelty, run, resting), 6).tolist()),
         "exposure_curve": json.dumps([round(xm.excess_at(curves, k), 6) for k in range(1, longest + 1)]),
         "max_novelty": float(np.max(np.asarray(novelty)[scored])),
+        "novelty_range": xm.novelty_range(novelty),
         "resting_novelty": resting,
     }
 

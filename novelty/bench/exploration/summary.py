@@ -8,7 +8,9 @@ at a recurring feature's 1st, 2nd and 3rd exposure (means), their ratio
 false-alarm rate, re-detection ROC AUC, the return ratio and the
 first-exposure separation (median over seeds). A detector *flags* first
 encounters when its mean AUC is at least 0.85, and *habituates* when the
-ratio is at most 0.25, each only with a separation of at least 0.5
+ratio lies within 0.25 of 0 (either side of the familiar level; no ratio
+unless the mean 1st excess is above a millionth of the detector's mean
+range of novelty), each only with a separation of at least 0.5
 (:mod:`novelty.bench.exploration.metrics`); the verdicts without the
 separation stay in two columns of their own.
 """
@@ -23,7 +25,7 @@ import numpy as np
 
 from ..reports.format import format_table, number, yes_no
 from ..stats.aggregate import as_float, mean, sd
-from .metrics import FLAGS_FIRST, HABITUATED, SEPARATES
+from .metrics import FLAGS_FIRST, HABITUATED, RESOLUTION, SEPARATES, habituated, ratio_to_first
 
 __all__ = ["exploration_records", "exploration_text", "exploration_markdown"]
 
@@ -40,11 +42,12 @@ def exploration_records(rows: Sequence[dict]) -> dict[str, list[dict]]:
         for detector, cells in by_detector.items():
             col = lambda name: [as_float(r.get(name)) for r in cells]  # noqa: E731
             auc, e1, e3 = mean(col("first_encounter_auc")), mean(col("excess_1")), mean(col("excess_3"))
-            ratio = e3 / e1 if e1 > 0 else float("nan")
+            # rows recorded before the range was measured carry none: the ratio then needs e1 > 0 only
+            ratio = ratio_to_first(e3, e1, RESOLUTION * np.nan_to_num(mean(col("novelty_range"))))
             separation = _median(col("first_separation"))
             # rows recorded before the separation was measured carry none: no veto then
             separates = separation >= SEPARATES or math.isnan(separation)
-            flags, habituates = auc >= FLAGS_FIRST and separates, ratio <= HABITUATED and separates
+            flags, habituates = auc >= FLAGS_FIRST and separates, habituated(ratio) and separates
             records.append({
                 "detector": detector, "policy": cells[0]["policy"], "seeds": len(cells),
                 "auc": auc, "auc_sd": sd(col("first_encounter_auc")),
@@ -55,7 +58,7 @@ def exploration_records(rows: Sequence[dict]) -> dict[str, list[dict]]:
                 "redetection_auc": mean(col("redetection_auc")),
                 "return_ratio": mean(col("return_ratio")),
                 "separation": separation,
-                "flags_auc_only": auc >= FLAGS_FIRST, "habituates_ratio_only": ratio <= HABITUATED,
+                "flags_auc_only": auc >= FLAGS_FIRST, "habituates_ratio_only": habituated(ratio),
                 "flags": flags, "habituates": habituates, "both": flags and habituates,
             })
         records.sort(key=lambda r: (not r["both"], not r["flags"], -np.nan_to_num(r["auc"]), r["detector"]))
@@ -79,7 +82,7 @@ def exploration_text(rows: Sequence[dict]) -> str:
     parts = []
     header = ["detector", "first-encounter AUC", "excess 1st", "2nd", "3rd", "3rd/1st",
               "exposures to habituate", "false alarms", "re-detection AUC", "return ratio", "separation",
-              "flags", "habituates", "both", "AUC >= 0.85", "ratio <= 0.25"]
+              "flags", "habituates", "both", "AUC >= 0.85", "ratio within ±0.25"]
     for task, records in exploration_records(rows).items():
         body = [[
             r["detector"], number(r["auc"]) + ("" if math.isnan(r["auc_sd"]) else f" ± {number(r['auc_sd'])}"),
@@ -110,10 +113,11 @@ def exploration_markdown(rows: Sequence[dict]) -> list[str]:
         f"Separation: the median first-exposure scan's novelty above the familiar scans' median, in "
         f"familiar interquartile ranges (median over seeds). A detector flags first encounters when "
         f"the AUC is at least {FLAGS_FIRST} and the separation at least {SEPARATES}, and habituates "
-        f"when the 3rd excess is at most {HABITUATED} of the 1st and the separation at least "
+        f"when the 3rd excess lies within {HABITUATED} of the 1st of the familiar level, either side "
+        f"(no ratio when the 1st is not above the detector's resolution), and the separation is at least "
         f"{SEPARATES}; the last two columns keep the verdicts without the separation. Return ratio: "
         "the excess of a feature back after a long absence over its first excess. Exposures to habituate: the first "
-        f"exposure with an excess at most {HABITUATED} of the first one, mean over the features that "
+        f"exposure with an excess within {HABITUATED} of the first one, mean over the features that "
         "got there (the share that did). False alarms: the share of familiar scans above the "
         "maximum novelty of the last warm-up run. Re-detection: a known place that changes again, "
         "its first exposure against the familiar scans of its run.",

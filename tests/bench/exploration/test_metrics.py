@@ -132,3 +132,52 @@ def test_first_exposure_separation_ignores_differences_below_the_detectors_resol
     separation = xm.first_exposure_separation(nov, run, feature, exposure, 1)
     assert 0 < separation < 1e-40  # 1e-84 over a millionth of 3e-35
     assert separation == pytest.approx((1e-84 - np.median(nov[(run > 0) & (feature == "")])) / 3e-41)
+
+
+def with_third_door(novelty: float) -> np.ndarray:
+    """NOVELTY with the door's 3rd exposure (run 3, familiar level 0.2) scored ``novelty``."""
+    out = NOVELTY.copy()
+    out[11] = novelty
+    return out
+
+
+@pytest.mark.parametrize("third, ratio, habituates, to_habituate", [
+    (0.3, 0.1 / 0.7, True, 3.0),        # excess 0.1: down to a seventh of 0.7
+    (0.15, -0.05 / 0.7, True, 3.0),     # a little below the familiar level: as familiar as they are
+    (-0.4, -0.6 / 0.7, False, np.nan),  # far below it: told apart from the familiar scans still
+])
+def test_a_feature_habituates_when_its_excess_falls_to_the_familiar_level_from_either_side(
+        third, ratio, habituates, to_habituate):
+    row = exploration_metrics(with_third_door(third), RUN, FEATURE, EXPOSURE, 1, {})
+    assert row["habituation_ratio"] == pytest.approx(ratio)
+    assert row["habituates"] is row["habituates_ratio_only"] is habituates
+    np.testing.assert_equal(row["exposures_to_habituate"], to_habituate)
+
+
+@pytest.mark.parametrize("third", [0.3, -0.4])
+@pytest.mark.parametrize("a, b", [(3.0, -7.0), (1.0, -10.0), (1e-3, -5.0), (1e5, 1e5), (0.5, 0.25)])
+def test_the_verdicts_do_not_depend_on_the_detectors_scale_or_sign(third, a, b):
+    """``a * novelty + b``, a > 0: (1, -10) makes every score negative, as a log-likelihood's."""
+    nov = with_third_door(third)
+    base = exploration_metrics(nov, RUN, FEATURE, EXPOSURE, 1, {})
+    moved = exploration_metrics(a * nov + b, RUN, FEATURE, EXPOSURE, 1, {})
+    if (a, b) == (1.0, -10.0):
+        assert (a * nov + b).max() < 0
+    for column in ("flags_first", "habituates", "flags_first_auc_only", "habituates_ratio_only"):
+        assert moved[column] is base[column], column
+    for column in ("habituation_ratio", "first_separation", "first_encounter_auc", "exposures_to_habituate"):
+        assert moved[column] == pytest.approx(base[column], rel=1e-9, nan_ok=True), column
+    assert moved["novelty_range"] == pytest.approx(a * base["novelty_range"])
+
+
+def test_no_ratio_to_a_first_excess_below_the_detectors_resolution():
+    # the door's 1st exposure 1e-9 above its run's familiar level, on a novelty that spans 0 to 1
+    nov = np.array([1.0, 0.0, 0.2, 0.2, 0.2 + 1e-9, 0.1, 0.3, 0.2, 0.7, 0.2, 0.2, 0.2])
+    curves = xm.exposure_curves(nov, RUN, FEATURE, EXPOSURE, 1)
+    assert xm.excess_at(curves, 1) == pytest.approx(1e-9) and xm.excess_at(curves, 3) == 0.0
+    assert xm.habituation_ratio(curves) == 0.0                             # 0 / 1e-9: "habituated"
+    assert math.isnan(xm.habituation_ratio(curves, resolution=xm.resolution(nov)))  # 1e-9 <= 1e-6
+    row = exploration_metrics(nov, RUN, FEATURE, EXPOSURE, 1, {})
+    assert math.isnan(row["habituation_ratio"]) and math.isnan(row["exposures_to_habituate"])
+    assert not row["habituates_ratio_only"] and not row["habituates"]
+    assert row["novelty_range"] == 1.0

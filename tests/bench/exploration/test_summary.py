@@ -1,5 +1,7 @@
 """The exploration table: which detectors flag first encounters and habituate."""
 
+import math
+
 import pytest
 
 from novelty.bench.exploration.summary import exploration_markdown, exploration_records, exploration_text
@@ -40,3 +42,23 @@ def test_text_and_markdown():
     assert text.startswith("### t (seeds 0, 1, 2)") and "| both " in text and "| separation |" in text
     assert exploration_markdown([ROWS[-1]]) == []
     assert "## Exploration: first encounters and habituation" in exploration_markdown(ROWS)
+
+
+def test_a_third_excess_far_below_the_familiar_level_does_not_habituate():
+    """lof (window=3) on a real robot's log: 1st excess 0.233, 3rd -0.213: a ratio of -0.91."""
+    records = {r["detector"]: r for r in exploration_records(
+        [row("below", 0, 0.7, 0.233, -0.213), row("near", 0, 0.7, 0.233, -0.05)])["t"]}
+    assert records["below"]["ratio"] == pytest.approx(-0.213 / 0.233)
+    assert not records["below"]["habituates"] and not records["below"]["habituates_ratio_only"]
+    assert records["near"]["habituates"]
+
+
+def test_no_ratio_when_the_first_excess_is_below_the_detectors_resolution():
+    # mean range 3.0 over the seeds: resolution 3e-6; a mean 1st excess of 2e-6 is none
+    rows = [row("faint", 0, 0.9, 1e-6, 0.0, novelty_range=2.0), row("faint", 1, 0.9, 3e-6, 0.0, novelty_range=4.0),
+            row("clear", 0, 0.9, 4e-6, 0.0, novelty_range=2.0), row("clear", 1, 0.9, 4e-6, 0.0, novelty_range=4.0)]
+    records = {r["detector"]: r for r in exploration_records(rows)["t"]}
+    assert math.isnan(records["faint"]["ratio"]) and not records["faint"]["habituates"]
+    assert records["clear"]["ratio"] == 0.0 and records["clear"]["habituates"]
+    # rows recorded before the range was: the ratio as before
+    assert exploration_records([row("old", 0, 0.9, 1e-6, 0.0)])["t"][0]["ratio"] == 0.0
