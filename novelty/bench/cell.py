@@ -19,7 +19,7 @@ from typing import Any
 from threadpoolctl import threadpool_limits
 
 from .build import CellError, ensure_registered
-from .definition import DEFINITION_COLUMN, definition_digest
+from .definition import DEFINITION_COLUMN, TASK_DATA_COLUMN, definition_digest, task_digest
 from .protocol import get_protocol
 from .specs import Cell
 
@@ -62,7 +62,8 @@ def run_cell(cell: Cell) -> tuple[dict, dict]:
             # One BLAS thread per cell: same arithmetic in every backend, no oversubscription.
             with threadpool_limits(1):
                 ensure_registered(cell.components)
-                row[DEFINITION_COLUMN] = definition_digest(cell)  # what a resume checks its rows by
+                task = row[TASK_DATA_COLUMN] = task_digest(cell)  # seeds of one world share it
+                row[DEFINITION_COLUMN] = definition_digest(cell, task)  # what a resume checks its rows by
                 values, arrays = get_protocol(cell.protocol).evaluate(cell)
             row.update(values)
             row["status"], row["error"] = "ok", ""

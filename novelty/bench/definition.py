@@ -7,7 +7,10 @@ generator's placement of objects), and then rows computed by the old
 definition must not be reused. Each row therefore records
 :func:`definition_digest`, and a resumed run recomputes a finished cell
 whose digest differs from the one it would get now
-(:func:`novelty.bench.runner.run_bench`).
+(:func:`novelty.bench.runner.run_bench`). Each row also records the task
+half alone (:func:`task_digest`): seeds whose rows share it ran on one world
+(a recording), seeds whose rows differ on worlds built independently, which
+is what a comparison over seeds needs to know (:mod:`novelty.bench.compare`).
 
 The digest covers:
 
@@ -42,10 +45,12 @@ from ..data import Dataset
 from .build import load_task, make_detector
 from .specs import Cell
 
-__all__ = ["definition_digest", "describe", "DEFINITION_COLUMN"]
+__all__ = ["definition_digest", "task_digest", "describe", "DEFINITION_COLUMN", "TASK_DATA_COLUMN"]
 
 #: the column of a results row that holds :func:`definition_digest`
 DEFINITION_COLUMN = "definition"
+#: the column of a results row that holds :func:`task_digest` (seeds of one world share it)
+TASK_DATA_COLUMN = "task_data"
 #: metadata naming where a dataset was read from, not what it holds
 _LOCATION_KEYS = ("source", "sources")
 #: an object's default repr names its address, which differs from process to process
@@ -53,9 +58,21 @@ _ADDRESS = re.compile(r" at 0x[0-9a-fA-F]+")
 _MAX_DEPTH = 64
 
 
-def definition_digest(cell: Cell) -> str:
-    """A short hash of the cell's detector and task data as they resolve now (see the module's text)."""
-    what = {"detector": describe(make_detector(cell)), "task": describe(_without_location(load_task(cell)))}
+def definition_digest(cell: Cell, task: str | None = None) -> str:
+    """A short hash of the cell's detector and task data as they resolve now (see the module's text).
+
+    ``task``: the cell's :func:`task_digest`, when known already.
+    """
+    task = task_digest(cell) if task is None else task
+    return _digest({"detector": describe(make_detector(cell)), "task": task})
+
+
+def task_digest(cell: Cell) -> str:
+    """A short hash of the cell's task data (less where it was read from): equal for two seeds of one world."""
+    return _digest(describe(_without_location(load_task(cell))))
+
+
+def _digest(what: Any) -> str:
     text = json.dumps(what, sort_keys=True, separators=(",", ":"), allow_nan=False)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 

@@ -10,6 +10,7 @@ import pytest
 import novelty
 from novelty.bench import DetectorSpec, Suite, TaskSpec
 from novelty.bench.definition import _without_location, definition_digest, describe
+from novelty.bench.cell import run_cell
 from novelty.bench.runner import run_bench
 from novelty.bench.specs import Cell
 from novelty.data import Dataset
@@ -147,3 +148,13 @@ def test_describe_reads_a_component_by_its_class_and_parameters():
     assert describe(np.float64(0.25)) == 0.25 and describe(float("nan")) == "nan"
     assert describe(plain)["function"] == f"{__name__}.plain"
     assert describe(object()) == {"class": "builtins.object", "repr": "<object object>"}
+
+
+def test_seeds_of_one_world_share_their_task_data_and_seeds_of_built_worlds_do_not(toy_registered):
+    built = [run_cell(Cell(DetectorSpec("hsom"), TaskSpec(toy_registered.TASK), s))[0] for s in (0, 1)]
+    assert built[0]["task_data"] != built[1]["task_data"]            # the toy task's seed builds its data
+    one = Dataset("one", np.random.default_rng(0).random((50, 4)), y=np.r_[np.zeros(45), np.ones(5)],
+                  split=np.r_[np.full(30, "train"), np.full(20, "test")])
+    recorded = [run_cell(Cell(DetectorSpec("hsom"), TaskSpec("one", data=one), s))[0] for s in (0, 1)]
+    assert recorded[0]["task_data"] == recorded[1]["task_data"]      # one recording, two detector seeds
+    assert recorded[0]["definition"] != recorded[1]["definition"]    # the seeds differ in the detector
