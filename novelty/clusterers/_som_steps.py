@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 from .._jit import compiled, step
+from .._kernels._lanes import move_four
 from .._kernels.params import option_code
 from ._graph_steps import nearest
 from .base import move_towards
@@ -26,21 +27,25 @@ _move = compiled(move_towards)
 
 
 @step
+def square(winner, p, radius):
+    """The grid rows and columns of the square of ``radius`` around ``winner``, clipped to the
+    map: ``(first row, last row, first column, last column)``."""
+    wr = winner // p.n_columns
+    wc = winner - wr * p.n_columns
+    return (max(0, wr - radius), min(p.n_rows - 1, wr + radius),
+            max(0, wc - radius), min(p.n_columns - 1, wc + radius))
+
+
+@step
 def match(d, n, state, counters, p, nb):
     """The winner and its square grid neighbourhood, ascending, into ``nb`` (SOM.match)."""
     winner = nearest(d, n)
-    n_columns = p.n_columns
-    n_rows = p.n_rows
-    radius = counters[TABLE_RADIUS]
-    wr = winner // n_columns
-    wc = winner - wr * n_columns
+    r_lo, r_hi, c_lo, c_hi = square(winner, p, counters[TABLE_RADIUS])
     k = 0
-    for r in range(max(0, wr - radius), min(n_rows - 1, wr + radius) + 1):
-        for c in range(max(0, wc - radius), min(n_columns - 1, wc + radius) + 1):
-            j = r * n_columns + c
-            if j != winner:
-                nb[k] = j
-                k += 1
+    for r in range(r_lo, r_hi + 1):
+        for j in range(r * p.n_columns + c_lo, r * p.n_columns + c_hi + 1):
+            nb[k] = j
+            k += j != winner  # the winner's place is taken by the next unit: no branch
     return winner, -1, k
 
 
@@ -52,16 +57,29 @@ def room(d, winner, n, state, counters, p):
 
 @step
 def adapt(WT, x, d, winner, runner_up, nb, k, n, state, counters, p, gone):
-    """SOM.adapt: the winner and ``nb[:k]`` move towards ``x``; the schedules advance."""
+    """SOM.adapt: the winner and its square (``nb[:k]``) move towards ``x``; the schedules
+    advance. Each grid row of the square is a run of neighbouring columns of ``WT``: moved four
+    at a time (``move_four``) where the matrix has four columns from the run's start."""
     t = counters[T]
     lr = _scheduled(p.decay, p.learning_rate, p.learning_rate_final, t, p.decay_steps)
     lr_n = p.neighbour_learning_rate if p.has_neighbour_learning_rate else lr
-    for m in range(k):
-        j = nb[m]
-        for f in range(WT.shape[0]):
-            WT[f, j] = _move(WT[f, j], x[f], lr_n)
-    for f in range(WT.shape[0]):
-        WT[f, winner] = _move(WT[f, winner], x[f], lr)
+    r_lo, r_hi, c_lo, c_hi = square(winner, p, counters[TABLE_RADIUS])
+    for r in range(r_lo, r_hi + 1):
+        for c in range(c_lo, c_hi + 1, 4):
+            j0 = r * p.n_columns + c
+            count = min(4, c_hi + 1 - c)
+            if j0 + 4 <= WT.shape[1]:
+                r0 = lr if j0 == winner else lr_n
+                r1 = lr if j0 + 1 == winner else lr_n
+                r2 = lr if j0 + 2 == winner else lr_n
+                r3 = lr if j0 + 3 == winner else lr_n
+                for f in range(WT.shape[0]):
+                    move_four(WT, f, j0, x[f], r0, r1, r2, r3, count)
+            else:
+                for j in range(j0, j0 + count):
+                    rate = lr if j == winner else lr_n
+                    for f in range(WT.shape[0]):
+                        WT[f, j] = _move(WT[f, j], x[f], rate)
     counters[T] = t + 1
     if p.decay != CONSTANT:
         r = _scheduled(p.decay, p.radius, p.radius_final, t + 1, p.decay_steps)
