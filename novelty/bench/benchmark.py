@@ -105,7 +105,8 @@ class Results:
 
     def compare_on_task(self, task: str, reference: str | None = None, resamples: int = 2000,
                         seed: int = 0) -> list[dict]:
-        """Each detector against ``reference`` on one task: paired bootstrap (and corrected t over seeds)."""
+        """Each detector against ``reference`` on one task: paired bootstrap (and corrected t over seeds);
+        on an exploration task, the mean difference over the seeds' worlds and its interval."""
         return compare_on_task(self.rows, ResultsStore(self.out).arrays, task, reference or self.reference,
                                resamples, seed)
 

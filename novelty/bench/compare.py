@@ -11,18 +11,30 @@ task (:mod:`novelty.bench.stats.single_task`):
 - when the task's seeds draw different splits (the reference's values
   differ between seeds), the corrected resampled t-test over the seeds.
 
+An exploration task's cells keep no labels to resample: there the unit is
+the seed, when each seed builds its own world (the rows' ``task_data``
+differ from seed to seed; :mod:`novelty.bench.definition`). The worlds are
+independent, so the mean of the per-seed differences of first-encounter ROC
+AUC gets the plain Student-t interval on ``J - 1`` degrees of freedom (no
+correction for shared training data, which worlds do not share; five seeds
+are too few for a bootstrap's percentile interval). Seeds that ran on one
+world (a recording: the seed moves only the detector) are no sample of
+worlds, and get no interval.
+
 :func:`comparison_text` writes the records as a table (``novelty bench
 --compare-on-task``, and :meth:`novelty.bench.Results.compare_on_task`).
 """
 
 from __future__ import annotations
 
+import math
 from typing import Callable, Sequence
 
 
+from .definition import TASK_DATA_COLUMN
 from .reports.format import format_table, p_value, signed
 from .reports.ranking import reference_of
-from .stats.aggregate import as_float, distinct
+from .stats.aggregate import CONFIDENCE, as_float, distinct, mean, seed_interval
 from .stats.single_task import RESAMPLES, corrected_resampled_t, paired_bootstrap
 
 __all__ = ["compare_on_task", "comparison_text"]
@@ -45,6 +57,11 @@ def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], 
     (:class:`~novelty.bench.stats.single_task.Bootstrap`), the seed they
     used, and ``corrected_t`` (:class:`~novelty.bench.stats.single_task.CorrectedT`,
     or None when the seeds repeat one split or a count of scans is missing).
+    On an exploration task each record holds instead the mean ``difference``
+    of first-encounter ROC AUC over the ``seeds`` both completed, its
+    Student-t interval ``low``, ``high`` (NaN unless ``worlds`` is
+    ``"built"``: ``"one"`` for seeds of one recording, ``"unknown"`` for rows
+    that do not record their task's data) and ``metric``.
     """
     cells = _cells(rows, task)
     if not cells:
@@ -54,6 +71,9 @@ def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], 
     if reference not in cells:
         raise ValueError(f"The reference {reference!r} has no successful cell on {task!r}; "
                          f"detectors there: {', '.join(cells)}.")
+    if all(r.get("policy") for found in cells.values() for r in found):  # exploration cells
+        return [_over_worlds(task, detector, mine, reference, cells[reference])
+                for detector, mine in cells.items() if detector != reference]
     ref_cell = cells[reference][0]
     ref_arrays = arrays(ref_cell["cell_id"])
     if ref_arrays is None or "y" not in ref_arrays:
@@ -89,6 +109,27 @@ def _corrected_t(mine: list[dict], ref: list[dict]):
     return corrected_resampled_t(d, int(n_train), int(n_test))
 
 
+#: what an exploration cell is compared by
+EXPLORATION_METRIC = "first_encounter_auc"
+
+
+def _over_worlds(task: str, detector: str, mine: list[dict], reference: str, ref: list[dict]) -> dict:
+    """One detector against the reference over the seeds both completed, each seed one world."""
+    by_seed = {r["seed"]: r for r in ref}
+    pairs = [(r, by_seed[r["seed"]]) for r in mine if r["seed"] in by_seed]
+    d = [as_float(a.get(EXPLORATION_METRIC)) - as_float(b.get(EXPLORATION_METRIC)) for a, b in pairs]
+    worlds = [b.get(TASK_DATA_COLUMN) for _, b in pairs]
+    if not all(worlds):
+        kind = "unknown"   # rows recorded before their task's data was
+    elif len(set(worlds)) == len(worlds) > 1:
+        kind = "built"
+    else:
+        kind = "one"
+    low, high = seed_interval(d) if kind == "built" else (float("nan"), float("nan"))
+    return {"detector": detector, "reference": reference, "task": task, "metric": EXPLORATION_METRIC,
+            "seeds": len(pairs), "worlds": kind, "difference": mean(d), "low": low, "high": high}
+
+
 def _interval(b) -> str:
     return f"{signed(b.difference)} [{b.low:+.3f}, {b.high:+.3f}]" + (" *" if b.excludes_zero else "")
 
@@ -98,6 +139,8 @@ def comparison_text(records: Sequence[dict]) -> str:
     if not records:
         return ""
     first = records[0]
+    if "worlds" in first:
+        return _worlds_text(records)
     level = f"{first['roc_auc'].confidence:.0%}"
     header = ["detector", f"ΔROC AUC vs {first['reference']} [{level} CI]", f"ΔAP [{level} CI]",
               "Δ over seeds, corrected t (p)"]
@@ -110,3 +153,24 @@ def comparison_text(records: Sequence[dict]) -> str:
     return (f"Paired bootstrap over the test scans of {first['task']}, seed {first['seed']} "
             f"({first['roc_auc'].resamples:,} stratified resamples, seed 0); * : the interval excludes 0.\n\n"
             + format_table(header, body))
+
+
+_NO_INTERVAL = {"one": "one world: no interval", "unknown": "worlds not recorded: no interval"}
+
+
+def _worlds_text(records: Sequence[dict]) -> str:
+    first = records[0]
+    body = []
+    for r in records:
+        if r["worlds"] != "built":
+            interval = _NO_INTERVAL[r["worlds"]]
+        elif math.isnan(r["low"]):
+            interval = "one value on every seed"
+        else:
+            interval = f"[{r['low']:+.3f}, {r['high']:+.3f}]" + (" *" if r["low"] > 0 or r["high"] < 0 else "")
+        body.append([r["detector"], signed(r["difference"]), interval, str(r["seeds"])])
+    header = ["detector", f"Δfirst-encounter AUC vs {first['reference']} (mean over seeds)",
+              f"{CONFIDENCE:.0%} CI (Student t)", "seeds"]
+    return (f"Paired over the seeds of {first['task']}, each seed an independently built world (unit: the "
+            "seed); a task whose seeds share one world (a recording) gets no interval; * : the interval "
+            "excludes 0.\n\n" + format_table(header, body))

@@ -130,7 +130,7 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     summary = store.out / "summary.md"
     if not compare_on and len(suite.tasks) == 1 and suite.protocol == "holdout":
         compare_on = [suite.tasks[0].label]
-    report.comparisons = _comparisons(report.rows, store, compare_on, suite.reference)
+    report.comparisons = _comparisons(report.rows, store, compare_on, suite.reference, suite.protocol)
     sections = protocol.summary(report.rows) + report.comparisons
     text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference,
                             {**stamp, "command": command}, sections)
@@ -158,7 +158,12 @@ def _still_defined(cell, row: dict) -> bool:
         return False
 
 
-def _comparisons(rows: list[dict], store: ResultsStore, tasks: list[str], reference: str | None) -> list[str]:
+#: what one single-task comparison resamples or pairs, by protocol
+_COMPARISON_UNIT = {"holdout": "the test scan", "exploration": "the seed, each an independently built world"}
+
+
+def _comparisons(rows: list[dict], store: ResultsStore, tasks: list[str], reference: str | None,
+                 protocol: str = "holdout") -> list[str]:
     """The summary's sections of single-task comparisons (markdown lines)."""
     lines = []
     for task in tasks:
@@ -167,5 +172,6 @@ def _comparisons(rows: list[dict], store: ResultsStore, tasks: list[str], refere
         except ValueError as exc:
             text = f"No comparison on {task}: {exc}"
         lines += ["", f"## Comparison on one task: {task}", "",
-                  "Unit: the test scan. For a verdict on this task alone, not across tasks.", "", text]
+                  f"Unit: {_COMPARISON_UNIT.get(protocol, 'the test scan')}. For a verdict on this task alone, "
+                  "not across tasks.", "", text]
     return lines

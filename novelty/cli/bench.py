@@ -19,7 +19,7 @@ the seeds of a task averaged first; ranks per task; Friedman, Wilcoxon-Holm
 and Bayesian signed-rank tests over tasks, or why too few tasks allow no
 claim; the command and versions) and plots/ (with a critical-difference
 diagram). --compare-on-task TASK adds a paired bootstrap over that task's
-test scans. Name your tasks with name= (--task 'files path=a.csv name=lab-a'). Rerunning the same command
+test scans (on an exploration task, an interval over its seeds' worlds). Name your tasks with name= (--task 'files path=a.csv name=lab-a'). Rerunning the same command
 resumes: finished cells are skipped, except those whose detector or task
 resolves to something else now (a preset or task changed since): these are
 recomputed, and the run says how many. A cell that fails -- an error, a worker
@@ -72,8 +72,10 @@ def add_parser(subparsers):
     parser.add_argument("--compare-on-task", action="append", metavar="TASK", default=[],
                         help="compare each detector with the reference on this task alone: a paired "
                         "bootstrap over its test scans (ROC AUC and AP intervals), and the corrected "
-                        "resampled t-test over seeds that draw different splits (repeatable; a run of "
-                        "one task gets it anyway)")
+                        "resampled t-test over seeds that draw different splits; on an exploration "
+                        "task, the mean difference of first-encounter AUC over seeds that build their "
+                        "own worlds, with its Student-t interval (repeatable; a hold-out run of one "
+                        "task gets it anyway)")
     parser.add_argument("--threshold", metavar="max|Q",
                         help="alarm threshold: 'max' of the training novelty, or a quantile Q in (0, 1]")
     parser.add_argument("--protocol", choices=("holdout", "exploration"),

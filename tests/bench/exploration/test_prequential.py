@@ -143,3 +143,16 @@ def test_an_exploration_run_writes_its_table_and_plots(tmp_path, toy_exploration
     pytest.importorskip("matplotlib", reason="matplotlib is not installed")
     assert {p.name for p in (tmp_path / "plots").iterdir()} == {
         f"exploration-{kind}-{toy_exploration.EXPLORATION}.png" for kind in ("route", "exposure", "learning")}
+
+
+def test_a_run_compares_on_an_exploration_task_over_its_worlds(tmp_path, toy_exploration):
+    suite = Suite([DetectorSpec("hsom", {"n_rows": 3, "n_columns": 3}), DetectorSpec("kmeans-stanley")],
+                  [TaskSpec(toy_exploration.EXPLORATION)], seeds=[0, 1, 2], protocol="exploration",
+                  reference="kmeans-stanley").check()
+    report = run_bench(suite, tmp_path, quiet=True, plots=False, compare_on=[toy_exploration.EXPLORATION])
+    rows = {r["seed"]: r for r in report.rows if r["detector"] == "hsom"}
+    ref = {r["seed"]: r for r in report.rows if r["detector"] == "kmeans-stanley"}
+    d = [rows[s]["first_encounter_auc"] - ref[s]["first_encounter_auc"] for s in range(3)]
+    assert len({r["task_data"] for r in rows.values()}) == 3                   # each seed builds its world
+    section = "\n".join(report.comparisons)
+    assert "Unit: the seed, each an independently built world." in section and f"{np.mean(d):+.3f}" in section
