@@ -66,6 +66,7 @@ import numpy as np
 from numba import njit, types
 
 from novelty._kernels._distances import columns, distances_cols, transposed, untransposed
+from novelty._kernels._uncounted import held, uncounted
 from {c_steps} import adapt as c_adapt, match as c_match, room as c_room
 from {s_steps} import advance as s_advance, fresh as s_fresh
 from novelty.habituation._schedule import fire, stimulate
@@ -114,6 +115,12 @@ def drive(W, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, nove
     mark = np.zeros(cap, dtype=np.bool_)
     rows = np.empty(cap, dtype=np.int64)
     gone = np.zeros(cap, dtype=np.bool_)
+    # the loop on aliases numba does not count (._uncounted); ``owners`` keeps the arrays
+    owners = (WT, acc, d, nb, mark, rows, gone, X, dt, winners, novelty, distances, counters,
+              cstate, sstate)
+    WT, acc, d, nb, mark, rows, gone, X, dt, winners, novelty, distances, counters = uncounted(
+        (WT, acc, d, nb, mark, rows, gone, X, dt, winners, novelty, distances, counters))
+    cstate, sstate = uncounted(cstate), uncounted(sstate)
     done = 0
     for i in range(X.shape[0]):
         x = X[i]
@@ -141,6 +148,7 @@ def drive(W, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, nove
         n = n_next
         done = i + 1
     untransposed(WT, W, n)
+    held(owners)
     return done, n
 '''
 
