@@ -92,8 +92,10 @@ def describe(value: Any, depth: int = 0) -> Any:
     sorted); an estimator or component by its class and
     ``get_params(deep=False)``; a dataclass (a Dataset) by its class and
     fields; a numpy random generator by its state; a class or function by
-    its module and qualified name (a function also by a hash of its code, so
-    that two lambdas differ); any other object by its class and attributes.
+    its module and qualified name (a function also by a hash of its code and
+    the values it closes over, so that two lambdas differ; a bound method
+    also by its object); any other object, a callable one included, by its
+    class and attributes.
     """
     if depth > _MAX_DEPTH:
         raise ValueError("a parameter nested too deeply to describe (a cycle?)")
@@ -117,7 +119,7 @@ def describe(value: Any, depth: int = 0) -> Any:
         return {"generator": describe(value.bit_generator.state, inner)}
     if isinstance(value, np.random.RandomState):
         return {"random_state": describe(value.get_state(), inner)}
-    if isinstance(value, type) or callable(value) and not hasattr(value, "get_params"):
+    if _named_callable(value):
         return _describe_callable(value, inner)
     kind = f"{type(value).__module__}.{type(value).__qualname__}"
     if hasattr(value, "get_params"):
@@ -141,11 +143,21 @@ def _describe_array(value: np.ndarray, depth: int) -> Any:
     return {"array": data.dtype.str, "shape": list(data.shape), "sha256": hashlib.sha256(data.tobytes()).hexdigest()}
 
 
+def _named_callable(value: Any) -> bool:
+    """A class, function, method, partial or other callable with a name of its own (a ufunc);
+    a callable instance of a class (its state in its attributes) is read as an object."""
+    if isinstance(value, (type, functools.partial, types.MethodType)):
+        return True
+    return callable(value) and not hasattr(value, "get_params") and hasattr(value, "__qualname__")
+
+
 def _describe_callable(value: Any, depth: int) -> Any:
     if isinstance(value, functools.partial):
         return {"partial": describe(value.func, depth), "args": describe(value.args, depth),
                 "keywords": describe(value.keywords, depth)}
-    name = f"{getattr(value, '__module__', '')}.{getattr(value, '__qualname__', type(value).__qualname__)}"
+    if isinstance(value, types.MethodType):  # a bound method: its object's state too
+        return {"method": describe(value.__func__, depth), "of": describe(value.__self__, depth)}
+    name = f"{getattr(value, '__module__', '')}.{value.__qualname__}"
     if isinstance(value, types.FunctionType):
         # a lambda or a local function is not known by its name alone: its code and what it holds
         cells = [cell.cell_contents for cell in value.__closure__ or ()]

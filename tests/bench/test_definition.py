@@ -114,6 +114,9 @@ class Holder:
     def __init__(self, value):
         self.value = value
 
+    def __call__(self, x):
+        return x * self.value
+
 
 @pytest.mark.parametrize("a, b", [
     (1.0, 1),                                              # a float is not an int
@@ -123,7 +126,10 @@ class Holder:
     (lambda x: x + 1, lambda x: x + 2),                    # two lambdas, one name
     (functools.partial(plain, 1), functools.partial(plain, 2)),
     (np.random.default_rng(0), np.random.default_rng(1)),
-    (Holder(1), Holder(2)),
+    (Holder(1), Holder(2)),                                # callable objects, by their state
+    (Holder(1).__call__, Holder(2).__call__),              # bound methods, by their object
+    (np.random.default_rng(0).random, np.random.default_rng(1).random),
+    (np.exp, np.log),
     ({"a": 1}, {"a": 2}),
     (frozenset({"a"}), frozenset({"b"})),
     (float("nan"), float("inf")),
@@ -148,6 +154,8 @@ def test_describe_reads_a_component_by_its_class_and_parameters():
     assert describe(np.float64(0.25)) == 0.25 and describe(float("nan")) == "nan"
     assert describe(plain)["function"] == f"{__name__}.plain"
     assert describe(object()) == {"class": "builtins.object", "repr": "<object object>"}
+    assert describe(Holder(3)) == {"class": f"{__name__}.Holder", "attributes": {"mapping": [["value", 3]]}}
+    assert describe(np.exp) == {"callable": "numpy.exp"}
 
 
 def test_seeds_of_one_world_share_their_task_data_and_seeds_of_built_worlds_do_not(toy_registered):
