@@ -37,11 +37,11 @@ and read side by side they show that each keeps the guarantees above.
 
 from __future__ import annotations
 
+import _thread
 import functools
 import math
 import numbers
 import threading
-import weakref
 from abc import abstractmethod
 from typing import Any
 
@@ -61,17 +61,32 @@ __all__ = ["NoveltyDetector", "CONTAMINATION"]
 CONTAMINATION = (Options(("auto",)), Interval(numbers.Real, 0, 0.5, closed="right"))
 _CONTAMINATION_RULES = {"contamination": CONTAMINATION}
 
-# One re-entrant lock per detector, kept outside the instance so that copying,
-# pickling and cloning a detector never meet a lock.
-_locks: "weakref.WeakKeyDictionary[Any, threading.RLock]" = weakref.WeakKeyDictionary()
+class _Lock(_thread.RLock):
+    """A detector's re-entrant lock, kept in its ``__dict__`` (``_lock``, made on first use).
+
+    A deep copy or a pickle of the detector gets a fresh, unheld lock (``__reduce__``), and a
+    fit never adopts the lock of the clone it learned on (:meth:`NoveltyDetector._adopt`),
+    so each detector waits only for itself; a shallow copy shares the lock as it shares the
+    learned arrays it guards. Read from the instance's own dictionary (about 0.05 us) where a
+    table keyed on the detector, weakly, cost 0.25 us a call.
+    """
+
+    __slots__ = ()
+
+    def __reduce__(self):
+        return _Lock, ()
+
+
+#: the name of a detector's lock in its ``__dict__`` (private: never a parameter or state)
+_LOCK = "_lock"
 _locks_guard = threading.Lock()
 
 
-def _lock_of(detector) -> threading.RLock:
-    lock = _locks.get(detector)
+def _lock_of(detector) -> _Lock:
+    lock = vars(detector).get(_LOCK)
     if lock is None:
-        with _locks_guard:
-            lock = _locks.setdefault(detector, threading.RLock())
+        with _locks_guard:  # two threads asking first get the same lock
+            lock = vars(detector).setdefault(_LOCK, _Lock())
     return lock
 
 
@@ -228,7 +243,8 @@ class NoveltyDetector(OutlierMixin, Component):
         """
         for name in [n for n in vars(self) if _is_state_name(n) and n not in vars(new)]:
             delattr(self, name)
-        vars(self).update(vars(new))
+        # all but the clone's lock: this detector keeps waiting for its own
+        vars(self).update({k: v for k, v in vars(new).items() if k != _LOCK})
 
     def _finite(self, novelty: np.ndarray) -> np.ndarray:
         if not np.isfinite(novelty).all():

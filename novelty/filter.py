@@ -32,7 +32,7 @@ import weakref
 import numpy as np
 
 from . import _kernels
-from ._component import StateError, check_array_state
+from ._component import Component, StateError, check_array_state
 from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
 from .distances import squared_distances
@@ -527,15 +527,12 @@ class HabituatingFilter(NoveltyDetector):
                 # another thread replaced the engine while this one waited for the lock: the
                 # one read above no longer holds the state
                 return None
-            seen = (self._changes, getattr(self.clusterer, "_changes", 0),
-                    getattr(self.synapse, "_changes", 0))
-            if seen != engine.owner_seen or not engine.unchanged():
+            if not engine.confirmed():
                 # something was set on the filter or a part: checked as the general path does
                 self._check_online()
                 if not (self._served_by(engine) and engine.current()):
                     return None
-                engine.owner_seen = (self._changes, getattr(self.clusterer, "_changes", 0),
-                                     getattr(self.synapse, "_changes", 0))
+                engine.confirm(self, *self._templates())
             if not engine.learn_one(x, float(self.stimulus)):
                 return None
             if self.novelty_rule == "efficacy":
@@ -545,6 +542,13 @@ class HabituatingFilter(NoveltyDetector):
             if not math.isfinite(out):
                 self._finite(np.array([out]))
             return out
+
+    def _templates(self) -> list:
+        """The unfitted parts that are components (their parameters checked by
+        :meth:`_check_online`), as :meth:`Engine.confirm <novelty._kernels.engine.Engine.confirm>`
+        watches them; a part given by name has nothing to watch (replacing it is a change of the
+        filter)."""
+        return [p for p in (self.clusterer, self.synapse) if isinstance(p, Component)]
 
     def _served_by(self, engine) -> bool:
         """Whether the engine learns the next scan as the general path would: it is this
@@ -620,9 +624,14 @@ class HabituatingFilter(NoveltyDetector):
         if not (flags.c_contiguous and flags.writeable) or kernels is None:
             return None
         with _lock_of(self):  # this filter's own lock (an engine adopted from a fit's clone has the clone's)
-            if (vars(self).get("_engine") is not engine or engine.clusterer is not self.clusterer_
-                    or engine.synapse is not self.synapse_ or not engine.unchanged()
-                    or not engine.score_one(kernels, x)):
+            if vars(self).get("_engine") is not engine:
+                return None
+            # confirmed for learning since: then also as it scores (the same parts, unchanged)
+            if not (engine.confirmed() or (engine.clusterer is self.clusterer_
+                                           and engine.synapse is self.synapse_
+                                           and engine.unchanged())):
+                return None
+            if not engine.score_one(kernels, x):
                 return None
             efficacy, distance, row = engine.scored1.tolist()
             if self.novelty_rule == "efficacy" and type(self.clusterer_).grows_for is Clusterer.grows_for:

@@ -491,6 +491,40 @@ def test_single_scan_calls_wait_for_the_detectors_own_lock(call):
     assert done.is_set()
 
 
+def test_each_detector_has_its_own_lock_through_copies_pickles_and_fits():
+    """A deep copy or a pickle gets a fresh, unheld lock (never the original's, even while that
+    one is held); a refit keeps the detector's own lock (not its clone's); a shallow copy,
+    which shares the learned arrays, shares the lock that guards them."""
+    import copy
+    import pickle
+
+    from novelty.detector import _lock_of
+
+    det = make_quick("hsom").fit(data(10))
+    lock = _lock_of(det)
+    assert _lock_of(det) is lock
+    with lock:
+        twins = [copy.deepcopy(det), pickle.loads(pickle.dumps(det))]
+        for twin in twins:
+            other = _lock_of(twin)
+            assert other is not lock
+            acquired = []
+
+            def take(other=other):
+                acquired.append(other.acquire(timeout=5))
+                if acquired[-1]:
+                    other.release()
+
+            worker = threading.Thread(target=take)
+            worker.start()
+            worker.join(10)
+            assert acquired == [True]  # unheld, although the original is held here
+    det.fit(data(12, seed=3))
+    assert _lock_of(det) is lock
+    assert _lock_of(copy.copy(det)) is lock
+    assert "_lock" not in det.get_params()
+
+
 @pytest.mark.parametrize("name", ["gng-stanley", "gwr-novelty", "hsom", "gng-wang-hsu"])
 def test_learning_from_several_threads_leaves_a_consistent_model(name, tmp_path):
     det = make_quick(name)

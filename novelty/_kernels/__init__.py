@@ -139,7 +139,10 @@ def scorer(clusterer, synapse) -> Callable | None:
     if not declares(clusterer, "nearest-unit"):
         return None
     W, y = getattr(clusterer, "weights_", None), getattr(synapse, "efficacy_", None)
-    if not (_plain(W, 2) and _plain(y, 1) and y.shape[0] == W.shape[0]):
+    # the weights in any layout (a learning engine holds them transposed: its weights_ is a
+    # strided view, which scoring copies into rows once a call)
+    if not (type(W) is np.ndarray and W.ndim == 2 and W.dtype == np.float64
+            and _plain(y, 1) and y.shape[0] == W.shape[0]):
         return None
     if disabled() or (_NEAREST.module is None and _NEAREST.get() is None):
         return None

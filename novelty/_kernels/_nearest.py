@@ -84,7 +84,7 @@ import numpy as np
 from numba import njit
 
 from .._validation.scans import CLEARED as _CLEARED
-from ._distances import distances_cols, transposed
+from ._distances import distances_cols, first_least, transposed
 
 #: scans pre-filtered together, the lanes the loops over scans vectorise on (128
 #: measured fastest of 16 to 512 with 16 features); fewer than LANES / 8 scans
@@ -388,18 +388,19 @@ def nearest(W, y, X, winners, novelty, distances):
 
 
 @njit(ONE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
-def nearest_one(W, y, n_units, x, out):
-    """One scan (``score_one``), checked first as the learning driver checks a single scan:
-    as many features as ``W`` has and a sum of squares within :data:`CLEARED`. Then its
-    nearest of the first ``n_units`` units, by :func:`row_distance` unit by unit (no
-    transposed copy, no pre-filter: for one scan they cost more than they save), the first of
-    the least as ``match`` takes it: ``out`` receives ``[efficacy, squared distance,
-    winner]``.
+def nearest_one(WT, y, n_units, x, out):
+    """One scan (``score_one``) against the weights as the learning engine holds them,
+    transposed (``WT``: features, capacity), checked first as the learning driver checks a
+    single scan: as many features as the units have and a sum of squares within
+    :data:`CLEARED`. Then its nearest of the first ``n_units`` units, the distances to all of
+    them at once in the project's order (vectorised over the units, as the learning driver
+    computes them; no pre-filter: for one scan it costs more than it saves), the first of the
+    least as ``match`` takes it: ``out`` receives ``[efficacy, squared distance, winner]``.
 
     Returns 0, or -1 (nothing written) when the check fails: the caller's general check then
     says why.
     """
-    n = W.shape[1]
+    n = WT.shape[0]
     if x.shape[0] != n:
         return -1
     total = 0.0
@@ -407,15 +408,12 @@ def nearest_one(W, y, n_units, x, out):
         total += x[k] * x[k]
     if not total <= CLEARED:
         return -1
-    X = x.reshape((1, n))
-    a = 0
-    best = row_distance(W, 0, X, 0)
-    for j in range(1, n_units):
-        d = row_distance(W, j, X, 0)
-        if d < best:
-            a = j
-            best = d
+    # as wide as WT: the distances run over whole vectors of its columns (distances_cols)
+    d = np.empty(WT.shape[1])
+    acc = np.empty((8, WT.shape[1]))
+    distances_cols(WT, x, acc, d, n_units)
+    a = first_least(d, n_units)
     out[0] = y[a]
-    out[1] = best
+    out[1] = d[a]
     out[2] = a
     return 0

@@ -69,8 +69,8 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
           winners: np.ndarray | None = None, distances: np.ndarray | None = None) -> np.ndarray:
     """The efficacies ``y`` of the nearest rows of ``W`` to the rows of ``X``.
 
-    ``module`` is the compiled :mod:`._nearest`; ``W`` (C-contiguous float64)
-    and ``y`` are read, never written. ``winners`` (int64) and ``distances``,
+    ``module`` is the compiled :mod:`._nearest`; ``W`` (float64, copied into rows if it is
+    not C-contiguous) and ``y`` are read, never written. ``winners`` (int64) and ``distances``,
     if given, receive each scan's winning row and its squared distance.
     """
     n = X.shape[0]
@@ -78,6 +78,7 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     rows = np.empty(n, dtype=np.int64) if winners is None else winners
     dist = np.empty(n) if distances is None else distances
     kernel = module.nearest
+    W = _contiguous(W)
 
     n_chunks = -(-n // CHUNK)
     # one chunk (score_one, a short batch): no threads, and no asking how many (an

@@ -584,7 +584,7 @@ def test_the_components_show_the_engines_state():
     weights, efficacy = det.clusterer_.weights_, det.synapse_.efficacy_
     det.learn_one(X[11])
     assert det.clusterer_.weights_ is weights and det.synapse_.efficacy_ is efficacy
-    assert np.shares_memory(weights, det._engine._W)
+    assert np.shares_memory(weights, det._engine._WT)
     before = weights.copy()
     det.partial_fit(X[12:20])
     assert not np.array_equal(weights, before)  # learned in place
@@ -598,7 +598,33 @@ def test_the_components_show_the_engines_state():
         for x in X[40:]:
             slow.learn_one(x)
     assert_same_filter(det, slow)
-    assert np.shares_memory(det.clusterer_.weights_, det._engine._W)
+    assert np.shares_memory(det.clusterer_.weights_, det._engine._WT)
+
+
+def test_weights_written_in_place_are_what_the_next_compiled_call_reads():
+    """The engine holds the weights transposed and ``weights_`` is a view of them: a unit
+    moved by writing into that view (a row, one element) is where every next call finds it,
+    learning scan by scan or in a block, and scoring one scan or a batch, as the reference."""
+    X = corridor(80, n_features=5, seed=11)
+    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X[:10])
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None
+    det.learn_one(X[10])
+    assert det._engine is not None and not det.clusterer_.weights_.flags.c_contiguous
+    slow = copy.deepcopy(det)
+    far = np.full(5, 0.9)
+    for d in (det, slow):  # unit 4 moved onto the next scan, unit 7 far along feature 2
+        d.clusterer_.weights_[4] = X[11]
+        d.clusterer_.weights_[7, 2] = 0.0
+    assert det.clusterer_.weights_[4].tolist() == X[11].tolist()
+    assert det.winners(X[11:12])[0] == det.clusterer_.unit_ids_[4]
+    with reference_only():
+        expected = [slow.score_one(X[11]), slow.score_learn_one(X[11]), slow.score_one(far)]
+        slow.partial_fit(X[12:30])
+        expected_batch = slow.score_samples(X[30:])
+    assert [det.score_one(X[11]), det.score_learn_one(X[11]), det.score_one(far)] == expected
+    det.partial_fit(X[12:30])
+    assert det.score_samples(X[30:]).tolist() == expected_batch.tolist()
+    assert_same_filter(det, slow)
 
 
 @pytest.mark.parametrize("single", [False, True])
