@@ -69,8 +69,8 @@ def all_state(det):
     for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
         for name, value in vars(obj).items():
             # the compiled loop's engine is not state: built on first use (a loaded model builds
-            # its own); nor are the counts of attributes set (Component.__setattr__)
-            if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen"):
+            # its own); nor are the counts of attributes set (Component.__setattr__), nor the lock
+            if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen", "_lock"):
                 continue
             out[owner + name] = value
     return out

@@ -16,9 +16,9 @@ def fitted():
     return det
 
 
-#: not state: how many times attributes were set (novelty._component.Component.__setattr__), and
-#: the counts the filter last checked its parts at
-BOOKKEEPING = ("_changes", "_parts_seen")
+#: not state: how many times attributes were set (novelty._component.Component.__setattr__), the
+#: counts the filter last checked its parts at, and the detector's lock (a deep copy makes a new one)
+BOOKKEEPING = ("_changes", "_parts_seen", "_lock")
 
 
 def snapshot(det):
