@@ -601,6 +601,21 @@ def test_the_components_show_the_engines_state():
     assert np.shares_memory(det.clusterer_.weights_, det._engine._WT)
 
 
+def test_the_engines_room_is_whole_vectors_of_the_distance_loops():
+    """The engine (which must not import numba) rounds its capacity up to the distance loops'
+    vector, and the room past the units is zero."""
+    from novelty._kernels import _distances, engine
+
+    assert engine.VECTOR == _distances.VECTOR
+    assert [engine.whole_vectors(n) for n in (1, 8, 9, 100)] == [8, 8, 16, 104]
+    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(20, n_features=5, seed=2))
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None
+    det.learn_one(corridor(1, n_features=5, seed=3)[0])
+    WT = det._engine._WT
+    assert WT.shape == (5, 16) and det._engine.capacity == 16
+    assert not WT[:, 9:].any() and not det._engine._s_arrays[0][9:].any()
+
+
 def test_weights_written_in_place_are_what_the_next_compiled_call_reads():
     """The engine holds the weights transposed and ``weights_`` is a view of them: a unit
     moved by writing into that view (a row, one element) is where every next call finds it,
