@@ -137,7 +137,7 @@ def first_least(d, n):
         return s
     keys = d.view(np.int64)
     least = keys[0]
-    for j in range(1, n):
+    for j in range(n):  # from 0, not 1: of 100 keys the vector loops take all, of 99 they left 3
         least = min(least, keys[j])
     first = n
     for j in range(n):
