@@ -19,7 +19,8 @@ from numba import njit
 from ._lanes import difference, minus_one
 
 #: the units a vector holds (eight float64 in AVX-512): the distance loops run in whole vectors
-#: over the columns a transposed copy has beyond its units, when it has them (:func:`columns`)
+#: over the columns a transposed copy has beyond its units, when it has them (the engine gives
+#: its copy room in whole vectors, zero: ``novelty._kernels.engine.VECTOR``, kept equal)
 VECTOR = 8
 
 
@@ -114,12 +115,6 @@ def distances_cols(WT, x, acc, out, n_units):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def columns(capacity):
-    """The columns of a transposed copy for ``capacity`` units: whole vectors (:data:`VECTOR`)."""
-    return capacity + (-capacity) % VECTOR
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def first_least(d, n):
     """The first index of the least of the squared distances ``d[:n]`` (``np.argmin``).
 
@@ -146,25 +141,10 @@ def first_least(d, n):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def transposed(W, n_rows, n_columns=-1):
-    """(features, units) copy of the first ``n_rows`` rows of ``W``, with W's rows of room, or
-    ``n_columns`` columns in all (at least as many: :func:`columns`). The columns past the
-    units are zero: finite, so that distances computed there (:func:`distances_cols`) take no
-    slow path on subnormal or NaN garbage."""
-    WT = np.empty((W.shape[1], max(W.shape[0], n_columns)))
+def transposed(W, n_rows):
+    """(features, units) copy of the first ``n_rows`` rows of ``W``, with W's rows of room."""
+    WT = np.empty((W.shape[1], W.shape[0]))
     for j in range(n_rows):
         for k in range(W.shape[1]):
             WT[k, j] = W[j, k]
-    for k in range(W.shape[1]):
-        for j in range(n_rows, WT.shape[1]):
-            WT[k, j] = 0.0
     return WT
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def untransposed(WT, W, n_rows):
-    """Write the first ``n_rows`` units of ``WT`` back into ``W`` (element loops: a slice
-    assignment would compile numba's shape-error path, seconds of compiling)."""
-    for j in range(n_rows):
-        for k in range(W.shape[1]):
-            W[j, k] = WT[k, j]

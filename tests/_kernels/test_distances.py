@@ -49,17 +49,16 @@ def test_first_least_takes_the_first_of_equal_values(first_least):
 
 @pytest.fixture(scope="module")
 def distances():
-    """``distances_cols`` on a transposed copy with columns of room (compiled alone for the test)."""
+    """``distances_cols`` on a transposed copy with zero columns of room (compiled alone)."""
     from numba import njit
 
-    from novelty._kernels._distances import columns, distances_cols, transposed
+    from novelty._kernels._distances import distances_cols
 
     @njit
-    def run(W, n, capacity, x):
-        WT = transposed(W, n, columns(capacity))
+    def run(WT, n, x):
         out = np.full(WT.shape[1], -1.0)
         distances_cols(WT, x, np.empty((8, WT.shape[1])), out, n)
-        return WT, out
+        return out
 
     return run
 
@@ -68,13 +67,14 @@ def distances():
 @pytest.mark.parametrize("n_units", [1, 7, 8, 13, 100])
 def test_distances_over_whole_vectors_equal_the_readable_order(distances, n_features, n_units):
     """The units' distances in the project's order, whether the loop runs past them into the room
-    (whole vectors) or not; the room of the transposed copy is zero."""
+    (whole vectors of columns, as the engine holds them) or not (no room)."""
+    from novelty._kernels._distances import VECTOR
     from novelty.distances import squared_distances
 
     rng = np.random.default_rng(n_units * 100 + n_features)
-    x = rng.normal(0, 1, n_features)
-    for n, capacity in ((n_units, n_units), (n_units, n_units + 3)):
-        W = rng.normal(0, 1, (capacity, n_features))  # rows of room past the n units
-        WT, out = distances(W, n, capacity, x)
-        assert WT.shape[1] % 8 == 0 and not WT[:, n:].any()
-        assert np.array_equal(out[:n], squared_distances(W[:n], x))
+    W, x = rng.normal(0, 1, (n_units, n_features)), rng.normal(0, 1, n_features)
+    for columns in (n_units, n_units + (-n_units) % VECTOR + VECTOR):
+        WT = np.zeros((n_features, columns))
+        WT[:, :n_units] = W.T
+        out = distances(WT, n_units, x)
+        assert np.array_equal(out[:n_units], squared_distances(W, x))
