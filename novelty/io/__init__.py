@@ -6,8 +6,9 @@
   through the optional package ``rosbags`` (the ``ros`` extra).
 - :mod:`novelty.io.messages`: the message types the readers return.
 - :mod:`novelty.io.scans`: invalid readings by the ROS conventions, a laser
-  scan reduced to sectors, sonar readings gathered into rings;
-  :mod:`novelty.io.sectors` the same as a scikit-learn transformer.
+  scan reduced to sectors; :mod:`novelty.io.sectors` the same as a
+  scikit-learn transformer; :mod:`novelty.io.sonar_rings` sonar readings
+  gathered into rings.
 - :mod:`novelty.io.recording`: a recording as rings, or as a dataset of the
   paper's inputs with times, poses and distance travelled.
 - :mod:`novelty.io.tasks`: runs, features marked from a CSV or places on a
@@ -26,7 +27,8 @@ from .carmen import CarmenError, CarmenLog, read_carmen
 from .messages import LaserScan, Pose, RangeReading
 from .recording import Ring, is_recording, read_recording, read_rings
 from .rosbag import BagError, bag_topics, read_bag
-from .scans import clean_ranges, laser_ring, sonar_rings
+from .scans import clean_ranges, laser_ring
+from .sonar_rings import sonar_rings
 
 __all__ = ["CarmenLog", "CarmenError", "read_carmen", "BagError", "bag_topics", "read_bag", "LaserScan",
            "RangeReading", "Pose", "Ring", "read_rings", "read_recording", "is_recording", "clean_ranges",

@@ -2,7 +2,7 @@
 
 :func:`read_rings` streams one :class:`Ring` a scan: a laser scan reduced to
 sectors (:func:`novelty.io.scans.laser_ring`) or one reading of every sonar
-(:func:`novelty.io.scans.sonar_rings`), with its time and the robot's pose
+(:func:`novelty.io.sonar_rings.sonar_rings`), with its time and the robot's pose
 when the recording has one. :func:`read_recording` collects them into a
 dataset of the paper's inputs (threshold, normalise, invert:
 :func:`novelty.sonar.preprocess`), with the time, pose and distance
@@ -31,7 +31,8 @@ from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from .carmen import CarmenLog
 from .messages import LaserScan, Pose, RangeReading
 from .rosbag import POSE_TYPES, SCAN_TYPES, bag_topics, is_bag, read_bag, topic_types
-from .scans import clean_ranges, reduce_sectors, sector_index, sonar_rings
+from .scans import clean_ranges, reduce_sectors, sector_index
+from .sonar_rings import sonar_rings
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
 
@@ -75,7 +76,7 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
     base_frame : str, default="base_link"
         The robot's frame, when ``pose_topic`` is a ``tf`` topic.
     sensors, max_span
-        How sonar readings gather into rings (:func:`novelty.io.scans.sonar_rings`).
+        How sonar readings gather into rings (:func:`novelty.io.sonar_rings.sonar_rings`).
     """
     options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip)
     if is_bag(path):

@@ -23,8 +23,9 @@ three steps make rings of them, then the paper's preprocessing
    with no valid beam reads ``+inf`` (nothing seen). By default each beam
    owns an equal slice of the scan's span, so ``n_sectors`` equal to the
    number of beams gives the beams back unchanged.
-3. **Sonar rings** (:func:`sonar_rings`): one reading of every sonar,
-   gathered by time, in the order of their mounting angles.
+3. **Sonar rings** (:func:`sonar_rings`, in :mod:`.sonar_rings`): one
+   reading of every sonar, gathered by time, in the order of their mounting
+   angles.
 
 ``clip`` (m) counts every range beyond it, ``+inf`` included, as ``clip``
 before reducing: with ``clip`` the paper's threshold, a sector's mean then
@@ -46,16 +47,13 @@ from __future__ import annotations
 
 import math
 import numbers
-import re
 import warnings
-from typing import Iterable, Iterator, Mapping, Sequence
 
 import numpy as np
 
-from .messages import LaserScan, RangeReading
+from .messages import LaserScan
 
-__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "sonar_rings", "cloud_scan",
-           "REDUCTIONS"]
+__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "cloud_scan", "REDUCTIONS"]
 
 #: Named ways to reduce a sector's beams to one range (a number q is the q-th percentile).
 REDUCTIONS = ("min", "mean", "median")
@@ -244,80 +242,3 @@ def cloud_scan(points, stamp: float, resolution: float = math.pi / 180, z_limits
 
 
 # ------------------------------------------------------------------ sonar rings
-def sonar_rings(readings: Iterable[RangeReading], sensors: Sequence[str] | Mapping[str, float] | None = None,
-                max_span: float | None = None) -> Iterator[tuple[float, np.ndarray]]:
-    """Gather one reading of every sonar into a ring: ``(time, ranges)``, in mounting order.
-
-    A ring is complete when every sensor has reported since the last ring;
-    its time is its newest reading's. A sensor reporting twice before the
-    ring completes keeps its newer reading.
-
-    Parameters
-    ----------
-    readings : iterable of RangeReading
-        In time order.
-    sensors : sequence of str, or dict of str to float, optional
-        The sensors in mounting order, or each sensor's mounting angle (rad;
-        the ring runs counter-clockwise from the smallest). Default: the
-        sensors met before the first repeat, in natural name order
-        (``sonar2`` before ``sonar10``): ``Range`` messages do not carry
-        their mounting angle, so give it where the names do not follow it.
-    max_span : float, optional
-        Seconds: a reading older than this before the newest one of the
-        ring is dropped (its sensor reports again before the ring completes).
-
-    Examples
-    --------
-    >>> rs = [RangeReading(0.0, 1.0, "s1"), RangeReading(0.1, 2.0, "s0"),
-    ...       RangeReading(0.2, float("inf"), "s1"), RangeReading(0.3, 0.5, "s0")]
-    >>> [(t, ring.tolist()) for t, ring in sonar_rings(rs)]
-    [(0.1, [2.0, 1.0]), (0.3, [0.5, inf])]
-    """
-    it = iter(readings)
-    order = _sensor_order(sensors) if sensors is not None else None
-    pending: list[RangeReading] = []
-    if order is None:
-        order, pending = _discover_sensors(it)
-    position = {name: i for i, name in enumerate(order)}
-    ring: dict[str, RangeReading] = {}
-    for reading in _chain(pending, it):
-        if reading.sensor not in position:
-            raise ValueError(f"A reading of sensor {reading.sensor!r}, not one of the ring's "
-                             f"{list(order)}.")
-        ring[reading.sensor] = reading
-        if max_span is not None:
-            ring = {k: v for k, v in ring.items() if reading.stamp - v.stamp <= max_span}
-        if len(ring) == len(order):
-            values = [clean_ranges([ring[s].range], ring[s].range_min, ring[s].range_max)[0]
-                      for s in order]
-            yield max(v.stamp for v in ring.values()), np.where(np.isnan(values), np.inf, values)
-            ring = {}
-
-
-def _chain(first, rest):
-    yield from first
-    yield from rest
-
-
-def _sensor_order(sensors) -> list[str]:
-    if isinstance(sensors, Mapping):
-        return [name for name, _ in sorted(sensors.items(), key=lambda item: (float(item[1]), item[0]))]
-    order = [str(s) for s in sensors]
-    if not order or len(set(order)) != len(order):
-        raise ValueError(f"sensors must name each sensor once; got {order!r}.")
-    return order
-
-
-def _discover_sensors(it) -> tuple[list[str], list[RangeReading]]:
-    seen: list[RangeReading] = []
-    names: set[str] = set()
-    for reading in it:
-        if reading.sensor in names:
-            return sorted(names, key=_natural), seen + [reading]
-        names.add(reading.sensor)
-        seen.append(reading)
-    return sorted(names, key=_natural), seen
-
-
-def _natural(name: str):
-    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]

@@ -8,7 +8,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from novelty.io.messages import LaserScan, RangeReading
-from novelty.io.scans import clean_ranges, laser_ring, reduce_sectors, sector_index, sonar_rings
+from novelty.io.scans import clean_ranges, laser_ring, reduce_sectors, sector_index
+from novelty.io.sonar_rings import sonar_rings
 from novelty.sonar.preprocessing import preprocess
 
 INF, NAN = math.inf, math.nan
