@@ -299,6 +299,23 @@ def test_grow_and_shrink_keep_the_others_values(values, n_new, data):
     assert syn.n_units_ == n - len(rows)
 
 
+# ----------------------------------------------------------------- sub-steps
+@settings(max_examples=200, deadline=None)
+@given(y=st.floats(0.0, 1.0), stimulus=st.floats(0.0, 1.05), tau=st.floats(1.05, 60.0),
+       dt=st.one_of(st.floats(0.0, 1.0), st.floats(1.0, 5.0), st.sampled_from([0.0, 1.0, 2.0])))
+def test_euler_steps_are_ceil_dt_sub_steps_of_equation_3_bit_for_bit(y, stimulus, tau, dt):
+    """Up to the iterated limit, equation (3) in max(1, ceil(dt)) sub-steps of h = dt / n, as
+    written out here (a step of dt <= 1 is taken without the loop: the same operations)."""
+    n = max(1, math.ceil(dt))
+    h = dt / n
+    expected = y
+    for _ in range(n):
+        expected = expected + (h / tau) * (1.05 * (1.0 - expected) - stimulus)
+    assert euler_steps(y, stimulus, tau, dt, 1.05, 1.0) == expected
+    array = euler_steps(np.array([y, y]), stimulus, tau, dt, 1.05, 1.0)
+    assert array.tolist() == [expected, expected]
+
+
 # ----------------------------------------------------------------- long gaps
 def test_euler_beyond_the_iterated_sub_steps_is_the_loop_in_closed_form():
     for dt in (MAX_EULER_SUBSTEPS + 1.0, 3000.5):
