@@ -66,7 +66,7 @@ def main() -> None:
             det.stream(X)
             streams.append(time.perf_counter() - t0)
             t0 = time.perf_counter()
-            out, det = prequential(lambda: novelty.make(name, random_state=0), X, run, 3)
+            out, det = prequential(lambda name=name: novelty.make(name, random_state=0), X, run, 3)
             exploration_metrics(out, run, feature, exposure, 3, {}, 0.0)
             cells.append(time.perf_counter() - t0)
         s, c = statistics.median(streams), statistics.median(cells)

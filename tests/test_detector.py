@@ -292,7 +292,7 @@ def test_contamination_needs_the_training_scans_of_fit():
     with pytest.raises(ValueError, match=r"contamination=0.1 sets the threshold from .*only 'fit' records"):
         det.predict(scans(3))
     with pytest.raises(AttributeError, match="learned online only"):
-        det.labels_
+        _ = det.labels_
     det.set_params(contamination="auto")
     assert det.threshold_ == 0.5 and det.predict(scans(3)).shape == (3,)
 
@@ -510,7 +510,7 @@ def test_each_detector_has_its_own_lock_through_copies_pickles_and_fits():
             assert other is not lock
             acquired = []
 
-            def take(other=other):
+            def take(other=other, acquired=acquired):
                 acquired.append(other.acquire(timeout=5))
                 if acquired[-1]:
                     other.release()

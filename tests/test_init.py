@@ -28,7 +28,7 @@ def test_the_conformance_suite_is_reachable_after_import_novelty_alone():
 
 def test_an_unknown_attribute_is_an_attribute_error():
     with pytest.raises(AttributeError, match="module 'novelty' has no attribute 'dataset'"):
-        novelty.dataset
+        _ = novelty.dataset
 
 
 HEAVY = ("numpy", "scipy", "sklearn", "numba", "matplotlib", "dask", "pyod", "river")

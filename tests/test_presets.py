@@ -196,7 +196,7 @@ def test_gwr_explore_wang_hsu_habituates_to_a_recurring_feature_as_the_project_c
         base = np.full(d, 0.5)
         centre = base + 0.5 / np.sqrt(d)  # 0.5 away from the familiar place
 
-        def familiar(n):
+        def familiar(n, base=base, rng=rng, d=d):
             return base + rng.normal(0, 0.03, size=(n, d))
 
         det = novelty.make("gwr-explore-wang-hsu")

@@ -243,7 +243,7 @@ def test_a_project_registry_reads_its_own_group(monkeypatch):
 def test_available_structure():
     everything = novelty.available()
     assert set(everything) == {"detectors", "clusterers", "synapses", "datasets"}
-    for kind, entries in everything.items():
+    for entries in everything.values():
         assert isinstance(entries, dict)
         for name, description in entries.items():
             assert isinstance(name, str) and name == name.lower() and name.strip() == name

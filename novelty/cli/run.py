@@ -214,7 +214,7 @@ class StreamReader:
             try:
                 raw = np.array([[self._number(layout, j, row[j], where) for j in layout.sensors]])
                 x = sensors_to_scans(raw, self.preprocess, self.threshold,
-                                     lambda i, k: f"{where}, {layout.column(layout.sensors[k])}")[0]
+                                     lambda i, k, where=where, layout=layout: f"{where}, {layout.column(layout.sensors[k])}")[0]
                 extras = self._extras(layout, row, where)
             except ValueError as exc:
                 raise UserError(str(exc)) from None

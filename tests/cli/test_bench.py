@@ -1,6 +1,5 @@
 """``novelty bench``: the reference option, the exit code when cells fail, seeds, the suites its help cites."""
 
-import re
 import sys
 from pathlib import Path
 
@@ -8,7 +7,6 @@ import pytest
 
 import novelty
 from novelty.cli import main
-from novelty.cli._common import UserError
 from novelty.cli.bench import EXAMPLES
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "bench"))

@@ -150,7 +150,7 @@ def test_decay_uses_the_scheduled_rate_and_shrinks_the_neighbourhood():
     som.weights_[:] = grid
     x = np.array([4.0, 4.0])  # the centre unit 40 always wins
     sizes, rates = [], []
-    for t in range(5):
+    for _ in range(5):
         rates.append(som.current_learning_rate())
         before = som.weights_.copy()
         m = som.match(x)

@@ -5,8 +5,6 @@ Defaults: tau 3.33 / 14.3, alpha 1.05, beta 2, gamma 0.05, y0 1, z0 0.9, l 1.
 """
 
 import math
-import tempfile
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -60,7 +60,7 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
                                     (a["exposure"] > 0, "tab:orange", "later exposures")):
             ax.scatter(x[mask], a["novelty"][mask], s=4, color=colour, label=label, zorder=3)
         starts = np.r_[0, np.flatnonzero(np.diff(a["run"])) + 1]
-        for k, s in enumerate(starts):
+        for s in starts:
             ax.axvline(s, color="0.8", linewidth=0.6)
             if ax is axes[0, 0]:
                 ax.text(s + 2, 1.02, str(a["environment"][s]), fontsize=6, transform=ax.get_xaxis_transform())
@@ -105,7 +105,7 @@ def plot_exposure_curves(task: str, cells: dict, arrays: Callable, out: Path) ->
             for i, f in enumerate(a["curve_features"].tolist()):
                 novelty[f].append(a["curve_novelty"][i])
                 familiar[f].append(a["curve_familiar"][i])
-        for k, f in enumerate(sorted(novelty)):
+        for f in sorted(novelty):
             width = min(len(v) for v in novelty[f])
             nov = mean_over_seeds([v[:width] for v in novelty[f]])
             fam = mean_over_seeds([v[:width] for v in familiar[f]])

@@ -40,7 +40,7 @@ def exploration_records(rows: Sequence[dict]) -> dict[str, list[dict]]:
     for task, by_detector in groups.items():
         records = []
         for detector, cells in by_detector.items():
-            col = lambda name: [as_float(r.get(name)) for r in cells]  # noqa: E731
+            col = lambda name, cells=cells: [as_float(r.get(name)) for r in cells]  # noqa: E731
             auc, e1, e3 = mean(col("first_encounter_auc")), mean(col("excess_1")), mean(col("excess_3"))
             # rows recorded before the range was measured carry none: the ratio then needs e1 > 0 only
             ratio = ratio_to_first(e3, e1, RESOLUTION * np.nan_to_num(mean(col("novelty_range"))))

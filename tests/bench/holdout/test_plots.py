@@ -1,12 +1,10 @@
 """The plots of a hold-out run: which seeds each shows, boxplots; with the critical-difference diagram."""
 
-import numpy as np
 import pytest
 
 pytest.importorskip("matplotlib", reason="plots need matplotlib (novelty-habituation[plot])")
 
 import matplotlib  # noqa: E402
-import matplotlib.pyplot as plt  # noqa: E402
 
 from novelty.bench import load_suite, quick_suite_path  # noqa: E402
 from novelty.bench.holdout import plots  # noqa: E402
