@@ -9,6 +9,9 @@
   scan reduced to sectors; :mod:`novelty.io.sectors` the same as a
   scikit-learn transformer; :mod:`novelty.io.sonar_rings` sonar readings
   gathered into rings.
+- :mod:`novelty.io.sweeps`: whole scans in the robot's base frame, each
+  beam with its origin and direction (:class:`~novelty.io.sweeps.Sweep`),
+  and their rings seen from the robot's centre.
 - :mod:`novelty.io.recording`: a recording as rings, or as a dataset of the
   paper's inputs with times, poses and distance travelled.
 - :mod:`novelty.io.tasks`: runs, features marked from a CSV or places on a
@@ -29,7 +32,8 @@ from .recording import Ring, is_recording, read_recording, read_rings
 from .rosbag import BagError, bag_topics, read_bag
 from .scans import clean_ranges, laser_ring
 from .sonar_rings import sonar_rings
+from .sweeps import Sweep, read_sweeps, sweep_ring
 
 __all__ = ["CarmenLog", "CarmenError", "read_carmen", "BagError", "bag_topics", "read_bag", "LaserScan",
            "RangeReading", "Pose", "Ring", "read_rings", "read_recording", "is_recording", "clean_ranges",
-           "laser_ring", "sonar_rings"]
+           "laser_ring", "sonar_rings", "Sweep", "read_sweeps", "sweep_ring"]

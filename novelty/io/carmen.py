@@ -16,7 +16,9 @@ data sets' README describes them):
   remission_mode n r_1 .. r_n m v_1 .. v_m laser_x laser_y laser_theta robot_x robot_y robot_theta
   tv rv forward_safety_dist side_safety_dist turn_axis ipc_timestamp ipc_hostname logger_timestamp``:
   a laser scan that states its geometry; its angles are turned into the
-  robot's frame by the laser's heading relative to the robot's.
+  robot's frame by the laser's heading relative to the robot's, and its
+  origin is the laser's position in the robot's frame (both poses are the
+  world's: the laser's offset is turned by the robot's heading).
 - ``ODOM x y theta tv rv accel ipc_timestamp ipc_hostname logger_timestamp``: odometry.
 
 A message's time is its ``ipc_timestamp`` (s). Other messages (``PARAM``,
@@ -206,11 +208,14 @@ def _robot_laser(log: CarmenLog, tokens, where: _Where) -> LaserScan:
     ranges = where.numbers(tokens, 9, n, "the ranges")
     m = where.count(tokens, 9 + n, "the number of remissions")
     tail = where.numbers(tokens, 10 + n + m, 12, "the poses, velocities and timestamp")
-    laser_heading, robot_pose = tail[2], tail[3:6]
+    laser_pose, robot_pose = tail[:3], tail[3:6]
+    # both poses are in the world frame: the laser's offset, turned into the robot's frame
+    dx, dy = laser_pose[0] - robot_pose[0], laser_pose[1] - robot_pose[1]
+    c, s = math.cos(robot_pose[2]), math.sin(robot_pose[2])
     return LaserScan(stamp=float(tail[11]), ranges=ranges,
-                     angle_min=float(start_angle + laser_heading - robot_pose[2]),
+                     angle_min=float(start_angle + laser_pose[2] - robot_pose[2]),
                      angle_increment=float(resolution), range_max=float(max_range),
-                     pose=robot_pose, source=where.name)
+                     pose=robot_pose, source=where.name, origin=(float(c * dx + s * dy), float(c * dy - s * dx)))
 
 
 def _odometry(log: CarmenLog, tokens, where: _Where) -> Pose:

@@ -46,6 +46,11 @@ class LaserScan:
         carries one (CARMEN's corrected pose).
     source : str
         The topic or message type the scan came from.
+    origin : (float, float)
+        The sensor's position (m) in the robot's frame, where the reader
+        knows it (a CARMEN ``ROBOTLASER1``); (0, 0) otherwise.
+    frame : str
+        The sensor's frame (a ROS message's ``header.frame_id``), "" when unknown.
     """
 
     stamp: float
@@ -56,6 +61,8 @@ class LaserScan:
     range_max: float = math.inf
     pose: np.ndarray | None = None
     source: str = ""
+    origin: tuple[float, float] = (0.0, 0.0)
+    frame: str = ""
 
     @property
     def angles(self) -> np.ndarray:

@@ -1,7 +1,8 @@
 """A robot recording (a CARMEN log or a ROS bag) as rings of ranges, then as a :class:`~novelty.data.Dataset`.
 
-:func:`read_rings` streams one :class:`Ring` a scan: a laser scan reduced to
-sectors (:func:`novelty.io.scans.laser_ring`) or one reading of every sonar
+:func:`read_rings` streams one :class:`Ring` a scan: a laser scan read as a
+sweep in the robot's base frame and reduced to sectors
+(:mod:`novelty.io.sweeps`) or one reading of every sonar
 (:func:`novelty.io.sonar_rings.sonar_rings`), with its time and the robot's pose
 when the recording has one. :func:`read_recording` collects them into a
 dataset of the paper's inputs (threshold, normalise, invert:
@@ -28,18 +29,13 @@ import numpy as np
 
 from ..data import Dataset
 from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
-from .carmen import CarmenLog
-from .messages import LaserScan, Pose, RangeReading
-from .rosbag import POSE_TYPES, SCAN_TYPES, bag_topics, is_bag, read_bag, topic_types
-from .scans import clean_ranges, reduce_sectors, sector_index
+from .messages import Pose, RangeReading
+from .rosbag import is_bag, read_bag, topic_types
 from .sonar_rings import sonar_rings
+from .sweeps import CARMEN_LASERS, CARMEN_SUFFIXES, LASER_TYPES, RingMaker, bag_scan_topics, check_pose_topic, \
+    read_sweeps
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
-
-#: File names taken for CARMEN logs (``.clf``: the "CARMEN log file" of some data sets).
-CARMEN_SUFFIXES = (".log", ".log.gz", ".clf", ".clf.gz", ".carmen", ".carmen.gz")
-#: The CARMEN messages that are laser scans.
-CARMEN_LASERS = ("FLASER", "RLASER", "ROBOTLASER1")
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,6 +58,11 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
                sensors=None, max_span: float | None = None, base_frame: str = "base_link") -> Iterator[Ring]:
     """The recording's rings, one at a time (see the module docstring).
 
+    Laser scans and point clouds are read as sweeps in the robot's base
+    frame (:func:`novelty.io.sweeps.read_sweeps`), each reduced to a ring
+    (:func:`novelty.io.sweeps.sweep_ring`); sonar ``Range`` readings are
+    gathered into rings of one reading a sonar (:func:`novelty.io.sonar_rings.sonar_rings`).
+
     Parameters
     ----------
     path : str or Path
@@ -70,7 +71,7 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
         The scans' topic or CARMEN message (default: ``FLASER``, or a bag's
         only ``LaserScan``, ``PointCloud2`` or ``Range`` topic).
     sectors, reduce, limits, front, clip
-        How a laser scan becomes a ring (:func:`novelty.io.scans.laser_ring`).
+        How a laser scan becomes a ring (:func:`novelty.io.sweeps.sweep_ring`).
     pose_topic : str, optional
         Where poses come from (default: the scans' own, CARMEN's corrected poses).
     base_frame : str, default="base_link"
@@ -78,69 +79,20 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
     sensors, max_span
         How sonar readings gather into rings (:func:`novelty.io.sonar_rings.sonar_rings`).
     """
-    options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip)
+    make_ring = RingMaker(sectors, reduce, limits, front, clip)
     if is_bag(path):
-        topics = _bag_scan_topics(path, topic)
+        topics = bag_scan_topics(path, topic)
         kinds = set(topic_types(path, topics))
-        if len(kinds) > 1 or not kinds <= set(SCAN_TYPES):
-            raise ValueError(f"The scans' topics must be LaserScan, PointCloud2 or Range topics, all of one "
-                             f"type; {', '.join(topics)} hold {', '.join(sorted(kinds))}.")
-        if pose_topic is not None and topic_types(path, [pose_topic])[0] not in POSE_TYPES:
-            raise ValueError(f"pose_topic {pose_topic} must hold poses: one of {', '.join(POSE_TYPES)}.")
-        messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame)
         if kinds == {"sensor_msgs/msg/Range"}:
+            check_pose_topic(path, pose_topic)
+            messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame)
             yield from _sonar(messages, topics, sensors, max_span)
             return
-        yield from _lasers(messages, options, use_own_pose=False)
-        return
-    if not Path(path).name.lower().endswith(CARMEN_SUFFIXES):
-        raise ValueError(f"{path} is neither a CARMEN log ({', '.join(CARMEN_SUFFIXES)}) nor a bag "
-                         "(.bag, .db3, .mcap, a ROS 2 bag folder).")
-    yield from _carmen(path, topic or "FLASER", pose_topic, options)
-
-
-def _bag_scan_topics(path, topic) -> list[str]:
-    if topic is not None:
-        return [topic] if isinstance(topic, str) else list(topic)
-    scans = [t for t, kind in bag_topics(path).items()
-             if kind in SCAN_TYPES]
-    if len(scans) != 1:
-        listing = ", ".join(f"{t} ({k})" for t, k in bag_topics(path).items()) or "none"
-        raise ValueError(f"Name the scans' topic of {path} (topic=, --topic); its topics: {listing}.")
-    return scans
-
-
-def _carmen(path, topic: str, pose_topic: str | None, options: dict) -> Iterator[Ring]:
-    if topic not in CARMEN_LASERS:
-        raise ValueError(f"A CARMEN log's scans are one of {', '.join(CARMEN_LASERS)}; got {topic!r}.")
-    if pose_topic not in (None, "ODOM"):
-        raise ValueError(f"A CARMEN log's poses are the scans' own (None) or ODOM; got {pose_topic!r}.")
-    log = CarmenLog(path, messages=(topic,) + ((pose_topic,) if pose_topic else ()))
-    count = 0
-    for ring in _lasers(iter(log), options, use_own_pose=pose_topic is None):
-        count += 1
-        yield ring
-    if count == 0:
-        held = ", ".join(f"{name} ({n})" for name, n in log.skipped.most_common()) or "no messages"
-        raise ValueError(f"{path} holds no {topic} messages; it holds: {held}.")
-
-
-def _lasers(messages, options: dict, use_own_pose: bool) -> Iterator[Ring]:
-    latest: np.ndarray | None = None
-    geometry, index = None, None
-    for msg in messages:
-        if isinstance(msg, Pose):
-            latest = np.array([msg.x, msg.y, msg.theta])
-            continue
-        if not isinstance(msg, LaserScan):
-            raise ValueError(f"Expected laser scans on the scans' topic; got a {type(msg).__name__}.")
-        key = (len(msg.ranges), msg.angle_min, msg.angle_increment)
-        if key != geometry:   # the beams' sectors, worked out again only when the laser's geometry changes
-            index = sector_index(msg.angles, options["sectors"], options["limits"], options["front"])
-            geometry = key
-        ranges = clean_ranges(msg.ranges, msg.range_min, msg.range_max)
-        ring = reduce_sectors(ranges, index, options["sectors"], options["reduce"], options["clip"])
-        yield Ring(msg.stamp, ring, msg.pose if use_own_pose else latest)
+        if len(kinds) > 1 or not kinds <= set(LASER_TYPES):
+            raise ValueError(f"The scans' topics must be LaserScan, PointCloud2 or Range topics, all of one "
+                             f"type; {', '.join(topics)} hold {', '.join(sorted(kinds))}.")
+    for sweep in read_sweeps(path, topic, pose_topic=pose_topic, base_frame=base_frame):
+        yield Ring(sweep.time, make_ring(sweep), sweep.pose)
 
 
 def _sonar(messages, topics, sensors, max_span) -> Iterator[Ring]:

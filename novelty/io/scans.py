@@ -53,7 +53,7 @@ import numpy as np
 
 from .messages import LaserScan
 
-__all__ = ["clean_ranges", "sector_index", "reduce_sectors", "laser_ring", "cloud_scan", "REDUCTIONS"]
+__all__ = ["clean_ranges", "sector_index", "scan_limits", "reduce_sectors", "laser_ring", "cloud_scan", "REDUCTIONS"]
 
 #: Named ways to reduce a sector's beams to one range (a number q is the q-th percentile).
 REDUCTIONS = ("min", "mean", "median")
@@ -108,26 +108,52 @@ def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = No
         raise ValueError(f"n_sectors must be an int >= 1; got {n_sectors!r}.")
     a = np.asarray(angles, dtype=np.float64) - front
     if limits is None:
-        # the scan kept in one piece, turned by whole turns so that its middle is within half a
-        # turn of the front (a rear laser's beams, 90..270 degrees, cross +-180 and stay together)
-        centre = (float(a.min()) + float(a.max())) / 2
-        a = a + ((centre + math.pi) % (2 * math.pi) - math.pi - centre)
-        half = abs(float(np.median(np.diff(a)))) / 2 if len(a) > 1 else math.pi
-        low, high = float(a.min()) - half, float(a.max()) + half
+        a, low, high = _span(a)
     else:
-        low, high = (float(v) for v in limits)
-        if not (-2 * math.pi <= low < high <= 2 * math.pi):
-            raise ValueError(f"limits must be (low, high) radians with low < high; got {limits!r}.")
+        low, high = _checked_limits(limits)
         a = low + np.mod(a - low, 2 * math.pi)     # each beam's angle within the turn from low
-    k = np.floor((a - low) / (high - low) * n_sectors + 1e-9).astype(np.intp)
-    # a beam on the high limit belongs to the last sector; beyond either limit to none
-    k = np.where(np.isclose(a, high), n_sectors - 1, k)
-    k = np.where((a < low - 1e-12) | (a > high + 1e-12) | (k < 0) | (k >= n_sectors), -1, k)
+    k = _sectors_within(a, low, high, n_sectors)
     empty = sorted(set(range(n_sectors)) - set(k.tolist()))
     if empty:
         raise ValueError(f"{len(empty)} of {n_sectors} sectors hold no beam (sectors {empty[:5]}...): "
                          f"{len(a)} beams cannot fill them; use fewer sectors or wider limits.")
     return k
+
+
+def scan_limits(angles, front: float = 0.0) -> tuple[float, float]:
+    """The limits :func:`sector_index` takes by default: the scan's span from the front (rad).
+
+    Examples
+    --------
+    >>> [round(float(np.rad2deg(v)), 1) for v in scan_limits(np.deg2rad([-90, -45, 0, 45, 90]))]
+    [-112.5, 112.5]
+    """
+    _, low, high = _span(np.asarray(angles, dtype=np.float64) - front)
+    return low, high
+
+
+def _span(a: np.ndarray) -> tuple[np.ndarray, float, float]:
+    # the scan kept in one piece, turned by whole turns so that its middle is within half a
+    # turn of the front (a rear laser's beams, 90..270 degrees, cross +-180 and stay together)
+    centre = (float(a.min()) + float(a.max())) / 2
+    a = a + ((centre + math.pi) % (2 * math.pi) - math.pi - centre)
+    half = abs(float(np.median(np.diff(a)))) / 2 if len(a) > 1 else math.pi
+    return a, float(a.min()) - half, float(a.max()) + half
+
+
+def _checked_limits(limits) -> tuple[float, float]:
+    low, high = (float(v) for v in limits)
+    if not (-2 * math.pi <= low < high <= 2 * math.pi):
+        raise ValueError(f"limits must be (low, high) radians with low < high; got {limits!r}.")
+    return low, high
+
+
+def _sectors_within(a: np.ndarray, low: float, high: float, n_sectors: int) -> np.ndarray:
+    """Each angle's sector of [low, high] cut in ``n_sectors`` (-1 beyond either limit)."""
+    k = np.floor((a - low) / (high - low) * n_sectors + 1e-9).astype(np.intp)
+    # a beam on the high limit belongs to the last sector; beyond either limit to none
+    k = np.where(np.isclose(a, high), n_sectors - 1, k)
+    return np.where((a < low - 1e-12) | (a > high + 1e-12) | (k < 0) | (k >= n_sectors), -1, k)
 
 
 def reduce_sectors(ranges, index: np.ndarray, n_sectors: int, reduce="min",
@@ -171,7 +197,7 @@ def _reduce(block: np.ndarray, reduce) -> np.ndarray:
     valid = ~np.isnan(block)
     count = valid.sum(axis=1)
     if reduce == "min":
-        value = np.where(valid, block, np.inf).min(axis=1)
+        value = np.where(valid, block, np.inf).min(axis=1, initial=np.inf)   # a sector may hold no beam
     elif reduce == "mean":
         with np.errstate(invalid="ignore"):
             value = np.where(valid, block, 0.0).sum(axis=1) / np.maximum(count, 1)
