@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import write_atomically
 from ._common import UserError, format_cell
 
 __all__ = ["add_recording_options", "recording_rings", "pose_columns", "RowSink"]
@@ -89,7 +90,13 @@ class RowSink:
     """Rows written as they come: CSV to standard output or a file, each flushed; an .npz at the end.
 
     The columns are the first row's, and the pose columns (x, y, theta) when
-    ``pose`` says poses will come; a row without a pose leaves them empty.
+    ``pose`` says poses will come; a row without a pose (a scan before the
+    pose source's first message) leaves them empty in CSV, NaN in .npz.
+
+    An existing file is never truncated before there is a row to write: a
+    CSV file is opened at the first row, an .npz file written whole (beside
+    the target, then moved into place) when the rows end. :attr:`rows`
+    counts the rows written, for a run that fails midway to say so.
     """
 
     def __init__(self, out: str | None, pose: bool = False):
@@ -97,29 +104,30 @@ class RowSink:
         self.npz = out not in (None, "-") and Path(out).suffix.lower() == ".npz"
         self.columns: dict[str, list] = {}
         self.fh = self.writer = None
+        self.rows = 0
 
     def __enter__(self):
-        if not self.npz:
-            self.fh = sys.stdout if self.out in (None, "-") else open(self.out, "w", newline="", encoding="utf-8")
         return self
 
     def write(self, row: dict) -> None:
+        if self.pose:
+            row = {**row, **{k: row.get(k, math.nan if self.npz else "") for k in ("x", "y", "theta")}}
         if self.npz:
             for key, value in row.items():
                 self.columns.setdefault(key, []).append(value)
-            return
-        if self.writer is None:
-            names = list(row) + [k for k in ("x", "y", "theta") if self.pose and k not in row]
-            self.writer = csv.DictWriter(self.fh, fieldnames=names, restval="", lineterminator="\n")
-            self.writer.writeheader()
-        self.writer.writerow({k: format_cell(v, exact=k == "time") for k, v in row.items()})
-        self.fh.flush()
+        else:
+            if self.writer is None:
+                self.fh = sys.stdout if self.out in (None, "-") else open(self.out, "w", newline="",
+                                                                          encoding="utf-8")
+                self.writer = csv.DictWriter(self.fh, fieldnames=list(row), lineterminator="\n")
+                self.writer.writeheader()
+            self.writer.writerow({k: format_cell(v, exact=k == "time") for k, v in row.items()})
+            self.fh.flush()
+        self.rows += 1
 
     def __exit__(self, *exc_info):
-        if self.npz and exc_info[0] is None:
-            if len({len(v) for v in self.columns.values()}) > 1:
-                raise UserError("Some scans have no pose (before the first on --pose-topic); write CSV.")
-            with open(self.out, "wb") as fh:
-                np.savez(fh, **{k: np.asarray(v) for k, v in self.columns.items()})
+        if self.npz and self.rows:
+            columns = {k: np.asarray(v) for k, v in self.columns.items()}
+            write_atomically(self.out, lambda fh: np.savez(fh, **columns))
         if self.fh is not None and self.fh is not sys.stdout:
             self.fh.close()

@@ -10,7 +10,8 @@ import numpy as np
 from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
-from ._common import UserError, add_command, add_data_options, format_cell, parse_params, read_scans, write_novelty
+from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
+    write_novelty
 from .recording import RowSink, add_recording_options, pose_columns, recording_rings
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
@@ -136,17 +137,24 @@ def _run_recording(det, args, alarm: Alarm | None) -> int:
     if args.passes != 1 or args.bin_length is not None or args.columns or args.preprocess != "none":
         raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
                         "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
-    n = 0
     with RowSink(args.out, pose=args.pose_topic is not None) as sink:
-        for n, (time, x, pose) in enumerate(recording_rings(args), start=1):
-            novelty = det.score_learn_one(x, time if args.stamps else None)
-            row = {"scan": n - 1, "novelty": novelty}
-            if alarm is not None:
-                row["alarm"] = int(alarm.update(novelty))
-            sink.write({**row, "time": time, **pose_columns(pose)})
-    if n == 0:
-        raise UserError(f"No scans in {args.data}.")
-    return n
+        try:
+            for n, (time, x, pose) in enumerate(recording_rings(args)):
+                novelty = det.score_learn_one(x, time if args.stamps else None)
+                row = {"scan": n, "novelty": novelty}
+                if alarm is not None:
+                    row["alarm"] = int(alarm.update(novelty))
+                sink.write({**row, "time": time, **pose_columns(pose)})
+        except (UserError, ValueError, OSError) as exc:
+            if not sink.rows:
+                raise
+            # the rows scored so far are kept: say how many, and where
+            where = "standard output" if args.out in (None, "-") else args.out
+            raise UserError(f"{one_line(exc)} (the first {sink.rows} scans' rows were written to {where} "
+                            "before it)") from None
+    if sink.rows == 0:
+        raise UserError(f"No scans in {args.data}: its messages made no whole scan.")
+    return sink.rows
 
 
 def _run_stream(det, args, alarm: Alarm | None) -> int:

@@ -184,9 +184,17 @@ class _Where:
 
     def count(self, tokens: Sequence[str], at: int, what: str) -> int:
         n = self.numbers(tokens, at, 1, what)[0]
-        if not (n == int(n) and 0 <= n <= MAX_LINE):
+        # a count is a whole number no larger than a line could hold (inf and nan are neither)
+        if not (math.isfinite(n) and n == int(n) and 0 <= n <= MAX_LINE):
             raise self.error(f"{what} is {tokens[at]!r}; expected a count of readings.")
         return int(n)
+
+    def finite(self, values: np.ndarray, names: Sequence[str]) -> np.ndarray:
+        """``values`` if all are finite; else the error naming the first that is not."""
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise self.error(f"{names[bad[0]]} is {values[bad[0]]}; a pose must be finite.")
+        return values
 
 
 # ------------------------------------------------------------------ messages
@@ -196,6 +204,7 @@ def _old_laser(log: CarmenLog, tokens, where: _Where) -> LaserScan:
         raise where.error(f"{n} readings; a scan needs at least 2.")
     ranges = where.numbers(tokens, 2, n, "the ranges")
     tail = where.numbers(tokens, 2 + n, 7, "the poses and the timestamp")
+    where.finite(tail, _POSE_FIELDS + ("ipc_timestamp",))
     facing = math.pi if where.name == "RLASER" else 0.0
     return LaserScan(stamp=float(tail[6]), ranges=ranges, angle_min=facing - log.fov / 2,
                      angle_increment=log.fov / (n - 1), pose=tail[:3], source=where.name)
@@ -208,6 +217,7 @@ def _robot_laser(log: CarmenLog, tokens, where: _Where) -> LaserScan:
     ranges = where.numbers(tokens, 9, n, "the ranges")
     m = where.count(tokens, 9 + n, "the number of remissions")
     tail = where.numbers(tokens, 10 + n + m, 12, "the poses, velocities and timestamp")
+    where.finite(tail[:6], ("laser_x", "laser_y", "laser_theta", "robot_x", "robot_y", "robot_theta"))
     laser_pose, robot_pose = tail[:3], tail[3:6]
     # both poses are in the world frame: the laser's offset, turned into the robot's frame
     dx, dy = laser_pose[0] - robot_pose[0], laser_pose[1] - robot_pose[1]
@@ -220,6 +230,7 @@ def _robot_laser(log: CarmenLog, tokens, where: _Where) -> LaserScan:
 
 def _odometry(log: CarmenLog, tokens, where: _Where) -> Pose:
     values = where.numbers(tokens, 1, 7, "the pose, velocities and timestamp")
+    where.finite(values[[0, 1, 2, 6]], ("x", "y", "theta", "ipc_timestamp"))
     return Pose(stamp=float(values[6]), x=float(values[0]), y=float(values[1]), theta=float(values[2]),
                 source=where.name)
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["LaserScan", "RangeReading", "Pose"]
+__all__ = ["LaserScan", "RangeReading", "Pose", "Transform"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,3 +109,33 @@ class Pose:
     y: float
     theta: float
     source: str = ""
+
+
+@dataclass(frozen=True)
+class Transform:
+    """Where frame ``child`` is in frame ``parent`` at a time: a translation and a rotation (tf's convention).
+
+    A point ``p`` in ``child`` is ``R(rotation) p + translation`` in ``parent``
+    (``geometry_msgs/TransformStamped``: ``header.frame_id`` the parent,
+    ``child_frame_id`` the child).
+
+    Attributes
+    ----------
+    stamp : float
+        Time (s).
+    parent, child : str
+        The frames, without a leading ``/``.
+    translation : tuple of 3 float
+        (m).
+    rotation : tuple of 4 float
+        A unit quaternion (x, y, z, w).
+    static : bool
+        From ``/tf_static``: true at every time.
+    """
+
+    stamp: float
+    parent: str
+    child: str
+    translation: tuple[float, float, float]
+    rotation: tuple[float, float, float, float]
+    static: bool = False

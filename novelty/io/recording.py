@@ -30,10 +30,10 @@ import numpy as np
 from ..data import Dataset
 from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from .messages import Pose, RangeReading
-from .rosbag import is_bag, read_bag, topic_types
+from .rosbag import SCAN_TYPES, Bag, converted, is_bag
 from .sonar_rings import sonar_rings
-from .sweeps import CARMEN_LASERS, CARMEN_SUFFIXES, LASER_TYPES, RingMaker, bag_scan_topics, check_pose_topic, \
-    read_sweeps
+from .sweeps import CARMEN_LASERS, CARMEN_SUFFIXES, RingMaker, _bag_sweeps, bag_scan_topics, holds, \
+    check_pose_topic, read_sweeps
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
 
@@ -81,16 +81,20 @@ def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int =
     """
     make_ring = RingMaker(sectors, reduce, limits, front, clip)
     if is_bag(path):
-        topics = bag_scan_topics(path, topic)
-        kinds = set(topic_types(path, topics))
-        if kinds == {"sensor_msgs/msg/Range"}:
-            check_pose_topic(path, pose_topic)
-            messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame)
-            yield from _sonar(messages, topics, sensors, max_span)
-            return
-        if len(kinds) > 1 or not kinds <= set(LASER_TYPES):
-            raise ValueError(f"The scans' topics must be LaserScan, PointCloud2 or Range topics, all of one "
-                             f"type; {', '.join(topics)} hold {', '.join(sorted(kinds))}.")
+        with Bag(path) as bag:
+            topics = bag_scan_topics(bag, topic)
+            kinds = {bag.types[t] for t in topics}
+            if kinds == {"sensor_msgs/msg/Range"}:
+                check_pose_topic(bag, pose_topic)
+                messages = bag.messages(topics + ([pose_topic] if pose_topic else []), nonempty=topics)
+                yield from _sonar(converted(messages, base_frame, len(topics) > 1), topics, sensors, max_span)
+                return
+            if not kinds <= set(SCAN_TYPES) or "sensor_msgs/msg/Range" in kinds:
+                raise ValueError("The scans' topics must be LaserScan, MultiEchoLaserScan, PointCloud2 or Range "
+                                 f"topics, lasers or sonars; {holds(topics, kinds)}.")
+            for sweep in _bag_sweeps(bag, topics, pose_topic, base_frame):
+                yield Ring(sweep.time, make_ring(sweep), sweep.pose)
+        return
     for sweep in read_sweeps(path, topic, pose_topic=pose_topic, base_frame=base_frame):
         yield Ring(sweep.time, make_ring(sweep), sweep.pose)
 

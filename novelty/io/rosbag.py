@@ -1,13 +1,21 @@
-"""ROS 1 bags and ROS 2 bags (SQLite ``.db3``, MCAP ``.mcap``), read through ``rosbags``.
+"""ROS 1 bags and ROS 2 bags (SQLite ``.db3``, MCAP ``.mcap``): topics, and their messages decoded.
 
-``rosbags`` (pure Python, on the package index) is an optional dependency:
-``pip install 'novelty-habituation[ros]'``. Without it, opening a bag raises
-an ``ImportError`` that says so; the rest of :mod:`novelty.io` works.
+ROS 1 bags are read from the format's documented layout (:mod:`.bag1`), so
+that a chunk is inflated only as far as the messages read need and every
+stated size is checked first; ROS 2 bags through the optional package
+``rosbags`` (pure Python, on the package index:
+``pip install 'novelty-habituation[ros]'``; without it, opening a bag
+raises an ``ImportError`` that says so, and the rest of :mod:`novelty.io`
+works). Every message is decoded from its bytes by :mod:`.decoders`, its
+sizes checked against :mod:`.caps` first: an error names the file, the
+topic, the message's number on it and the field.
 
 Messages read, by type (ROS 1 and ROS 2 names alike), into the types of
 :mod:`novelty.io.messages`:
 
-- ``sensor_msgs/LaserScan`` -> :class:`~novelty.io.messages.LaserScan`;
+- ``sensor_msgs/LaserScan`` and ``sensor_msgs/MultiEchoLaserScan`` (one echo
+  a beam: ``echo="first"``, ``"last"`` or ``"strongest"``) ->
+  :class:`~novelty.io.messages.LaserScan`;
 - ``sensor_msgs/Range`` -> :class:`~novelty.io.messages.RangeReading`, its
   sensor the message's frame (one topic for all sonars), or its topic when
   several topics are read (one topic a sonar) or the frame is empty;
@@ -17,9 +25,11 @@ Messages read, by type (ROS 1 and ROS 2 names alike), into the types of
 - ``nav_msgs/Odometry``, ``geometry_msgs/PoseStamped`` and
   ``geometry_msgs/PoseWithCovarianceStamped`` -> :class:`~novelty.io.messages.Pose`
   (the heading is the yaw of the orientation quaternion);
-- ``tf2_msgs/TFMessage`` and ``tf/tfMessage`` (``/tf``) -> :class:`~novelty.io.messages.Pose`, one
-  for each transform whose child is the robot's ``base_frame`` (its pose in
-  the parent frame, odom or map, as that one transform says: no chains).
+- ``tf2_msgs/TFMessage`` and ``tf/tfMessage`` (``/tf``, ``/tf_static``):
+  :func:`read_bag` gives a :class:`~novelty.io.messages.Pose` for each
+  transform whose child is the robot's ``base_frame`` (as that one transform
+  says); :func:`bag_messages` gives the transforms themselves, for a tree
+  (:mod:`novelty.io.tf`).
 
 A message's time is its header's stamp (s); a zero stamp (a driver that
 leaves it unset) takes the time the bag recorded the message. Messages come
@@ -28,35 +38,41 @@ it is asked for.
 
 References
 ----------
-ROS message definitions ``sensor_msgs/LaserScan``, ``sensor_msgs/Range``,
-``nav_msgs/Odometry``, ``geometry_msgs/PoseStamped``; the bag formats as
-``rosbags`` reads them (https://gitlab.com/ternaris/rosbags).
+ROS message definitions ``sensor_msgs/LaserScan``, ``sensor_msgs/MultiEchoLaserScan``,
+``sensor_msgs/Range``, ``sensor_msgs/PointCloud2``, ``nav_msgs/Odometry``,
+``geometry_msgs/PoseStamped``, ``tf2_msgs/TFMessage``; the ROS 1 bag format
+2.0 (ROS wiki, "Bags/Format/2.0"); the ROS 2 bag formats as ``rosbags``
+reads them (https://gitlab.com/ternaris/rosbags).
 """
 
 from __future__ import annotations
 
-import math
+from dataclasses import replace
 from pathlib import Path
 from typing import Iterator, Sequence
 
-import numpy as np
-
-from .messages import LaserScan, Pose, RangeReading
+from .bag1 import Bag1, BagFormatError
+from .caps import MessageError, Where
+from .decoders import decode, largest, peek
+from .messages import LaserScan, Pose, RangeReading, Transform
+from .quaternions import yaw
 from .scans import cloud_scan
 
-__all__ = ["BagError", "bag_topics", "topic_types", "read_bag", "SUPPORTED_TYPES", "SCAN_TYPES", "POSE_TYPES", "BAG_SUFFIXES", "is_bag"]
+__all__ = ["BagError", "Bag", "bag_topics", "topic_types", "topic_counts", "read_bag", "bag_messages", "converted",
+           "SUPPORTED_TYPES",
+           "SCAN_TYPES", "POSE_TYPES", "TF_TYPES", "BAG_SUFFIXES", "is_bag"]
 
 #: Message types read, by their ``rosbags`` names (``package/msg/Type``).
 SUPPORTED_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/Range", "sensor_msgs/msg/PointCloud2",
-                   "nav_msgs/msg/Odometry",
+                   "sensor_msgs/msg/MultiEchoLaserScan", "nav_msgs/msg/Odometry",
                    "geometry_msgs/msg/PoseStamped", "geometry_msgs/msg/PoseWithCovarianceStamped",
                    "tf2_msgs/msg/TFMessage", "tf/msg/tfMessage")
 #: The transforms' types (tf2's, and the older tf's of ROS 1 bags).
 TF_TYPES = SUPPORTED_TYPES[-2:]
 #: The types read as scans.
-SCAN_TYPES = SUPPORTED_TYPES[:3]
+SCAN_TYPES = SUPPORTED_TYPES[:4]
 #: The types read as poses.
-POSE_TYPES = SUPPORTED_TYPES[3:]
+POSE_TYPES = SUPPORTED_TYPES[4:]
 #: File names taken for bags: a ROS 1 bag, ROS 2 storage files (a ROS 2 bag folder too).
 BAG_SUFFIXES = (".bag", ".db3", ".mcap")
 
@@ -83,33 +99,153 @@ def _rosbags():
     return AnyReader, Stores, get_typestore
 
 
-def _open(path):
-    AnyReader, Stores, get_typestore = _rosbags()
-    path = Path(path)
-    if not path.exists():
-        raise FileNotFoundError(f"No such bag: {path}")
-    if not is_bag(path):
-        raise BagError(f"{path} is not a bag: expected a ROS 1 .bag, a ROS 2 .db3 or .mcap file, or a "
-                       "ROS 2 bag folder (with metadata.yaml).")
-    try:
-        # ROS 2 bags written without their message definitions are read with the latest ROS 2 types
-        reader = AnyReader([path], default_typestore=get_typestore(Stores.LATEST))
-        reader.open()
-    except Exception as exc:   # rosbags and sqlite raise many kinds for a damaged file
-        raise BagError(f"{path} is not a readable bag ({type(exc).__name__}: {exc}).") from None
-    return reader
+class Bag:
+    """An open bag of either kind: its topics with their types and counts; :meth:`messages` reads them.
+
+    Attributes
+    ----------
+    types : dict of str to str
+        Every topic's message type.
+    counts : dict of str to int
+        Every topic's number of messages.
+    """
+
+    def __init__(self, path):
+        AnyReader, Stores, get_typestore = _rosbags()
+        self.path = Path(path)
+        if not self.path.exists():
+            raise FileNotFoundError(f"No such bag: {self.path}")
+        if not is_bag(self.path):
+            raise BagError(f"{self.path} is not a bag: expected a ROS 1 .bag, a ROS 2 .db3 or .mcap file, or a "
+                           "ROS 2 bag folder (with metadata.yaml).")
+        self.ros1 = self.path.suffix == ".bag"
+        try:
+            if self.ros1:
+                self.reader = Bag1(self.path)
+                self.types = self.reader.topics
+                self.counts = {t: self.reader.count(t) for t in self.types}
+            else:
+                # ROS 2 bags written without their message definitions are read with the latest ROS 2 types
+                self.reader = AnyReader([self.path], default_typestore=get_typestore(Stores.LATEST))
+                self.reader.open()
+                topics = self.reader.topics
+                self.types = {t: info.msgtype for t, info in sorted(topics.items())}
+                self.counts = {t: info.msgcount for t, info in topics.items()}
+        except BagFormatError as exc:
+            raise BagError(str(exc)) from None
+        except Exception as exc:   # rosbags and sqlite raise many kinds for a damaged file
+            raise BagError(f"{self.path} is not a readable bag ({type(exc).__name__}: {exc}).") from None
+
+    def close(self) -> None:
+        self.reader.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.close()
+
+    def check(self, topics: Sequence[str]) -> None:
+        """Refuse (:class:`BagError`) a topic the bag does not hold, or of a type not read here."""
+        listing = ", ".join(f"{t} ({self.types[t]})" for t in sorted(self.types)) or "none"
+        for topic in topics:
+            if topic not in self.types:
+                raise BagError(f"{self.path} has no topic {topic!r}; its topics: {listing}.")
+            if self.types[topic] not in SUPPORTED_TYPES:
+                raise BagError(f"Topic {topic} holds {self.types[topic]}, not read here; supported: "
+                               f"{', '.join(SUPPORTED_TYPES)}.")
+
+    def messages(self, topics: str | Sequence[str], *, nonempty: Sequence[str] = (), **options) -> Iterator[
+            tuple[str, Where, LaserScan | RangeReading | Pose | list[Transform] | tuple]]:
+        """``(topic, where, message)`` of each message of ``topics`` in the bag's order, decoded.
+
+        A ``LaserScan`` or ``MultiEchoLaserScan`` is a :class:`LaserScan`, a
+        point cloud ``(stamp, frame, points)``, a ``tf`` message a list of
+        :class:`Transform` (``static`` on ``/tf_static``). ``options`` reach
+        the decoders (``echo=`` for a ``MultiEchoLaserScan``). A topic of
+        ``nonempty`` that holds no message is refused before anything is read.
+        """
+        topics = [topics] if isinstance(topics, str) else list(topics)
+        if not topics:
+            raise ValueError("Name at least one topic.")
+        self.check(topics)
+        for topic in nonempty:
+            if self.counts.get(topic, 0) == 0:
+                raise BagError(f"{self.path}: topic {topic} holds no messages.")
+        static = {t: t.rstrip("/").endswith("tf_static") for t in topics}
+        for topic, msgtype, record_time, where, data in self._raw(topics):
+            msg = decode(msgtype, data, self.ros1, where, topic, static=static[topic], **options)
+            yield topic, where, _restamped(msg, msgtype, record_time)
+
+    def _raw(self, topics: Sequence[str]) -> Iterator[tuple[str, str, int, Where, bytes]]:
+        """``(topic, type, record time (ns), where, data)`` of each message, its length checked."""
+        limits = {t: (largest(self.types[t]), self._explainer(self.types[t])) for t in topics}
+        if self.ros1:
+            for connection, time, number, data in self.reader.messages(topics, limits):
+                yield connection.topic, connection.msgtype, time, Where(self.path, connection.topic, number), data
+            return
+        numbers = dict.fromkeys(topics, 0)
+        connections = [c for c in self.reader.connections if c.topic in topics]
+        try:
+            for connection, time, data in self.reader.messages(connections=connections):
+                numbers[connection.topic] += 1
+                where = Where(self.path, connection.topic, numbers[connection.topic])
+                cap, explain = limits[connection.topic]
+                if len(data) > cap:
+                    explain(bytes(data[:4 * 4096]), where)
+                    raise where.error("length", f"{len(data):,} bytes; at most {cap:,} are read for its type "
+                                      "(novelty.io.caps).")
+                yield connection.topic, connection.msgtype, time, where, data
+        except (MessageError, GeneratorExit):
+            raise
+        except Exception as exc:   # a damaged storage file, met while reading
+            raise BagError(f"{self.path}: cannot be read past a message on {', '.join(topics)} "
+                           f"({type(exc).__name__}: {exc}).") from None
+
+    def _explainer(self, msgtype: str):
+        return lambda prefix, where: peek(msgtype, prefix, self.ros1, where)
 
 
 def bag_topics(path) -> dict[str, str]:
     """Every topic of the bag with its message type (``package/msg/Type``)."""
-    reader = _open(path)
-    try:
-        return {topic: info.msgtype for topic, info in sorted(reader.topics.items())}
-    finally:
-        reader.close()
+    with Bag(path) as bag:
+        return bag.types
 
 
-def read_bag(path, topics: str | Sequence[str], base_frame: str = "base_link") -> Iterator[
+def topic_types(path, topics: Sequence[str]) -> list[str]:
+    """The message type of each of ``topics``; a :class:`BagError` for one missing or not read here."""
+    with Bag(path) as bag:
+        bag.check(topics)
+        return [bag.types[t] for t in topics]
+
+
+def topic_counts(path) -> dict[str, int]:
+    """How many messages each topic of the bag holds."""
+    with Bag(path) as bag:
+        return dict(bag.counts)
+
+
+def bag_messages(path, topics: str | Sequence[str], **options) -> Iterator[tuple[str, Where, object]]:
+    """``(topic, where, message)`` of each message of ``topics`` in the bag's order (:meth:`Bag.messages`)."""
+    with Bag(path) as bag:
+        yield from bag.messages(topics, **options)
+
+
+def _restamped(msg, msgtype: str, record_time: int):
+    """A zero header stamp (a driver that leaves it unset) takes the bag's record time."""
+    if msgtype in TF_TYPES:
+        return [t if t.stamp > 0 else _with_stamp(t, record_time) for t in msg]
+    if msgtype == "sensor_msgs/msg/PointCloud2":
+        stamp, frame, points = msg
+        return (stamp if stamp > 0 else record_time * 1e-9), frame, points
+    return msg if msg.stamp > 0 else _with_stamp(msg, record_time)
+
+
+def _with_stamp(msg, record_time: int):
+    return replace(msg, stamp=record_time * 1e-9)
+
+
+def read_bag(path, topics: str | Sequence[str], base_frame: str = "base_link", **options) -> Iterator[
         LaserScan | RangeReading | Pose]:
     """The messages of ``topics``, in the bag's order, converted (see the module docstring).
 
@@ -121,99 +257,23 @@ def read_bag(path, topics: str | Sequence[str], base_frame: str = "base_link") -
     read here, listing those that are.
     """
     topics = [topics] if isinstance(topics, str) else list(topics)
-    if not topics:
-        raise ValueError("Name at least one topic.")
-    reader = _open(path)
-    try:
-        connections = _connections(reader, path, topics)
+    with Bag(path) as bag:
         # several Range topics: one a sonar, named by its topic; one: the sonars told apart by frame
-        by_topic = len({c.topic for c in connections if c.msgtype == "sensor_msgs/msg/Range"}) > 1
-        for connection, record_time, raw in reader.messages(connections=connections):
-            try:
-                msg = reader.deserialize(raw, connection.msgtype)
-            except Exception as exc:
-                raise BagError(f"{path}: a message on {connection.topic} cannot be decoded "
-                               f"({type(exc).__name__}: {exc}).") from None
-            if connection.msgtype in TF_TYPES:
-                yield from _tf_poses(msg, connection.topic, record_time, base_frame.strip("/"))
-            else:
-                yield _convert(msg, connection.msgtype, connection.topic, record_time, by_topic)
-    finally:
-        reader.close()
+        by_topic = sum(bag.types.get(t) == "sensor_msgs/msg/Range" for t in topics) > 1
+        yield from converted(bag.messages(topics, **options), base_frame, by_topic)
 
 
-def _connections(reader, path, topics: Sequence[str]) -> list:
-    _check_topics(path, {topic: info.msgtype for topic, info in reader.topics.items()}, topics)
-    return [c for c in reader.connections if c.topic in topics]
-
-
-def topic_types(path, topics: Sequence[str]) -> list[str]:
-    """The message type of each of ``topics``; a :class:`BagError` for one missing or not read here."""
-    available = bag_topics(path)
-    _check_topics(path, available, topics)
-    return [available[t] for t in topics]
-
-
-def _check_topics(path, available: dict, topics: Sequence[str]) -> None:
-    listing = ", ".join(f"{t} ({available[t]})" for t in sorted(available)) or "none"
-    for topic in topics:
-        if topic not in available:
-            raise BagError(f"{path} has no topic {topic!r}; its topics: {listing}.")
-        if available[topic] not in SUPPORTED_TYPES:
-            raise BagError(f"Topic {topic} holds {available[topic]}, not read here; supported: "
-                           f"{', '.join(SUPPORTED_TYPES)}.")
-
-
-# ------------------------------------------------------------------ conversion
-def _stamp(header, record_time: int) -> float:
-    stamp = header.stamp.sec + header.stamp.nanosec * 1e-9
-    return stamp if stamp > 0 else record_time * 1e-9
-
-
-def _yaw(q) -> float:
-    """The heading of a quaternion: its rotation about z (ZYX Euler angles' yaw)."""
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
-#: PointField datatypes (sensor_msgs/PointField) as numpy's
-_POINT_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
-
-
-def _cloud_points(msg, topic: str) -> np.ndarray:
-    """The (x, y, z) of every point of a PointCloud2, whatever its layout."""
-    fields = {f.name: f for f in msg.fields}
-    if not {"x", "y", "z"} <= set(fields):
-        raise BagError(f"The point clouds on {topic} have fields {sorted(fields)}; x, y and z are needed.")
-    order = ">" if msg.is_bigendian else "<"
-    dtype = np.dtype({"names": ["x", "y", "z"],
-                      "formats": [order + _POINT_TYPES[fields[k].datatype] for k in "xyz"],
-                      "offsets": [fields[k].offset for k in "xyz"], "itemsize": msg.point_step})
-    data = np.asarray(msg.data, dtype=np.uint8).reshape(msg.height, msg.row_step)
-    rows = data[:, :msg.width * msg.point_step].copy()   # a row may be padded beyond its points
-    points = rows.view(dtype).reshape(-1)
-    return np.column_stack([points[k].astype(np.float64) for k in "xyz"])
-
-
-def _tf_poses(msg, topic: str, record_time: int, base_frame: str) -> Iterator[Pose]:
-    """The transforms of ``base_frame`` from its parent (odom, map) as poses; the others are passed over."""
-    for t in msg.transforms:
-        if t.child_frame_id.strip("/") == base_frame:
-            yield Pose(_stamp(t.header, record_time), float(t.transform.translation.x),
-                       float(t.transform.translation.y), _yaw(t.transform.rotation), topic)
-
-
-def _convert(msg, msgtype: str, topic: str, record_time: int, by_topic: bool):
-    stamp = _stamp(msg.header, record_time)
-    if msgtype == "sensor_msgs/msg/LaserScan":
-        return LaserScan(stamp, np.asarray(msg.ranges, dtype=np.float64), float(msg.angle_min),
-                         float(msg.angle_increment), float(msg.range_min), float(msg.range_max),
-                         source=topic)
-    if msgtype == "sensor_msgs/msg/PointCloud2":
-        return cloud_scan(_cloud_points(msg, topic), stamp, source=topic)
-    if msgtype == "sensor_msgs/msg/Range":
-        sensor = topic if by_topic or not msg.header.frame_id else msg.header.frame_id
-        return RangeReading(stamp, float(msg.range), sensor, float(msg.min_range), float(msg.max_range),
-                            float(msg.field_of_view))
-    pose = msg.pose.pose if msgtype in ("nav_msgs/msg/Odometry",
-                                        "geometry_msgs/msg/PoseWithCovarianceStamped") else msg.pose
-    return Pose(stamp, float(pose.position.x), float(pose.position.y), _yaw(pose.orientation), topic)
+def converted(messages, base_frame: str = "base_link", by_topic: bool = False) -> Iterator[
+        LaserScan | RangeReading | Pose]:
+    """:meth:`Bag.messages` as :func:`read_bag` gives them (``by_topic``: a ``Range`` reading's sensor is its topic)."""
+    for topic, _, msg in messages:
+        if isinstance(msg, list):
+            yield from (Pose(t.stamp, t.translation[0], t.translation[1], yaw(t.rotation), topic)
+                        for t in msg if t.child == base_frame.strip("/"))
+        elif isinstance(msg, tuple):
+            stamp, _, points = msg
+            yield cloud_scan(points, stamp, source=topic)
+        elif isinstance(msg, RangeReading):
+            yield replace(msg, sensor=topic) if by_topic or not msg.sensor else msg
+        else:
+            yield msg

@@ -103,4 +103,5 @@ def _discover_sensors(it) -> tuple[list[str], list[RangeReading]]:
 
 
 def _natural(name: str):
-    return [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", name)]
+    # decimal digits only: int() refuses the other "digits" \d and str.isdigit() take (superscripts)
+    return [(0, int(part), "") if part.isdecimal() else (1, 0, part) for part in re.split(r"(\d+)", name)]

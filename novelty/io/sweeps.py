@@ -43,9 +43,9 @@ import numpy as np
 
 from .carmen import CarmenLog
 from .messages import LaserScan, Pose
-from .rosbag import POSE_TYPES, SCAN_TYPES, bag_topics, is_bag, read_bag, topic_types
-from .scans import _check_reduce, _checked_limits, _sectors_within, clean_ranges, reduce_sectors, scan_limits, \
-    sector_index
+from .rosbag import POSE_TYPES, SCAN_TYPES, Bag, converted, is_bag
+from .scans import _check_reduce, _checked_limits, _sectors_within, clean_ranges, reduce_sectors, \
+    scan_limits, sector_index
 
 __all__ = ["Sweep", "read_sweeps", "sweep_ring", "RingMaker", "scan_sweep", "CARMEN_SUFFIXES", "CARMEN_LASERS",
            "LASER_TYPES"]
@@ -55,7 +55,7 @@ CARMEN_SUFFIXES = (".log", ".log.gz", ".clf", ".clf.gz", ".carmen", ".carmen.gz"
 #: The CARMEN messages that are laser scans.
 CARMEN_LASERS = ("FLASER", "RLASER", "ROBOTLASER1")
 #: The bag message types read as sweeps.
-LASER_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/PointCloud2")
+LASER_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/MultiEchoLaserScan", "sensor_msgs/msg/PointCloud2")
 
 
 @dataclass(frozen=True, eq=False)
@@ -119,14 +119,9 @@ def read_sweeps(path, topic: str | Sequence[str] | None = None, *, pose_topic: s
         The field of view (rad) of CARMEN's ``FLASER``/``RLASER``, which do not state it.
     """
     if is_bag(path):
-        topics = bag_scan_topics(path, topic)
-        kinds = set(topic_types(path, topics))
-        if not kinds <= set(LASER_TYPES):
-            raise ValueError(f"Sweeps are read from LaserScan or PointCloud2 topics; {', '.join(topics)} hold "
-                             f"{', '.join(sorted(kinds))}.")
-        check_pose_topic(path, pose_topic)
-        messages = read_bag(path, topics + ([pose_topic] if pose_topic else []), base_frame or "base_link")
-        yield from _sweeps(messages, use_own_pose=False)
+        with Bag(path) as bag:
+            topics = bag_scan_topics(bag, topic)
+            yield from _bag_sweeps(bag, topics, pose_topic, base_frame or "base_link")
         return
     if not Path(path).name.lower().endswith(CARMEN_SUFFIXES):
         raise ValueError(f"{path} is neither a CARMEN log ({', '.join(CARMEN_SUFFIXES)}) nor a bag "
@@ -134,21 +129,42 @@ def read_sweeps(path, topic: str | Sequence[str] | None = None, *, pose_topic: s
     yield from _carmen(path, topic or "FLASER", pose_topic, fov)
 
 
-def bag_scan_topics(path, topic) -> list[str]:
-    """The scans' topics: those named, or the bag's only ``LaserScan``, ``PointCloud2`` or ``Range`` topic."""
+def bag_scan_topics(bag: Bag, topic) -> list[str]:
+    """The scans' topics: those named, or the bag's only scan topic (``LaserScan``, ``PointCloud2``, ``Range``)."""
     if topic is not None:
-        return [topic] if isinstance(topic, str) else list(topic)
-    scans = [t for t, kind in bag_topics(path).items() if kind in SCAN_TYPES]
+        topics = [topic] if isinstance(topic, str) else list(topic)
+        bag.check(topics)
+        return topics
+    scans = [t for t, kind in bag.types.items() if kind in SCAN_TYPES]
     if len(scans) != 1:
-        listing = ", ".join(f"{t} ({k})" for t, k in bag_topics(path).items()) or "none"
-        raise ValueError(f"Name the scans' topic of {path} (topic=, --topic); its topics: {listing}.")
+        listing = ", ".join(f"{t} ({k})" for t, k in bag.types.items()) or "none"
+        raise ValueError(f"Name the scans' topic of {bag.path} (topic=, --topic); its topics: {listing}.")
     return scans
 
 
-def check_pose_topic(path, pose_topic: str | None) -> None:
+def check_pose_topic(bag: Bag, pose_topic: str | None) -> None:
     """Refuse a pose topic that does not hold poses."""
-    if pose_topic is not None and topic_types(path, [pose_topic])[0] not in POSE_TYPES:
-        raise ValueError(f"pose_topic {pose_topic} must hold poses: one of {', '.join(POSE_TYPES)}.")
+    if pose_topic is None:
+        return
+    bag.check([pose_topic])
+    if bag.types[pose_topic] not in POSE_TYPES:
+        raise ValueError(f"pose_topic {pose_topic} must hold poses (one of {', '.join(POSE_TYPES)}); it "
+                         f"holds {bag.types[pose_topic]}.")
+
+
+def _bag_sweeps(bag: Bag, topics: list[str], pose_topic: str | None, base_frame: str) -> Iterator[Sweep]:
+    kinds = {bag.types[t] for t in topics}
+    if not kinds <= set(LASER_TYPES):
+        raise ValueError(f"Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 topics; "
+                         f"{holds(topics, kinds)}.")
+    check_pose_topic(bag, pose_topic)
+    messages = bag.messages(topics + ([pose_topic] if pose_topic else []), nonempty=topics)
+    yield from _sweeps(converted(messages, base_frame), use_own_pose=False)
+
+
+def holds(topics, kinds) -> str:
+    """``/a holds T`` or ``/a, /b hold T, U``."""
+    return f"{', '.join(topics)} {'holds' if len(topics) == 1 else 'hold'} {', '.join(sorted(kinds))}"
 
 
 def _carmen(path, topic: str, pose_topic: str | None, fov: float) -> Iterator[Sweep]:
@@ -234,30 +250,61 @@ class RingMaker:
         _check_reduce(reduce)
         self.n_sectors, self.reduce, self.front, self.clip = n_sectors, reduce, float(front), clip
         self.limits = None if limits is None else _checked_limits(limits)
-        self._known: list[tuple[np.ndarray, np.ndarray, tuple[float, float]]] = []
+        self._known: list[_Sectors] = []
 
     def __call__(self, sweep: Sweep) -> np.ndarray:
-        angles, index, limits = self._geometry(sweep.angles)
-        origins = np.asarray(sweep.origins, dtype=np.float64)
-        if not origins.any():
-            return reduce_sectors(sweep.ranges, index, self.n_sectors, self.reduce, self.clip)
-        bearings, ranges = _seen_from_centre(origins, angles, np.asarray(sweep.ranges, dtype=np.float64))
-        low, high = limits
-        a = low + np.mod(bearings - self.front - low, 2 * math.pi)
-        return reduce_sectors(ranges, _sectors_within(a, low, high, self.n_sectors), self.n_sectors,
-                              self.reduce, self.clip)
+        geometry = self._geometry(sweep.angles)
+        origins = sweep.origins
+        if origins is geometry.origins or not np.any(origins):
+            if not getattr(origins, "flags", origins).writeable:   # a reader's shared, read-only origins:
+                geometry.origins = origins                           # the next sweep's need no test
+            if self.reduce == "min":
+                return geometry.nearest(sweep.ranges, self.clip)
+            return reduce_sectors(sweep.ranges, geometry.index, self.n_sectors, self.reduce, self.clip)
+        bearings, ranges = _seen_from_centre(np.asarray(origins, dtype=np.float64), geometry.angles,
+                                             np.asarray(sweep.ranges, dtype=np.float64))
+        low, high = geometry.limits
+        index = _sectors_within(low + np.mod(bearings - self.front - low, 2 * math.pi), low, high, self.n_sectors)
+        if self.reduce == "min":
+            inside = index >= 0
+            ring = np.full(self.n_sectors, np.inf)
+            np.fmin.at(ring, index[inside], ranges[inside] if self.clip is None else np.minimum(ranges[inside],
+                                                                                                 self.clip))
+            return ring
+        return reduce_sectors(ranges, index, self.n_sectors, self.reduce, self.clip)
 
-    def _geometry(self, angles) -> tuple[np.ndarray, np.ndarray, tuple[float, float]]:
-        """The beams' sectors by direction and the limits in use, for ``angles`` (cached)."""
+    def _geometry(self, angles) -> _Sectors:
+        """The sectors of ``angles`` by direction (cached)."""
         for known in self._known:
-            if known[0] is angles or (known[0].shape == np.shape(angles) and np.array_equal(known[0], angles)):
+            if known.angles is angles or (known.angles.shape == np.shape(angles)
+                                          and np.array_equal(known.angles, angles)):
                 return known
-        angles = np.asarray(angles, dtype=np.float64)
+        sectors = _Sectors(np.asarray(angles, dtype=np.float64), self.n_sectors, self.limits, self.front)
+        self._known = [sectors] + self._known[:3]   # a few sensors' geometries
+        return sectors
+
+
+class _Sectors:
+    """A geometry's beams by sector: their index, and their order for reducing a sector at a time."""
+
+    def __init__(self, angles: np.ndarray, n_sectors: int, limits, front: float):
+        self.angles, self.origins = angles, None
         # raises where the beams cannot fill the sectors
-        index = sector_index(angles, self.n_sectors, self.limits, self.front)
-        limits = self.limits if self.limits is not None else scan_limits(angles, self.front)
-        self._known = [(angles, index, limits)] + self._known[:3]   # a few sensors' geometries
-        return self._known[0]
+        self.index = sector_index(angles, n_sectors, limits, front)
+        self.limits = limits if limits is not None else scan_limits(angles, front)
+        inside = np.flatnonzero(self.index >= 0)
+        self.order = inside[np.argsort(self.index[inside], kind="stable")]
+        if np.array_equal(self.order, np.arange(len(angles))):
+            self.order = None   # the beams are in sector order already (a single scan): no gathering
+        self.starts = np.searchsorted(self.index[inside][np.argsort(self.index[inside], kind="stable")],
+                                      np.arange(n_sectors))
+
+    def nearest(self, ranges: np.ndarray, clip: float | None) -> np.ndarray:
+        """Each sector's nearest valid range (``+inf`` where none): ``reduce_sectors(..., "min")``'s values."""
+        r = ranges if self.order is None else ranges[self.order]
+        ring = np.fmin.reduceat(r, self.starts)   # fmin passes NaN (no information) over
+        ring[np.isnan(ring)] = np.inf
+        return ring if clip is None else np.minimum(ring, clip)
 
 
 def _seen_from_centre(origins: np.ndarray, angles: np.ndarray, ranges: np.ndarray):

@@ -141,8 +141,19 @@ def place_features(poses, cell: float) -> list[tuple[str, ...]]:
     """
     if not cell > 0:
         raise ValueError(f"cell must be a positive length (m); got {cell!r}.")
-    p = np.floor(np.asarray(poses, dtype=np.float64)[:, :2] / cell).astype(np.int64)
+    p = np.floor(_positions(poses) / cell).astype(np.int64)
     return [(f"{_PLACE}{i},{j}",) for i, j in p.tolist()]
+
+
+def _positions(poses) -> np.ndarray:
+    """The (x, y) of every pose; a non-finite one is refused (it has no place on a grid or a path)."""
+    p = np.asarray(poses, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] < 2:
+        raise ValueError(f"poses must be rows of (x, y) or (x, y, theta); got shape {p.shape}.")
+    bad = np.flatnonzero(~np.all(np.isfinite(p[:, :2]), axis=1))
+    if bad.size:
+        raise ValueError(f"pose {bad[0]} is {p[bad[0]].tolist()}; positions must be finite.")
+    return p[:, :2]
 
 
 def split_runs(time, *, gap: float | None = None, intervals=None) -> np.ndarray:
@@ -190,7 +201,7 @@ def visit_counts(poses, radius: float, leave: float | None = None) -> np.ndarray
     >>> visit_counts(np.c_[x, np.zeros(6)], radius=1.5).tolist()
     [0, 0, 0, 1, 1, 1]
     """
-    p = np.asarray(poses, dtype=np.float64)[:, :2]
+    p = _positions(poses)
     if not radius > 0:
         raise ValueError(f"radius must be positive (m); got {radius!r}.")
     leave = 2 * radius if leave is None else leave

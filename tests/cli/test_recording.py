@@ -65,7 +65,8 @@ def test_a_bag_refuses_a_wrong_topic_naming_what_exists(bag, capsys):
     err = capsys.readouterr().err
     assert "no topic '/laser'; its topics: /cloud (sensor_msgs/msg/PointCloud2), /odom (nav_msgs" in err
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/odom"]) == 2
-    assert "must be LaserScan, PointCloud2 or Range topics" in capsys.readouterr().err
+    assert ("must be LaserScan, MultiEchoLaserScan, PointCloud2 or Range topics, lasers or sonars; /odom holds "
+            "nav_msgs/msg/Odometry") in capsys.readouterr().err
 
 
 def test_a_file_that_is_not_a_bag(tmp_path, capsys):
@@ -136,3 +137,60 @@ def test_bench_runs_an_exploration_task_from_recordings(tmp_path, monkeypatch):
     assert (row["status"], row["n_runs"], row["warmup_runs"], row["n_first"]) == ("ok", "3", "1", "9")
     # the box's scans are the only novel ones to a map that learned the empty corridor
     assert float(row["first_encounter_auc"]) == 1.0
+
+
+def _empty_topic_bag(path):
+    """A ROS 1 bag whose /scan holds no message (its odometry does)."""
+    from rosbags.rosbag1 import Writer
+
+    from ..io.bags import _messages, store
+
+    ts = store("ros1")
+    with Writer(path) as writer:
+        writer.add_connection("/scan", "sensor_msgs/msg/LaserScan", typestore=ts)
+        odom = writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=ts)
+        for t, topic, msgtype, msg in _messages(ts):
+            if topic == "/odom":
+                writer.write(odom, int(t * 1e9), ts.serialize_ros1(msg, msgtype))
+    return path
+
+
+def test_a_failed_run_leaves_an_existing_out_byte_identical(bag, tmp_path, capsys):
+    from ..io.craft import Zeros, laser_prefix, ros1_bag
+
+    out = tmp_path / "good.csv"
+    out.write_bytes(b"scan,novelty\n0,0.5\n")
+    (tmp_path / "notes.log").write_text("x,y\n1,2\n")
+    hostile = ros1_bag(tmp_path / "hostile.bag", [(10**9, [laser_prefix(50_000_000), Zeros(200_000_004)])],
+                       compression="bz2")
+    for argv, says in [
+        (["--data", str(bag), "--topic", "/sacn"], "no topic '/sacn'"),
+        (["--data", str(bag), "--topic", "/scan", "--pose-topic", "/sonar"],
+         "pose_topic /sonar must hold poses (one of nav_msgs/msg/Odometry"),
+        (["--data", str(tmp_path / "notes.log")], "line 1: not a CARMEN log"),
+        (["--data", str(_empty_topic_bag(tmp_path / "empty.bag")), "--topic", "/scan"], "topic /scan holds no messages"),
+        (["--data", str(hostile)], "topic /scan, message 1 (ranges): states 50,000,000 beams"),
+    ]:
+        for target in (out, out.with_suffix(".npz")):
+            if target.suffix == ".npz":
+                target.write_bytes(b"PK an earlier result")
+            before = target.read_bytes()
+            assert main(["run", "hsom", *argv, "--out", str(target)]) == 2
+            assert says in capsys.readouterr().err
+            assert target.read_bytes() == before
+
+
+def test_a_run_failing_midway_keeps_its_rows_and_says_how_many(tmp_path, capsys):
+    path = tmp_path / "run.log"
+    scan = "FLASER 4 1.0 2.0 3.0 4.0 0.5 0.25 0.125 0.5 0.25 0.1 {t} host {t}\n"
+    path.write_text(scan.format(t=1.0) + scan.format(t=2.0) + "FLASER 4 1.0 oops 3.0 4.0 0 0 0 0 0 0 3.0 h 3.0\n")
+    for out in (tmp_path / "novelty.csv", tmp_path / "novelty.npz"):
+        assert main(["run", "hsom", "--data", str(path), "--sectors", "2", "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert "line 3 (FLASER): the ranges: 'oops' is not a number" in err
+        assert f"(the first 2 scans' rows were written to {out} before it)" in err
+        if out.suffix == ".csv":
+            assert [r["time"] for r in table(out.read_text())] == ["1.0", "2.0"]
+        else:
+            with np.load(out) as saved:
+                assert saved["time"].tolist() == [1.0, 2.0]

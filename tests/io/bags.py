@@ -109,21 +109,29 @@ def write_sonar_topics(path):
     return path
 
 
+def store(kind: str):
+    """rosbags' message types for a ``ros1`` bag (with tf2_msgs) or a ROS 2 one."""
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    if kind != "ros1":
+        return get_typestore(Stores.ROS2_HUMBLE)
+    ts = get_typestore(Stores.ROS1_NOETIC)
+    # ROS 1's own store lacks tf2_msgs: its one message, from its definition
+    ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
+    return ts
+
+
 def write_bag(folder, kind: str):
     """Write the test bag of ``kind`` ("ros1", "sqlite3", "mcap") under ``folder``; its path."""
     from rosbags.rosbag1 import Writer as Writer1
     from rosbags.rosbag2 import StoragePlugin
     from rosbags.rosbag2 import Writer as Writer2
-    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
+    ts = store(kind)
     if kind == "ros1":
-        ts = get_typestore(Stores.ROS1_NOETIC)
-        # ROS 1's own store lacks tf2_msgs: its one message, from its definition
-        ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
         path = folder / "run.bag"
         writer, serialize = Writer1(path), ts.serialize_ros1
     else:
-        ts = get_typestore(Stores.ROS2_HUMBLE)
         root = folder / f"run-{kind}"
         shutil.rmtree(root, ignore_errors=True)
         plugin = StoragePlugin.SQLITE3 if kind == "sqlite3" else StoragePlugin.MCAP

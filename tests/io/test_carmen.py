@@ -81,6 +81,11 @@ def test_reading_stops_where_the_caller_stops(tmp_path):
     ("ODOM 1 2 three 0 0 0 5.0 h 5.0\n", r"line 1 \(ODOM\).*'three' is not a number"),
     ("FLASER 2.5 1 2 0 0 0 0 0 0 1.0 h 1.0\n", "expected a count of readings"),
     ("FLASER 4 1 2 3 4 0 0 0\n", r"line 1 \(FLASER\).*truncated"),
+    ("FLASER inf 1 2 0 0 0 0 0 0 1.0 h 1.0\n", r"line 1 \(FLASER\): the number of readings is 'inf'; expected a count"),
+    ("ODOM 1 2 3 0 0 0 5.0 h 5.0\nFLASER nan 1 2 0 0 0 0 0 0 1.0 h 1.0\n",
+     r"line 2 \(FLASER\): the number of readings is 'nan'; expected a count"),
+    ("ODOM nan 2 3 0 0 0 5.0 h 5.0\n", r"line 1 \(ODOM\): x is nan; a pose must be finite"),
+    ("FLASER 2 1 2 0 inf 0 0 0 0 1.0 h 1.0\n", r"line 1 \(FLASER\): y is inf; a pose must be finite"),
 ])
 def test_bad_lines_name_their_line(tmp_path, text, match):
     path = tmp_path / "bad.log"

@@ -118,3 +118,10 @@ def test_sonar_sensors_found_in_natural_name_order():
     names = ["sonar10", "sonar2", "sonar1"]
     rs = [RangeReading(float(i), float(i), n) for i, n in enumerate(names * 2)]
     assert [r.tolist() for _, r in sonar_rings(rs)] == [[2.0, 1.0, 0.0], [5.0, 4.0, 3.0]]
+
+
+def test_sonar_names_with_other_digits_sort_without_error():
+    # superscripts are digits to str.isdigit() but not numbers to int(): "s1²" sorted before "s2"
+    names = ["s2", "s1\u00b2", "s10"]
+    rs = [RangeReading(float(i), float(i), n) for i, n in enumerate(names * 2)]
+    assert [r.tolist() for _, r in sonar_rings(rs)] == [[1.0, 0.0, 2.0], [4.0, 3.0, 5.0]]

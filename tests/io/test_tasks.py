@@ -130,3 +130,12 @@ def _visits_by_hand(poses, radius, leave):
 def test_visit_counts_match_the_definition(points):
     poses = np.array(points, dtype=float)
     assert visit_counts(poses, 1.5, 3.0).tolist() == _visits_by_hand(poses, 1.5, 3.0)
+
+
+def test_poses_that_are_not_finite_are_refused():
+    # NaN odometry has no place on a grid and no distance to another pose
+    poses = [[0.0, 0.0, 0.0], [float("nan"), 1.0, 0.0]]
+    with pytest.raises(ValueError, match=r"pose 1 is \[nan, 1.0, 0.0\]; positions must be finite"):
+        place_features(poses, 1.0)
+    with pytest.raises(ValueError, match="pose 1 is"):
+        visit_counts(poses, 1.0)
