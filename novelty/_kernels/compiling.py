@@ -10,6 +10,9 @@ background thread has a child process compile the module into the cache
 there; meanwhile the caller runs the reference (:mod:`.handover`). A process
 that ends early waits for the thread at exit, so that the cache gets written;
 Ctrl-C during that wait stops the compiler and exits quietly with status 130.
+Processes that need one module at once (test workers, benchmark workers) compile
+it once: the first holds a lock file beside the cache while its child compiles,
+the others wait for it and load what it cached.
 The child runs isolated (``python -I``, in the package's folder): nothing in
 the user's working directory or ``PYTHON*`` variables is imported or read.
 
@@ -21,13 +24,20 @@ value other than ``0`` when a module is first asked for disables it.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import glob
+import hashlib
 import importlib
 import importlib.util
 import os
 import sys
 import threading
 import warnings
+
+try:
+    import fcntl
+except ImportError:  # Windows: no lock; each process compiles what it does not find cached
+    fcntl = None
 
 __all__ = ["Compiled", "cache_files", "disabled", "load"]
 
@@ -154,22 +164,27 @@ class Compiled:
     def _compile(self) -> None:
         try:
             if self.name not in sys.modules and not self._cached():
-                self._compile_in_child()
+                with _one_compiler(self._source()):
+                    if not self._cached():  # another process may have compiled it while this one waited
+                        self._compile_in_child()
             self.module = load(self.name, self.file)  # loads what the child cached
         except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
             self.error = exc
+
+    def _source(self) -> str:
+        """The module's source file ("" if it cannot be found)."""
+        if self.file is not None:
+            return self.file
+        spec = importlib.util.find_spec(self.name)
+        return (spec.origin if spec is not None else "") or ""
 
     def _cached(self) -> bool:
         """Whether numba's disk cache seems to hold this module's kernels (an index file).
 
         A stale index only costs speed: the import then compiles in this thread.
         """
-        if self.file is not None:
-            source = self.file
-        else:
-            spec = importlib.util.find_spec(self.name)
-            source = spec.origin if spec is not None else ""
-        stem = os.path.splitext(os.path.basename(source or ""))[0]
+        source = self._source()
+        stem = os.path.splitext(os.path.basename(source))[0]
         return bool(stem) and bool(cache_files(stem, source, ("nbi",)))
 
     def _compile_in_child(self) -> None:
@@ -218,6 +233,38 @@ class Compiled:
     @property
     def ready(self) -> bool:
         return self.module is not None or self.get() is not None
+
+
+def lock_path(source: str) -> str:
+    """The lock file of compiling ``source``: in ``NUMBA_CACHE_DIR`` when that is set (named by a
+    hash of the source's path), else in the ``__pycache__`` beside the source, where numba caches it."""
+    stem = os.path.splitext(os.path.basename(source))[0]
+    cache_dir = os.environ.get("NUMBA_CACHE_DIR")
+    if cache_dir:
+        digest = hashlib.sha256(os.path.abspath(source).encode()).hexdigest()[:16]
+        return os.path.join(os.path.abspath(cache_dir), f"{stem}-{digest}.compiling")
+    return os.path.join(os.path.dirname(os.path.abspath(source)), "__pycache__", f"{stem}.compiling")
+
+
+@contextlib.contextmanager
+def _one_compiler(source: str):
+    """Hold the lock of compiling ``source`` (waiting for a process that holds it) while the body
+    runs; without a lock when none can be made (Windows, a folder that cannot be written).
+
+    The lock is the operating system's (``flock``): a process that dies lets it go.
+    """
+    try:
+        if fcntl is None or not source:
+            raise OSError("no lock")
+        path = lock_path(source)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        handle = open(path, "a")
+    except OSError:
+        yield
+        return
+    with handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        yield
 
 
 def _after_fork_in_child() -> None:

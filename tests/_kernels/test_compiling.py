@@ -121,6 +121,30 @@ def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
         blocker.set()
 
 
+def test_a_module_another_process_is_compiling_is_waited_for_not_compiled_again(tmp_path, monkeypatch):
+    """Two test or benchmark workers that need one uncached module: the second waits for the
+    first's lock, then loads what the first cached, compiling nothing itself."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    source = tmp_path / "novelty_driver_waited.py"
+    source.write_text("VALUE = 42\n")
+    compiled = compiling.Compiled("novelty_driver_waited", str(source))
+    children = []
+    monkeypatch.setattr(compiled, "_compile_in_child", lambda: children.append("compiled"))
+    monkeypatch.delitem(sys.modules, "novelty_driver_waited", raising=False)
+    with compiling._one_compiler(str(source)):  # "the other process", compiling
+        compiled.thread = threading.Thread(target=compiled._compile)
+        compiled.thread.start()
+        compiled.thread.join(0.5)
+        assert compiled.thread.is_alive() and compiled.module is None  # waiting for the lock
+        index = tmp_path / "cache" / "its-folder" / "novelty_driver_waited.drive-1.py311.nbi"
+        index.parent.mkdir(parents=True)
+        index.touch()  # what the other process's compiler leaves in numba's cache
+    compiled.thread.join(60)
+    assert children == [] and compiled.module.VALUE == 42
+    assert compiling.lock_path(str(source)).startswith(str(tmp_path / "cache"))
+    sys.modules.pop("novelty_driver_waited", None)
+
+
 def test_read_only_and_strided_inputs():
     X = corridor(300)
     det, ref = novelty.make("hsom"), novelty.make("hsom")
