@@ -11,8 +11,9 @@ Which columns are what:
   (``"field.ranges*"``) or by 0-based index in the file, as a list or a
   comma-separated string. Default: every column that is not one of those
   below; a text column among them is refused with a message naming it.
-- ``label``: per-scan ground truth, 1 (or any non-zero number) novel, 0
-  normal. Default: a column named ``y`` or ``label``.
+- ``label``: per-scan ground truth, 1 novel, 0 normal, nothing else
+  (:mod:`novelty.datasets.labels`: NaN, scikit-learn's -1/+1 or 0.5 are
+  refused, saying where). Default: a column named ``y`` or ``label``.
 - ``time``: per-scan timestamps, given to the detector as elapsed time, never
   a sensor. Default: a column named ``time``, ``timestamp``,
   ``field.header.stamp`` or ``%time``. ROS stamps (``%time``, ``*.stamp``)
@@ -52,9 +53,12 @@ from ..data import Dataset
 from ._files import _is_float
 from .columns import (LABEL_COLUMNS, ROUTE_COLUMNS, TEXT_COLUMNS, TIME_COLUMNS, Layout,  # noqa: F401
                       cell_text, is_ros_export, plan_columns)
+from .labels import check_both_classes, check_labels
+from .resampling import Resampling
+from .smoothing import smooth_by_distance
 from .tables import Table, header_of, read_table  # noqa: F401
 
-__all__ = ["Table", "Layout", "read_table", "plan_columns", "read_scans", "files", "PREPROCESSING"]
+__all__ = ["Table", "Layout", "read_table", "plan_columns", "read_scans", "files", "smooth_by_distance", "PREPROCESSING"]
 
 #: preprocessing applied to the sensor columns, by name
 PREPROCESSING = ("none", "paper")
@@ -154,7 +158,8 @@ def read_scans(path, columns=None, label=None, time=None, preprocess=None,
                          lambda i, k: f"{table.where(i)}, {layout.column(layout.sensors[k])}")
     fields: dict = {}
     if layout.label is not None:
-        fields["y"] = (_finite(table, layout, layout.label) != 0).astype(np.int64)
+        fields["y"] = check_labels(_finite(table, layout, layout.label),
+                                   lambda i: f"{table.where(i)}, {layout.column(layout.label)}")
     if layout.distance is not None:
         fields["distance"] = _finite(table, layout, layout.distance)
     if layout.run is not None:
@@ -182,59 +187,34 @@ def _split_values(table: Table, layout: Layout) -> np.ndarray:
     return parts
 
 
-def smooth_by_distance(data: Dataset, bin_length: float) -> Dataset:
-    """Average consecutive scans over each ``bin_length`` metres of travel.
-
-    The paper's smoothing (Marsland et al., 2000, section 4.2): "approximately
-    every 10 cm along the route the smoothed values of the sonar perceptions
-    over that 10 cm of travel were presented". Consecutive scans with the same
-    ``floor(distance / bin_length)`` (and the same run and split) become one:
-    the mean of their scans and distances, the last timestamp (the moment it
-    is presented), novel if any of them is.
-    """
-    if isinstance(bin_length, bool) or not isinstance(bin_length, (int, float)) or not bin_length > 0:
-        raise ValueError(f"bin_length must be a positive number of metres; got {bin_length!r}.")
-    if data.distance is None:
-        raise ValueError("Smoothing over travel (bin_length) needs a 'distance' column.")
-    keys = [np.floor(data.distance / bin_length + 1e-9)]
-    keys += [k for k in (data.run, data.split) if k is not None]
-    change = np.zeros(len(data), dtype=bool)
-    change[0] = True
-    for k in keys:
-        change[1:] |= k[1:] != k[:-1]
-    starts = np.flatnonzero(change)
-    counts = np.diff(np.append(starts, len(data)))
-    mean = lambda a: np.add.reduceat(a, starts, axis=0) / counts.reshape((-1,) + (1,) * (a.ndim - 1))  # noqa: E731
-    last = starts + counts - 1
-    return replace(
-        data,
-        X=mean(data.X),
-        distance=mean(data.distance),
-        y=None if data.y is None else np.maximum.reduceat(data.y, starts),
-        run=None if data.run is None else data.run[starts],
-        split=None if data.split is None else data.split[starts],
-        poses=None, feature_ids=None,
-        columns={name: v[last] for name, v in data.columns.items()},
-        metadata={**data.metadata, "bin_length_m": float(bin_length)},
-    )
-
-
 # ------------------------------------------------------------------ the task
 def files(path, test_path=None, columns=None, label=None, time=None, split=None, train_rows=None,
-          preprocess=None, threshold=None, bin_length=None, train_passes: int = 1):
-    """Task: the user's own scans (CSV or NPZ), learned in a training part, scored in a test part.
+          preprocess=None, threshold=None, bin_length=None, train_passes: int = 1, resample=None, test=None,
+          min_rows=None, max_rows=None, scale=None, training=None, seed: int = 0):
+    """Task: the user's own scans (CSV, NPZ or MAT), learned in a training part, scored in a test part.
 
     The training and test parts come from one of (exactly one may be given;
     without any, a column named ``split`` is used):
 
     - ``test_path``: a second file of the same columns, the test part;
     - ``split``: a column of ``train``/``test`` values;
-    - ``train_rows``: the first rows learned, the rest tested; an int
-      (a count) or a float in (0, 1) (a fraction of the rows).
+    - ``train_rows``: the first rows learned, the rest tested, in file order
+      and never shuffled (a file stored with its anomalies last is then a
+      different experiment); an int (a count) or a float in (0, 1) (a
+      fraction of the rows);
+    - ``resample``: a split drawn for each ``seed``, ``stratified`` or
+      ``shuffled``, of ``test`` (default 0.3) tested, the table first
+      bootstrapped to ``min_rows`` or subsampled to ``max_rows``
+      (:mod:`novelty.datasets.resampling`).
+
+    Whichever the split, ``training="clean"`` drops the novel scans from the
+    training part (default ``"contaminated"``: they stay, unlabelled) and
+    ``scale`` (``"minmax"``, ``"standard"``) is fitted on the training part.
+    The task's ``metadata["split_description"]`` says all of it in one line.
 
     The test part needs labels (``label``, or a ``y``/``label`` column): 1
-    (any non-zero number) novel, 0 normal. Column choice, timestamps and
-    preprocessing: see :func:`read_scans`.
+    novel, 0 normal, with both classes present. Column choice, timestamps
+    and preprocessing: see :func:`read_scans`.
 
     Parameters
     ----------
@@ -246,32 +226,48 @@ def files(path, test_path=None, columns=None, label=None, time=None, split=None,
     train_rows : int or float, optional
     train_passes : int, default=1
         How many times a detector streams the training part.
+    resample, test, min_rows, max_rows, scale, training
+        The resampling protocol (:class:`~novelty.datasets.resampling.Resampling`).
+    seed : int, default=0
+        The seed of a drawn split (unused otherwise).
     """
     if isinstance(train_passes, bool) or not isinstance(train_passes, int) or train_passes < 1:
         raise ValueError(f"train_passes must be a positive int; got {train_passes!r}.")
-    given = [k for k, v in (("test_path", test_path), ("split", split), ("train_rows", train_rows))
-             if v is not None]
+    protocol = Resampling(resample, test, min_rows, max_rows, scale, training).check()
+    given = [k for k, v in (("test_path", test_path), ("split", split), ("train_rows", train_rows),
+                            ("resample", resample)) if v is not None]
     if len(given) > 1:
         raise ValueError(f"Give one way to split the scans into training and test; got {' and '.join(given)}.")
     options = dict(columns=columns, label=label, time=time, preprocess=preprocess, threshold=threshold,
                    bin_length=bin_length)
     if test_path is not None:
         data = _joined(read_scans(path, **options), read_scans(test_path, **options))
+        how = f"trained on {Path(path).name}, tested on {Path(test_path).name}"
     else:
-        data = read_scans(path, split=split, **options)
+        data = read_scans(path, split=split if not protocol.draws else None, **options)
         if train_rows is not None:
             data = replace(data, split=_split_by_rows(len(data), train_rows))
+            n_train = int((data.split == "train").sum())
+            how = (f"the first {n_train} of {len(data)} rows in file order trained (not shuffled), "
+                   "the rest tested")
+        elif protocol.draws:
+            how = ""
         elif data.split is None:
             raise ValueError(f"{path}: how are the scans split into training and test? Give train_rows, "
-                             "split (a column of train/test values) or test_path.")
-    test = data.split == "test"
+                             "split (a column of train/test values), test_path, or resample=stratified.")
+        else:
+            how = "split by the file's train/test column"
     if data.y is None:
         raise ValueError(f"{path}: the test scans need labels; name the label column with label= (--label).")
-    if not test.any() or test.all():
-        raise ValueError(f"{path}: the split leaves no {'test' if not test.any() else 'training'} scans.")
+    data = protocol.apply(data, seed)
+    test_part = data.split == "test"
+    if not test_part.any() or test_part.all():
+        raise ValueError(f"{path}: the split leaves no {'test' if not test_part.any() else 'training'} scans.")
+    check_both_classes(data.y[test_part], str(path))
     return replace(data, name="files", metadata={
         **data.metadata, "task": "files", "train_passes": train_passes,
         "test_source": str(test_path) if test_path is not None else str(path),
+        "split_description": protocol.describe(how),
         "description": f"Learn the training scans of {Path(path).name}, score the test scans."})
 
 

@@ -1,4 +1,4 @@
-"""Reading a CSV or NPZ file of scans into named columns (the format is described in :mod:`novelty.datasets.files`).
+"""Reading a CSV, NPZ or MAT file of scans into named columns (the format is described in :mod:`novelty.datasets.files`).
 
 Reading is bounded by limits the library sets, not by the file: only a
 regular file is read (``/dev/zero`` would never end, a FIFO without a writer
@@ -7,7 +7,9 @@ a row at most :data:`MAX_COLUMNS` cells (a header of a few hundred MB is
 refused after reading one limit's worth, not loaded); an ``.npz`` file
 inflates to at most :data:`MAX_NPZ_BYTES` in all, and each array's declared
 shape must fit in the bytes its member holds, both checked before anything
-is inflated.
+is inflated. A MATLAB ``.mat`` file (ODDS's format: ``X`` and ``y``, the
+MATLAB 5 format scipy reads) is held to the same total, from the shapes its
+header declares, before anything is read.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from pathlib import Path
 from typing import Sequence
 
 import numpy as np
+from scipy import io as matlab
 
 from .._atomic import not_regular
 from ._files import _is_float
@@ -122,10 +125,10 @@ def check_data_file(path) -> Path:
     if not path.exists():
         raise FileNotFoundError(f"Data file not found: {path}")
     if path.is_dir():
-        raise ValueError(f"{path} is a folder; expected a .csv or .npz file of scans.")
+        raise ValueError(f"{path} is a folder; expected a .csv, .npz or .mat file of scans.")
     kind = not_regular(path)
     if kind is not None:
-        raise ValueError(f"{path} is {kind}, not a regular file; scans are read only from a .csv or .npz "
+        raise ValueError(f"{path} is {kind}, not a regular file; scans are read only from a .csv, .npz or .mat "
                          "file (standard input: --data -).")
     return path
 
@@ -195,6 +198,32 @@ def _read_npz(path: Path) -> Table:
         raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
     with npz:
         arrays = {k: npz[k] for k in npz.files}
+    return _table_of(path, arrays)
+
+
+def _read_mat(path: Path) -> Table:
+    """A MATLAB 5 ``.mat`` file (ODDS's ``X`` and ``y``): its sizes checked from the header, then read."""
+    try:
+        declared = matlab.whosmat(str(path))
+        total = sum(math.prod(shape) * 8 for _, shape, _ in declared)
+        if total > MAX_NPZ_BYTES:
+            raise ValueError(f"{path} declares {total} bytes of arrays; at most {MAX_NPZ_BYTES} are read.")
+        contents = matlab.loadmat(str(path))
+    except NotImplementedError:  # scipy's answer to a MATLAB 7.3 file, which is HDF5
+        raise ValueError(f"{path} is a MATLAB 7.3 (HDF5) file, which is not read; save it in MATLAB 5 format "
+                         "(save -v7) or as an .npz of X and y.") from None
+    except (OSError, ValueError, TypeError, EOFError) as exc:
+        raise ValueError(f"Cannot read {path} as a MATLAB .mat file: {exc}") from None
+    arrays = {}
+    for key, value in contents.items():
+        if key.startswith("__") or not isinstance(value, np.ndarray) or value.dtype.kind not in "biuf":
+            continue
+        arrays[key] = value.reshape(-1) if value.ndim == 2 and value.shape[1] == 1 and key != "X" else value
+    return _table_of(path, arrays)
+
+
+def _table_of(path: Path, arrays: dict) -> Table:
+    """The table of a file's arrays: ``X`` (or its one 2-D array) by columns, then each 1-D array of one value a row."""
     if "X" not in arrays:
         two_d = [k for k, a in arrays.items() if a.ndim == 2]
         if len(two_d) != 1:
@@ -213,9 +242,10 @@ def _read_npz(path: Path) -> Table:
 
 
 def read_table(path) -> Table:
-    """The columns of a CSV or NPZ file (see the module docstring)."""
+    """The columns of a CSV, NPZ or MAT file (see the module docstring)."""
     path = check_data_file(path)
-    table = _read_npz(path) if path.suffix.lower() == ".npz" else _read_csv(path)
+    suffix = path.suffix.lower()
+    table = _read_npz(path) if suffix == ".npz" else _read_mat(path) if suffix == ".mat" else _read_csv(path)
     if table.n_rows == 0:
         raise ValueError(f"{path} has no scans.")
     return table

@@ -1,0 +1,254 @@
+"""Resampling protocols: how a labelled table of scans becomes a task, seed by seed.
+
+A published benchmark states how each of its runs draws its data; the same
+statement here is a :class:`Resampling`, given to the ``files`` task as
+options (``novelty bench --task 'files path=6_cardio.npz resample=stratified
+test=0.3 ...'``) or to :func:`resampled` for arrays in Python. Its steps, in
+this order:
+
+1. ``min_rows``, ``max_rows`` (with ``resample`` only): a table of fewer than
+   ``min_rows`` rows is bootstrapped up to ``min_rows`` (rows drawn with
+   replacement), one of more than ``max_rows`` subsampled to ``max_rows``
+   (without replacement), before the split, as ADBench does (Han et al.
+   2022, section 4.1 and its code's data generator: so a bootstrapped row
+   and its copies can fall on both sides of the split).
+2. ``resample``: a train/test split drawn for each seed, ``stratified`` (each
+   class split in the proportion ``test``, scikit-learn's
+   ``train_test_split(..., stratify=y)``) or ``shuffled`` (rows split at
+   random, classes as they fall). Without it the task keeps the split its
+   source gives (the first rows, a column, a second file).
+3. ``training``: ``contaminated`` (the default: novel scans stay in the
+   training part, unlabelled, as in unsupervised outlier detection and
+   ADBench) or ``clean`` (novel scans are dropped from the training part:
+   novelty detection, a detector learning only what is normal).
+4. ``scale``: ``minmax`` or ``standard`` fitted on the training part (after
+   step 3) and applied to both parts (scikit-learn's ``MinMaxScaler`` and
+   ``StandardScaler``); ``none`` (the default) leaves the values as read.
+   Test values may fall outside the training part's range.
+
+:meth:`Resampling.describe` says all of it in one line, which the files task
+keeps in its metadata (``split_description``) and the benchmark summary
+prints for each task. :data:`ADBENCH` is ADBench's unsupervised protocol.
+
+References
+----------
+Han, S., Hu, X., Huang, H., Jiang, M. & Zhao, Y. (2022). ADBench: anomaly
+detection benchmark. NeurIPS 2022 Datasets and Benchmarks track.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import numbers
+from dataclasses import asdict, dataclass, replace
+
+import numpy as np
+from sklearn.model_selection import train_test_split
+from sklearn.preprocessing import MinMaxScaler, StandardScaler
+
+from ..data import Dataset
+from .labels import check_labels
+
+__all__ = ["Resampling", "ResampledTask", "resampled", "ADBENCH", "RESAMPLE", "SCALES", "TRAINING",
+           "OPTIONS"]
+
+#: the ways a split is drawn for each seed
+RESAMPLE = ("stratified", "shuffled")
+#: the scalers fitted on the training part
+SCALES = ("none", "minmax", "standard")
+#: what the training part keeps of the novel scans
+TRAINING = ("contaminated", "clean")
+#: the option names, as the files task and :func:`resampled` take them
+OPTIONS = ("resample", "test", "min_rows", "max_rows", "scale", "training")
+#: the default test fraction of a drawn split
+DEFAULT_TEST = 0.3
+
+#: ADBench's unsupervised protocol (Han et al. 2022): a stratified 70/30 split for each seed,
+#: tables bootstrapped to 1,000 rows or subsampled to 10,000, min-max scaled on the
+#: training part, anomalies left in the training part
+ADBENCH = {"resample": "stratified", "test": 0.3, "min_rows": 1000, "max_rows": 10000, "scale": "minmax",
+           "training": "contaminated"}
+
+_SCALERS = {"minmax": MinMaxScaler, "standard": StandardScaler}
+
+
+def _choice(value, allowed: tuple, name: str, default: str) -> str:
+    if value is None:
+        return default
+    if value not in allowed:
+        raise ValueError(f"{name} must be one of {', '.join(allowed)}; got {value!r}.")
+    return value
+
+
+def _count(value, name: str) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 2:
+        raise ValueError(f"{name} must be a number of rows, at least 2; got {value!r}.")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class Resampling:
+    """A resampling protocol (see the module notes); :meth:`check` validates and fills the defaults."""
+
+    resample: str | None = None
+    test: float | None = None
+    min_rows: int | None = None
+    max_rows: int | None = None
+    scale: str | None = None
+    training: str | None = None
+
+    def check(self) -> "Resampling":
+        """This protocol with its defaults filled in; a bad option is a ``ValueError`` naming it."""
+        if self.resample is not None and self.resample not in RESAMPLE:
+            raise ValueError(f"resample must be one of {', '.join(RESAMPLE)}; got {self.resample!r}.")
+        drawn = self.resample is not None
+        for name in ("test", "min_rows", "max_rows"):
+            if getattr(self, name) is not None and not drawn:
+                raise ValueError(f"{name}= sizes a split drawn for each seed; give resample=stratified or "
+                                 "resample=shuffled with it.")
+        test = DEFAULT_TEST if self.test is None and drawn else self.test
+        if test is not None and (isinstance(test, bool) or not isinstance(test, numbers.Real) or not 0 < test < 1):
+            raise ValueError(f"test must be the fraction of rows tested, in (0, 1); got {test!r}.")
+        low, high = _count(self.min_rows, "min_rows"), _count(self.max_rows, "max_rows")
+        if low is not None and high is not None and low > high:
+            raise ValueError(f"min_rows ({low}) must not exceed max_rows ({high}).")
+        return Resampling(self.resample, None if test is None else float(test), low, high,
+                          _choice(self.scale, SCALES, "scale", "none"),
+                          _choice(self.training, TRAINING, "training", "contaminated"))
+
+    @property
+    def draws(self) -> bool:
+        """Whether a split is drawn for each seed."""
+        return self.resample is not None
+
+    def as_options(self) -> dict:
+        """The options, as the files task takes them (None left out)."""
+        return {k: v for k, v in asdict(self).items() if v is not None}
+
+    # ------------------------------------------------------------ the steps
+    def draw(self, data: Dataset, seed: int) -> Dataset:
+        """Steps 1 and 2: ``data`` resized and split for ``seed`` (training rows first)."""
+        if data.y is None:
+            raise ValueError(f"resample={self.resample} needs labels for every row (a y or label column).")
+        y = check_labels(data.y, f"{data.name}, labels")
+        rng = np.random.default_rng(np.random.SeedSequence([int(seed), _tag(data.name)]))
+        n = len(data)
+        if self.min_rows is not None and n < self.min_rows:
+            rows = rng.choice(n, self.min_rows, replace=True)
+        elif self.max_rows is not None and n > self.max_rows:
+            rows = rng.choice(n, self.max_rows, replace=False)
+        else:
+            rows = np.arange(n)
+        train, test = train_test_split(rows, test_size=self.test, shuffle=True,
+                                       random_state=int(rng.integers(2**31 - 1)),
+                                       stratify=y[rows] if self.resample == "stratified" else None)
+        drawn = data.subset(np.concatenate([train, test]))
+        # drawn rows have no order: no route, no clock (a timestamp would run backwards)
+        return replace(drawn, y=y[np.concatenate([train, test])], distance=None, run=None, poses=None,
+                       columns={k: v for k, v in drawn.columns.items() if k != "time"},
+                       split=np.array(["train"] * len(train) + ["test"] * len(test)))
+
+    def finish(self, data: Dataset) -> Dataset:
+        """Steps 3 and 4 on a split task: clean training, then the scaler fitted on the training part."""
+        if self.training == "clean":
+            if data.y is None:
+                raise ValueError("training=clean drops the novel scans from the training part, which needs "
+                                 "labels for the training rows.")
+            data = data.subset(~((data.split == "train") & (np.asarray(data.y) != 0)))
+        if self.scale not in (None, "none"):
+            train = data.split == "train"
+            scaler = _SCALERS[self.scale]().fit(data.X[train])
+            data = replace(data, X=scaler.transform(data.X))
+        return data
+
+    def apply(self, data: Dataset, seed: int = 0) -> Dataset:
+        """Every step: ``data`` (a labelled table, or a task when nothing is drawn) as the task of ``seed``."""
+        protocol = self.check()
+        task = protocol.draw(data, seed) if protocol.draws else data
+        if task.split is None:
+            raise ValueError(f"{data.name}: no train/test split; give resample=stratified (or shuffled).")
+        task = protocol.finish(task)
+        meta = {**task.metadata, "resampling": protocol.as_options()}
+        if protocol.draws:
+            meta.update(seed=int(seed), route=False)
+        return replace(task, metadata=meta)
+
+    def describe(self, given: str = "") -> str:
+        """One line: how the task's parts were drawn (``given``: the source's own split, when nothing is drawn)."""
+        protocol = self.check()
+        if protocol.draws:
+            cut = f"{round(100 * (1 - protocol.test))}/{round(100 * protocol.test)}"
+            parts = [f"a {protocol.resample} {cut} train/test split drawn for each seed"]
+            sizes = []
+            if protocol.min_rows is not None:
+                sizes.append(f"bootstrapped to {protocol.min_rows:,} rows when fewer")
+            if protocol.max_rows is not None:
+                sizes.append(f"subsampled to {protocol.max_rows:,} rows when more")
+            if sizes:
+                parts.append(" and ".join(sizes) + " (before the split)")
+        else:
+            parts = [given or "the split the task gives"]
+        parts.append("novel scans dropped from training (clean: novelty detection)" if protocol.training == "clean"
+                     else "novel scans kept in training, unlabelled (contaminated: outlier detection)")
+        if protocol.scale != "none":
+            parts.append(f"{'min-max' if protocol.scale == 'minmax' else 'standard'} scaled by the training part")
+        return "; ".join(parts)
+
+
+def _tag(name: str) -> int:
+    """A stable number of a task's name, so that two tables of one seed draw independently."""
+    return int.from_bytes(hashlib.sha256(name.encode()).digest()[:4], "little")
+
+
+# ------------------------------------------------------------------ arrays in Python
+@dataclass(frozen=True, eq=False)
+class ResampledTask:
+    """A labelled table of scans drawn into a task for each seed (:func:`resampled`)."""
+
+    name: str
+    X: np.ndarray
+    y: np.ndarray
+    protocol: Resampling
+
+    def for_seed(self, seed: int) -> Dataset:
+        """The task of ``seed``: split, cleaned and scaled as :attr:`protocol` says."""
+        data = Dataset(self.name, self.X, y=self.y)
+        task = self.protocol.apply(data, seed)
+        return replace(task, metadata={**task.metadata, "task": self.name, "train_passes": 1,
+                                       "split_description": self.protocol.describe()})
+
+
+def resampled(X, y, name: str = "arrays", **protocol) -> ResampledTask:
+    """Arrays ``X`` (scans by features) and labels ``y`` (0/1) as a task drawn for each seed.
+
+    ``protocol`` takes the options of :class:`Resampling` (``resample``,
+    ``test``, ``min_rows``, ``max_rows``, ``scale``, ``training``);
+    ``resample`` is required, since arrays carry no split of their own.
+    ``resampled(X, y, **ADBENCH)`` is ADBench's protocol.
+
+    >>> import numpy as np
+    >>> X, y = np.arange(40.0).reshape(20, 2), np.r_[np.zeros(16), np.ones(4)]
+    >>> task = resampled(X, y, resample="stratified", test=0.5).for_seed(0)
+    >>> int((task.split == "test").sum()), int(task.test().y.sum())
+    (10, 2)
+    """
+    unknown = sorted(set(protocol) - set(OPTIONS))
+    if unknown:
+        raise TypeError(f"resampled() got an unknown option {unknown[0]!r}; options: {', '.join(OPTIONS)}.")
+    checked = Resampling(**protocol).check()
+    if not checked.draws:
+        raise ValueError("resampled() needs resample='stratified' or 'shuffled': arrays carry no split of "
+                         "their own.")
+    X = np.asarray(X, dtype=np.float64)
+    if X.ndim != 2:
+        raise ValueError(f"X must be 2-D (scans by features); got shape {X.shape}.")
+    labels = check_labels(y, f"{name}, labels")
+    if labels.shape != (X.shape[0],):
+        raise ValueError(f"y needs one label a scan of X: X has {X.shape[0]} rows, y {labels.size}.")
+    bad = np.argwhere(~np.isfinite(X))
+    if bad.size:
+        i, k = bad[0]
+        raise ValueError(f"{name}: X[{i}, {k}] is {X[i, k]}; scans must be finite numbers.")
+    return ResampledTask(name, X, labels, checked)
