@@ -26,6 +26,7 @@ __all__ = [
     "LocalOutlierFactorDetector",
     "EllipticEnvelopeDetector",
     "PyODDetector",
+    "as_detector",
 ]
 
 _MODULES = {
@@ -43,6 +44,7 @@ _MODULES = {
     "LocalOutlierFactorDetector": "sklearn_outlier",
     "EllipticEnvelopeDetector": "sklearn_outlier",
     "PyODDetector": "pyod_outlier",
+    "as_detector": "wrapping",
 }
 
 

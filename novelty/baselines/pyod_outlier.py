@@ -14,6 +14,21 @@ KNN leave each input out of its own neighbours). PyOD's own
 ``contamination``, ``threshold_`` and ``labels_`` play no part; this
 detector's ``contamination`` and ``threshold`` work as for every detector.
 
+Like for like with PyOD (what ADBench reports): the model is built with
+PyOD's own defaults, only the parameters given being set, and scores a batch
+in one call, as PyOD does. Some PyOD models are transductive: ECOD and COPOD
+re-estimate their distributions on the training data *and the batch scored*
+(COF, SOD, ROD, LMDD and CD also depend on the batch; measured with PyOD
+3.6), so a scan's novelty depends on the scans scored with it, in PyOD as
+here, and ``score_one``
+scores one scan alone. The differences from PyOD's defaults are the
+adapter's own: ``random_state`` is 0 (PyOD's None draws a new model each
+fit; the benchmark sets the cell's seed), and PyOD's ``contamination=0.1``
+decides only PyOD's labels, not the scores. ``model`` may also be a PyOD
+detector object (any subclass of ``pyod.models.base.BaseDetector``), used as
+it is: each fit clones it with its parameters (such a detector cannot be
+saved; name its class instead).
+
 PyOD is an optional dependency (``pip install "novelty-habituation[pyod]"``), imported
 when a model is first built. Model files keep the training inputs and refit
 the model on loading, as for the scikit-learn adapter
@@ -39,6 +54,9 @@ import re
 
 import numpy as np
 
+from sklearn.base import clone
+
+from .._component import StateError
 from .._validation import Instance, Interval
 from ..registry import check_parameters
 from ._calibration import CalibratedDetector
@@ -81,14 +99,16 @@ class PyODDetector(SklearnOutlierDetector):
 
     Parameters
     ----------
-    model : str, default="ECOD"
+    model : str or PyOD detector, default="ECOD"
         The PyOD class, as PyOD spells it (``"ECOD"``, ``"IForest"``,
-        ``"KNN"``, ``"COPOD"``, ...; letter case is ignored).
+        ``"KNN"``, ``"COPOD"``, ...; letter case is ignored), or a PyOD
+        detector object, cloned with its parameters at each fit.
     model_params : dict or None, default=None
         Parameters of the PyOD model (e.g. ``{"n_neighbors": 10}``);
         ``novelty.make("pyod", model="KNN", n_neighbors=10)`` routes them here.
     random_state : int or None, default=0
-        Seed, passed to models that take one (an int, to save the model).
+        Seed, passed to models that take one (an int, to save the model);
+        None leaves a model object's own.
     threshold, contamination
         As for :class:`~novelty.baselines.SklearnOutlierDetector`, whose
         attributes (``samples_``, ``reference_``) this detector has too.
@@ -106,7 +126,7 @@ class PyODDetector(SklearnOutlierDetector):
     requires = ("pyod",)
 
     _parameter_rules = {
-        "model": Instance((str,), "the name of a PyOD detector class"),
+        "model": Instance((str, object), "the name of a PyOD detector class or a PyOD detector"),
         "model_params": Instance((dict, type(None)), "a dict of the PyOD model's parameters or None"),
         "random_state": Interval(numbers.Integral, 0, None, allow_none=True),
         "threshold": Interval(numbers.Real, None, None),
@@ -152,6 +172,8 @@ class PyODDetector(SklearnOutlierDetector):
         self._build_estimator()
 
     def _build_estimator(self):
+        if not isinstance(self.model, str):
+            return self._clone_model()
         cls = _pyod_class(self.model)
         given = dict(self.model_params or {})
         accepted = [p for p in inspect.signature(cls.__init__).parameters if p != "self"]
@@ -165,41 +187,30 @@ class PyODDetector(SklearnOutlierDetector):
             given["random_state"] = self.random_state
         return cls(**given)
 
-    # ------------------------------------------------------------- scoring
-    def _fit_model(self, X: np.ndarray) -> None:
-        super()._fit_model(X)
-        self._row_by_row = self._batch_dependent(X)
-
-    def _rebuild_scratch(self) -> None:
-        super()._rebuild_scratch()
-        if hasattr(self, "samples_"):
-            self._row_by_row = self._batch_dependent(self.samples_)
-
-    def _batch_dependent(self, X: np.ndarray) -> bool:
-        """Whether the model scores a row differently in another batch.
-
-        Some PyOD models are transductive: ECOD and COPOD re-estimate their
-        distributions on the training data *and the batch scored*; COF, SOD,
-        ROD, LMDD and CD also depend on the batch (measured with PyOD 3.6).
-        Such a model scores each scan alone, against the training data, so
-        that a scan's novelty does not depend on the others scored with it.
-        """
-        probe = X[:2] if X.shape[0] >= 2 else np.vstack([X, X])
+    def _clone_model(self):
+        """A fresh copy of a PyOD detector object, its seed set where one is given."""
         try:
-            together = self._estimator.decision_function(probe)[0]
-            alone = self._estimator.decision_function(probe[:1])[0]
-        except ValueError as exc:
-            raise ValueError(
-                f"PyOD's {type(self._estimator).__name__} cannot score one scan at a time ({exc}); "
-                "it scores a batch against itself, which a novelty detector cannot use."
-            ) from None
-        return not np.isclose(together, alone, rtol=1e-12, atol=0.0)
+            from pyod.models.base import BaseDetector  # optional dependency, imported when a model is built
+        except ImportError:
+            raise ImportError("A PyOD detector object needs PyOD: pip install \"novelty-habituation[pyod]\".") from None
+        if not isinstance(self.model, BaseDetector):
+            raise ValueError(f"The 'model' parameter of PyODDetector must be a PyOD class name or a PyOD detector "
+                             f"(a pyod.models.base.BaseDetector). Got {self.model!r} instead.")
+        model = clone(self.model)
+        if self.random_state is not None and "random_state" in model.get_params(deep=False):
+            model.set_params(random_state=self.random_state)
+        return model
 
+    def save(self, path) -> None:
+        """Write the model; one built from a PyOD detector object cannot be (a file names classes, never objects)."""
+        if not isinstance(self.model, str):
+            raise StateError(f"A PyODDetector of a {type(self.model).__name__} object cannot be saved: a model "
+                             f"file holds arrays and names, never objects; use model={type(self.model).__name__!r}.")
+        super().save(path)
+
+    # ------------------------------------------------------------- scoring
     def _raw(self, X: np.ndarray) -> np.ndarray:
-        score = self._estimator.decision_function
-        if self._row_by_row:
-            return np.array([score(X[i:i + 1])[0] for i in range(X.shape[0])], dtype=np.float64)
-        return np.asarray(score(X), dtype=np.float64)
+        return np.asarray(self._estimator.decision_function(X), dtype=np.float64)
 
     def _reference_raw(self, X: np.ndarray) -> np.ndarray:
         return np.asarray(self._estimator.decision_scores_, dtype=np.float64)

@@ -6,6 +6,9 @@ it round to this project's convention:
 
     r(x) = -estimator.score_samples(x)                                    (1)
 
+(or ``-estimator.decision_function(x)`` for an estimator without
+``score_samples``: scikit-learn's decision function is its score shifted by
+a constant, so the ranking is the same)
 put on the comparable [0, 1] scale of :mod:`novelty.baselines._calibration`
 (the estimator's own ``contamination`` and ``offset_`` play no part; the
 ``threshold`` acts on the comparable scale).
@@ -152,10 +155,10 @@ class SklearnOutlierDetector(CalibratedDetector):
     def _validate_params(self) -> None:
         super()._validate_params()
         est = self._build_estimator()
-        if not (hasattr(est, "fit") and hasattr(est, "score_samples")):
+        if not (hasattr(est, "fit") and (hasattr(est, "score_samples") or hasattr(est, "decision_function"))):
             raise ValueError(
-                f"The 'estimator' parameter of {type(self).__name__} must have fit and score_samples "
-                f"(LocalOutlierFactor needs novelty=True). Got {est!r} instead."
+                f"The 'estimator' parameter of {type(self).__name__} must have fit and score_samples or "
+                f"decision_function (LocalOutlierFactor needs novelty=True). Got {est!r} instead."
             )
 
     def _build_estimator(self):
@@ -168,7 +171,9 @@ class SklearnOutlierDetector(CalibratedDetector):
         self.samples_ = X.copy()
 
     def _raw(self, X: np.ndarray) -> np.ndarray:
-        return -np.asarray(self._estimator.score_samples(X), dtype=np.float64)
+        # scikit-learn's convention, higher = more normal: score_samples, or decision_function (its shift)
+        score = getattr(self._estimator, "score_samples", None) or self._estimator.decision_function
+        return -np.asarray(score(X), dtype=np.float64)
 
     def _rebuild_scratch(self) -> None:
         super()._rebuild_scratch()
@@ -303,6 +308,11 @@ class OneClassSVMDetector(SklearnOutlierDetector):
     ----------
     kernel : {"rbf", "linear", "poly", "sigmoid"}, default="rbf"
     gamma : {"scale", "auto"} or float, default="scale"
+        The RBF kernel's width: scikit-learn's default ``"scale"``,
+        ``1 / (n_features * X.var())``. PyOD's ``OCSVM`` (what ADBench
+        reports as OCSVM) defaults to ``"auto"``, ``1 / n_features``: on data
+        scaled to [0, 1] a kernel several times wider, a different model
+        under the same name. ``gamma="auto"`` gives PyOD's.
     nu : float, default=0.5
     degree : int, default=3
     coef0 : float, default=0.0
@@ -313,7 +323,8 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         Expected fraction of outliers in the training data; a float sets
         ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
 
-    The parameters are those of ``sklearn.svm.OneClassSVM``.
+    The parameters are those of ``sklearn.svm.OneClassSVM``, with its
+    defaults; PyOD's ``OCSVM`` shares them but for ``gamma`` (above).
     """
 
     _parameter_rules = {

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import novelty
+from novelty._component import StateError
 from novelty.baselines._calibration import comparable
 from novelty.registry import InvalidParameterError
 
@@ -44,12 +45,10 @@ def test_raw_novelty_is_pyods_decision_function_calibrated_on_its_training_score
     X, Z = data
     det = novelty.make("pyod", model=model).fit(X)
     ref = pyod_model(model, **({"random_state": 0} if model == "IForest" else {})).fit(X)
-    # ECOD scores each scan alone against the training data (it is batch-dependent)
-    expected_raw = (np.array([ref.decision_function(z[None, :])[0] for z in Z]) if model == "ECOD"
-                    else ref.decision_function(Z))
+    # a batch is scored in one call, as PyOD scores it (ECOD's included, which depends on the batch)
+    expected_raw = ref.decision_function(Z)
     np.testing.assert_allclose(det.raw_novelty(Z), expected_raw, rtol=1e-12)
     np.testing.assert_allclose(det.novelty(Z), comparable(expected_raw, ref.decision_scores_), rtol=1e-12)
-    assert det._row_by_row == (model == "ECOD")
 
 
 @needs_pyod
@@ -64,11 +63,25 @@ def test_far_away_scans_are_novel_and_familiar_ones_are_not(model, data):
 
 
 @needs_pyod
-def test_a_scans_novelty_does_not_depend_on_the_batch(data):
+def test_a_transductive_model_scores_a_batch_as_pyod_does_and_one_scan_alone(data):
     X, Z = data
     det = novelty.make("pyod", model="ECOD").fit(X)
-    np.testing.assert_array_equal(det.novelty(Z)[:3], det.novelty(Z[:3]))
-    assert det.score_one(Z[7]) == det.novelty(Z)[7]
+    ref = pyod_model("ECOD").fit(X)
+    assert det.raw_novelty(Z)[0] != det.raw_novelty(Z[:1])[0]          # ECOD's scores depend on the batch
+    assert det.score_one(Z[7]) == pytest.approx(comparable(ref.decision_function(Z[7:8]), ref.decision_scores_)[0],
+                                                rel=1e-12)
+
+
+@needs_pyod
+def test_a_pyod_detector_object_is_used_as_it_is(data):
+    from pyod.models.knn import KNN
+
+    X, Z = data
+    det = novelty.baselines.PyODDetector(model=KNN(n_neighbors=7, method="mean")).fit(X)
+    ref = KNN(n_neighbors=7, method="mean").fit(X)
+    np.testing.assert_allclose(det.raw_novelty(Z), ref.decision_function(Z), rtol=1e-12)
+    with pytest.raises(StateError, match="cannot be saved"):
+        det.save("unused.npz")
 
 
 @needs_pyod
