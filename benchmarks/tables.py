@@ -165,7 +165,7 @@ def _reference(suite: str) -> str | None:
     """The suite's reference detector (``reference`` in its [suite] table), as its summary pairs with."""
     from novelty.bench import load_suite
 
-    return load_suite(SUITES / f"{suite}.toml").reference if (SUITES / f"{suite}.toml").exists() else None
+    return load_suite(SUITES / f"{suite}.toml").reference_label if (SUITES / f"{suite}.toml").exists() else None
 
 
 def table(suite: str, name: str, rows: list[dict]) -> str:

@@ -36,13 +36,16 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from ..baselines.wrapping import as_detector
 from ..data import Dataset
+from ..datasets.labels import check_both_classes, check_labels
+from ..datasets.resampling import ResampledTask
 from .compare import compare_on_task, comparison_text
 from .protocol import get_protocol
 from .reports.statistics import paired_text, statistics_line
 from .results import ResultsStore
 from .runner import BenchReport, run_bench
-from .specs import DetectorSpec, SuiteError, TaskSpec, detector_from_text, parse_seeds, task_from_text
+from .specs import DetectorSpec, SuiteError, TaskSpec, detector_from_text, parse_seeds, tasks_from_text
 from .stats import across_tasks
 from .stats.aggregate import TaskTable, task_table
 from .suite import Suite
@@ -131,16 +134,21 @@ def _detector_spec(label: str | None, item) -> DetectorSpec:
     if isinstance(item, str):
         spec = detector_from_text(item)
         return DetectorSpec(spec.name, spec.params, label or spec.label)
-    if hasattr(item, "get_params") and hasattr(item, "novelty"):
+    if hasattr(item, "get_params") and hasattr(item, "fit"):
+        try:  # a scikit-learn or PyOD outlier detector is taken as it is
+            det = as_detector(item)
+        except TypeError as exc:
+            raise SuiteError(str(exc)) from None
         name = label or type(item).__name__
-        params = json.loads(json.dumps(item.get_params(deep=False), sort_keys=True, default=str))
-        return DetectorSpec(name, params, name, instance=item)
-    raise SuiteError(f"A detector must be a registry name, a detector object or a DetectorSpec; got {item!r}.")
+        params = json.loads(json.dumps(det.get_params(deep=False), sort_keys=True, default=str))
+        return DetectorSpec(name, params, name, instance=det)
+    raise SuiteError(f"A detector must be a registry name, a detector object (ours, scikit-learn's or PyOD's) "
+                     f"or a DetectorSpec; got {item!r}.")
 
 
 def detector_specs(detectors) -> list[DetectorSpec]:
     """Detector specs from names, objects, specs, or a dict ``{label: any of these}``."""
-    if isinstance(detectors, (str, DetectorSpec)) or hasattr(detectors, "novelty"):
+    if isinstance(detectors, (str, DetectorSpec)) or hasattr(detectors, "fit"):
         detectors = [detectors]
     items = detectors.items() if isinstance(detectors, Mapping) else [(None, d) for d in detectors]
     return [_detector_spec(label, item) for label, item in items]
@@ -159,7 +167,10 @@ def _from_arrays(name: str, arrays: Sequence) -> Dataset:
     if len(arrays) != 3:
         raise SuiteError(f"Task {name!r}: a tuple task is (X_train, X_test, y_test); got {len(arrays)} items.")
     X_train, X_test = (np.asarray(a, dtype=np.float64) for a in arrays[:2])
-    y_test = np.asarray(arrays[2])
+    try:
+        y_test = check_labels(arrays[2], f"Task {name!r}: y_test")
+    except ValueError as exc:
+        raise SuiteError(str(exc)) from None
     if X_train.ndim != 2 or X_test.ndim != 2 or X_train.shape[1] != X_test.shape[1]:
         raise SuiteError(f"Task {name!r}: X_train and X_test must be 2-D with the same columns; got "
                          f"{X_train.shape} and {X_test.shape}.")
@@ -170,27 +181,50 @@ def _from_arrays(name: str, arrays: Sequence) -> Dataset:
     return Dataset(name, X, y=y, split=np.r_[np.full(len(X_train), "train"), np.full(len(X_test), "test")])
 
 
-def _task_spec(name: str | None, item) -> TaskSpec:
+def _checked_task(label: str, data: Dataset) -> None:
+    """A task object's test labels: 0/1, both classes (a hold-out verdict needs them)."""
+    if data.split is None or data.y is None:
+        return  # an exploration task, or one the protocol refuses with its own words
+    try:
+        y = check_labels(data.y[data.split == "test"], f"Task {label!r}: test labels")
+        check_both_classes(y, f"Task {label!r}")
+    except ValueError as exc:
+        raise SuiteError(str(exc)) from None
+
+
+def _task_spec(name: str | None, item) -> list[TaskSpec]:
     if isinstance(item, TaskSpec):
-        return item
+        return [item]
     if isinstance(item, str):
-        spec = task_from_text(item)
-        return TaskSpec(spec.name, spec.options, name or spec.label)
+        specs = tasks_from_text(item)
+        if name is not None and len(specs) == 1:
+            specs = [TaskSpec(specs[0].name, specs[0].options, name)]
+        return specs
+    if isinstance(item, ResampledTask):
+        label = name or item.name
+        options = {"fingerprint": _fingerprint(Dataset(label, item.X, y=item.y)), **item.protocol.as_options()}
+        return [TaskSpec(label, options, label, data=item)]
     if isinstance(item, tuple):
         item = _from_arrays(name or "arrays", item)
     if isinstance(item, Dataset):
         label = name or item.name
-        return TaskSpec(label, {"fingerprint": _fingerprint(item)}, label, data=item)
-    raise SuiteError(f"A task must be a registered name, a Dataset, a tuple (X_train, X_test, y_test) or a "
-                     f"TaskSpec; got {type(item).__name__}.")
+        if "exploration" not in item.metadata:  # exploration tasks are scored by encounters, not test labels
+            _checked_task(label, item)
+        return [TaskSpec(label, {"fingerprint": _fingerprint(item)}, label, data=item)]
+    raise SuiteError(f"A task must be a registered name, a Dataset, a resampled table "
+                     f"(novelty.datasets.resampled), a tuple (X_train, X_test, y_test) or a TaskSpec; "
+                     f"got {type(item).__name__}.")
 
 
 def task_specs(tasks) -> list[TaskSpec]:
-    """Task specs from names, task objects, tuples of arrays, specs, or a dict ``{name: any of these}``."""
-    if isinstance(tasks, (str, TaskSpec, Dataset)):
+    """Task specs from names, task objects, tuples of arrays, specs, or a dict ``{name: any of these}``.
+
+    A ``files`` task whose ``path`` is a folder is one task a data file in it.
+    """
+    if isinstance(tasks, (str, TaskSpec, Dataset, ResampledTask)):
         tasks = [tasks]
     items = tasks.items() if isinstance(tasks, Mapping) else [(None, t) for t in tasks]
-    return [_task_spec(name, item) for name, item in items]
+    return [spec for name, item in items for spec in _task_spec(name, item)]
 
 
 # ------------------------------------------------------------------- runs
@@ -202,7 +236,7 @@ def run_suite(suite: Suite, out=None, backend: str = "serial", jobs: int = 1, pl
         keep = tempfile.TemporaryDirectory(prefix="novelty-bench-")
         out, plots = keep.name, False
     report = run_bench(suite, out, backend=backend, jobs=jobs, plots=plots, quiet=quiet, **options)
-    return Results(report.rows, suite.protocol, Path(out), report, suite.reference, keep)
+    return Results(report.rows, suite.protocol, Path(out), report, suite.reference_label, keep)
 
 
 def run(detectors, tasks, seeds=1, protocol: str = "holdout", backend: str = "serial", jobs: int = 1,
@@ -226,7 +260,7 @@ def run(detectors, tasks, seeds=1, protocol: str = "holdout", backend: str = "se
     out : path, optional
         Write the files and plots of ``novelty bench`` there (and resume).
     reference : str, optional
-        The label of the detector the others are paired with (default: the best ranked).
+        The label of the detector the others are paired with (default: the first detector).
     threshold : "max" or float, default="max"
         The alarm threshold rule (``max`` of the training novelty, or a quantile).
     memory : bool, default=False

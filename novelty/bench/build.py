@@ -27,6 +27,7 @@ from . import river
 from .specs import Cell, DetectorSpec
 
 __all__ = ["load_task", "build_detector", "make_detector", "train_detector", "resting_novelty", "n_units", "check_finite",
+           "check_raw_finite",
            "ensure_registered", "CellError"]
 
 
@@ -57,8 +58,9 @@ def _load_task_cached(name: str, factory, options_json: str, seed: int):
 
 def load_task(cell: Cell):
     """The cell's task (cached per process: datasets are immutable; a name registered again is loaded again)."""
-    if cell.task.data is not None:  # a task object given to the Python API, not registered
-        return cell.task.data
+    data = cell.task.data
+    if data is not None:  # a task object given to the Python API, not registered
+        return data.for_seed(cell.seed) if hasattr(data, "for_seed") else data
     return _load_task_cached(cell.task.name, registry.get(cell.task.name),
                              json.dumps(cell.task.options, sort_keys=True), cell.seed)
 
@@ -117,8 +119,21 @@ def n_units(det) -> float:
     return float("nan")
 
 
-def check_finite(scores: np.ndarray, what: str) -> None:
+def check_finite(scores: np.ndarray, what: str, whose: str = "the detector scored") -> None:
     """A NaN or infinite score ranks nowhere: the cell fails rather than count on its other scans."""
     bad = int(np.count_nonzero(~np.isfinite(scores)))
     if bad:
-        raise CellError(f"the detector scored {bad} of {scores.size} {what} NaN or infinite")
+        raise CellError(f"{whose} {bad} of {scores.size} {what} NaN or infinite")
+
+
+def check_raw_finite(det, X: np.ndarray, what: str) -> None:
+    """A detector's own score (``raw_novelty``, before calibration) must be finite too.
+
+    The comparable scale maps +inf to 1, so a model that scores every test
+    scan +inf (PyOD's PCA on a degenerate split) would give a constant
+    novelty and a ROC AUC of 0.5 that measures nothing; the cell fails
+    instead, saying how many scores were not finite.
+    """
+    raw = getattr(det, "raw_novelty", None)
+    if raw is not None:
+        check_finite(np.asarray(raw(X), dtype=np.float64), what, "the detector's own score (raw_novelty) was")

@@ -23,12 +23,13 @@ from .definition import DEFINITION_COLUMN, TASK_DATA_COLUMN, definition_digest, 
 from .protocol import get_protocol
 from .specs import Cell
 
-__all__ = ["run_cell", "run_cell_in_worker", "failed_row", "cell_header"]
+__all__ = ["run_cell", "run_cell_in_worker", "failed_row", "cell_header", "record_warnings"]
 
 
 def failed_row(cell: Cell, error: str) -> tuple[dict, dict]:
     """The row of a cell that failed outside :func:`run_cell` (a dead worker, a timeout)."""
-    return {**cell_header(cell), "status": "error", "error": error, "warnings": ""}, {}
+    return {**cell_header(cell), "status": "error", "error": error, "warnings": "", "n_warnings": 0,
+            "warning_types": ""}, {}
 
 
 def cell_header(cell: Cell) -> dict:
@@ -75,9 +76,17 @@ def run_cell(cell: Cell) -> tuple[dict, dict]:
                      if frame and not isinstance(exc, CellError) else "")
             message = " ".join(str(exc).split())
             row["status"], row["error"] = "error", f"{type(exc).__name__}: {message}{where}"
+    record_warnings(row, caught)
+    return row, arrays
+
+
+def record_warnings(row: dict, caught) -> None:
+    """The warnings a cell raised, in its row: ``warnings`` (the first three distinct messages),
+    ``n_warnings`` (how many were raised) and ``warning_types`` (their categories, sorted, comma-separated)."""
     messages = list(dict.fromkeys(f"{w.category.__name__}: {w.message}" for w in caught))
     row["warnings"] = " | ".join(m[:200] for m in messages[:3])
-    return row, arrays
+    row["n_warnings"] = len(caught)
+    row["warning_types"] = ",".join(sorted({w.category.__name__ for w in caught}))
 
 
 def run_cell_in_worker(cell: Cell) -> tuple[dict, dict]:

@@ -50,7 +50,7 @@ def _cells(rows: Sequence[dict], task: str) -> dict[str, list[dict]]:
 
 def compare_on_task(rows: Sequence[dict], arrays: Callable[[str], dict | None], task: str,
                     reference: str | None = None, resamples: int = RESAMPLES, seed: int = 0) -> list[dict]:
-    """Each detector against ``reference`` (default: the run's first ranked, as in the paired comparison) on ``task``.
+    """Each detector against ``reference`` (default: the first by label; a run passes its suite's) on ``task``.
 
     Returns one record a detector (the reference left out) with the
     bootstrap intervals ``roc_auc`` and ``average_precision``
@@ -125,7 +125,7 @@ def _over_worlds(task: str, detector: str, mine: list[dict], reference: str, ref
         kind = "built"
     else:
         kind = "one"
-    low, high = seed_interval(d) if kind == "built" else (float("nan"), float("nan"))
+    low, high = seed_interval(d, bounds=(-1.0, 1.0)) if kind == "built" else (float("nan"), float("nan"))
     return {"detector": detector, "reference": reference, "task": task, "metric": EXPLORATION_METRIC,
             "seeds": len(pairs), "worlds": kind, "difference": mean(d), "low": low, "high": high}
 

@@ -16,7 +16,7 @@ from .protocol import get_protocol
 from .reports.critical_difference import plot_critical_difference
 from .reports.figures import matplotlib_missing
 from .reports.statistics import paired_text
-from .reports.summary import summary_markdown
+from .reports.summary import summary_markdown, warnings_note
 from .results import ResultsStore, provenance
 from .suite import Suite
 
@@ -36,7 +36,7 @@ class BenchReport:
     interrupted: bool = False
     files: list[Path] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    reference: str | None = None        # the paired comparison's reference (None: the first ranked)
+    reference: str | None = None        # the paired comparison's reference (the suite's, else its first detector)
     protocol: str = "holdout"
     comparisons: list[str] = field(default_factory=list)  # the single-task comparisons (markdown lines)
 
@@ -95,7 +95,7 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     stale = {c.id for c in found if not _still_defined(c, finished[c.id])}
     todo = [c for c in cells if c.id not in finished or c.id in stale]
     report = BenchReport(store.out, [], skipped=len(cells) - len(todo), stale=len(stale),
-                         reference=suite.reference, protocol=suite.protocol)
+                         reference=suite.reference_label, protocol=suite.protocol)
     protocol = get_protocol(suite.protocol)
     if report.skipped and not quiet:
         print(f"Resuming: {report.skipped} of {len(cells)} cells already in {store.jsonl}.", file=stream)
@@ -130,10 +130,13 @@ def _run(suite: Suite, store: ResultsStore, backend: str, jobs: int, scheduler: 
     summary = store.out / "summary.md"
     if not compare_on and len(suite.tasks) == 1 and suite.protocol == "holdout":
         compare_on = [suite.tasks[0].label]
-    report.comparisons = _comparisons(report.rows, store, compare_on, suite.reference, suite.protocol)
+    warned = warnings_note(report.rows)
+    if warned:
+        report.notes.append(warned)
+    report.comparisons = _comparisons(report.rows, store, compare_on, suite.reference_label, suite.protocol)
     sections = protocol.summary(report.rows) + report.comparisons
-    text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference,
-                            {**stamp, "command": command}, sections)
+    text = summary_markdown(report.rows, f"Benchmark: {suite.name}", report.notes, suite.reference_label,
+                            {**stamp, "command": command}, sections, suite.reference_how)
     write_atomically(summary, lambda fh: fh.write(text), text=True)
     report.files.append(summary)
     if plots and report.rows and not report.interrupted:

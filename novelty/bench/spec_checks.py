@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .._component import Component
 from ..datasets import load, registry
 from ..datasets.tables import check_data_file
 from ..registry import RegistryError, check_parameters
@@ -52,7 +53,7 @@ def _validate_tree(component) -> None:
     if validate is not None:
         validate()
     for value in params.values():
-        if hasattr(value, "_validate_params"):
+        if isinstance(value, Component):  # not another library's objects: theirs is their own business
             _validate_tree(value)
 
 
@@ -71,7 +72,8 @@ def check_task(spec: TaskSpec) -> None:
     """Check a task's name and option names; load a task that is the same in every cell.
 
     A task read from files the suite names (``path``, ``test_path``) and the
-    same in every cell (it takes no seed) is loaded once here, so that a
+    same in every cell (it takes no seed), or the ``files`` task (whose seed
+    only draws its split), is loaded once here, so that a
     wrong column, label or split is refused before the run, with the message
     :func:`novelty.datasets.files.read_scans` gives (as ``novelty run``
     prints it), rather than failing every cell. Generated tasks, and data
@@ -94,7 +96,9 @@ def check_task(spec: TaskSpec) -> None:
                     check_data_file(str(spec.options[key]))
                 except (OSError, ValueError) as exc:
                     raise SuiteError(f"Task {spec.label!r}: {exc}") from None
-    if valid is not None and "seed" not in valid and any(key in spec.options for key in FILE_OPTIONS):
+    # a task read from the suite's files is loaded once now (with seed 0 if its split is drawn per seed)
+    if valid is not None and any(key in spec.options for key in FILE_OPTIONS) and (
+            "seed" not in valid or spec.name == FILES_TASK):
         try:
             load(spec.name, **spec.options)
         except (ValueError, TypeError, OSError) as exc:

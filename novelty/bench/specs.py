@@ -27,6 +27,9 @@ __all__ = [
     "parse_assignments",
     "detector_from_text",
     "task_from_text",
+    "tasks_from_text",
+    "expand_folder",
+    "FOLDER_SUFFIXES",
     "parse_seeds",
     "format_value",
     "resolve_files",
@@ -50,6 +53,8 @@ class SuiteError(ValueError):
 FILES_TASK = "files"
 #: its options that name files, read relative to the suite file
 FILE_OPTIONS = ("path", "test_path")
+#: the files a folder given as a files task's path holds, one task each (ADBench's .npz, ODDS's .mat, CSV)
+FOLDER_SUFFIXES = (".npz", ".mat", ".csv")
 
 
 # ------------------------------------------------------------------ values
@@ -225,6 +230,25 @@ def resolve_files(options: dict, base: Path | None) -> dict:
     return {k: str(base / v) if k in FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
 
 
+def expand_folder(spec: TaskSpec) -> list[TaskSpec]:
+    """A ``files`` task whose ``path`` is a folder: one task for each data file in it (``[spec]`` otherwise).
+
+    The files are those ending in :data:`FOLDER_SUFFIXES`, in the order of
+    their names, each a task labelled by its name without the extension and
+    given the folder task's other options (a benchmark's protocol).
+    """
+    path = spec.options.get("path")
+    if spec.name != FILES_TASK or not isinstance(path, str) or not Path(path).is_dir():
+        return [spec]
+    if spec.label not in (FILES_TASK, Path(path).stem, Path(path).name):
+        raise SuiteError(f"Task {spec.label!r}: {path} is a folder, one task a file, each named by its file; "
+                         "a name for the folder is not used (name a file's task by giving its path).")
+    found = sorted(p for p in Path(path).iterdir() if p.suffix.lower() in FOLDER_SUFFIXES and p.is_file())
+    if not found:
+        raise SuiteError(f"Task folder {path} holds no data file ({', '.join(FOLDER_SUFFIXES)}).")
+    return [TaskSpec(FILES_TASK, {**spec.options, "path": str(p)}, p.stem) for p in found]
+
+
 # ------------------------------------------------------------ command line
 def detector_from_text(text: str) -> DetectorSpec:
     """``"hsom n_rows=5 alpha=1.2"`` -> a :class:`DetectorSpec` (command line)."""
@@ -265,3 +289,12 @@ def task_from_text(text: str) -> TaskSpec:
             label = Path(options["path"]).stem
         options = resolve_files(options, Path.cwd())
     return TaskSpec(words[0], options, label or "")
+
+
+def tasks_from_text(text: str) -> list[TaskSpec]:
+    """:func:`task_from_text`, a folder of data files given as ``files path=DIR`` read as one task a file.
+
+    >>> [t.label for t in tasks_from_text("inspection-easy n_scans=200")]
+    ['inspection-easy']
+    """
+    return expand_folder(task_from_text(text))

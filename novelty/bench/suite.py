@@ -13,7 +13,7 @@ The TOML form::
     memory = true          # peak memory by a second, traced run of each cell;
                            # "first-seed": of the cells of the first seed only
     reference = "parzen"   # optional: the detector (label) of the paired comparison;
-                           # default: the detector ranked first
+                           # default: the first detector listed (never one chosen by the results)
     protocol = "holdout"   # or "exploration": every scan scored, then learned, in order
                            # (novelty.bench.exploration)
     cell_timeout = 600     # optional: seconds a cell may run before it is stopped and
@@ -72,6 +72,21 @@ class Suite:
     protocol: str = "holdout"
     cell_timeout: float | None = None  # seconds; None: no limit
     skip_reasons: dict[str, str] = field(default_factory=dict)  # why each skipped entry was skipped
+
+    @property
+    def reference_label(self) -> str | None:
+        """The detector the others are paired with: ``reference``, else the first detector listed."""
+        if self.reference is not None:
+            return self.reference
+        return self.detectors[0].label if self.detectors else None
+
+    @property
+    def reference_how(self) -> str:
+        """How :attr:`reference_label` was chosen, for the summary."""
+        if self.reference is not None:
+            return "the suite's `reference`."
+        return ("the suite's first detector, a default that does not depend on the results (set `reference` in "
+                "the suite or `--reference` to choose another).")
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)

@@ -16,7 +16,8 @@ from .._atomic import not_regular
 from ..datasets import registry as datasets
 from ..registry import detectors as detector_registry
 from . import river
-from .specs import FILES_TASK, DetectorSpec, SuiteError, TaskSpec, format_value, parse_seeds, resolve_files
+from .specs import (FILES_TASK, DetectorSpec, SuiteError, TaskSpec, expand_folder, format_value, parse_seeds,
+                    resolve_files)
 from .suite import Suite
 
 __all__ = ["load_suite", "suite_from_dict", "quick_suite_path"]
@@ -160,7 +161,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
         where = f"{source}: tasks[{i}]"
         _known_keys(entry, {"name", "options", "label", "optional", "path"}, where)
         if "path" in entry:
-            tasks.append(_files_task(entry, where, base))
+            tasks.extend(expand_folder(_files_task(entry, where, base)))
             continue
         name = entry.get("name")
         if not isinstance(name, str) or not name:
@@ -172,7 +173,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
         options = _table(entry.get("options"), f"{where}: options")
         if name == FILES_TASK:
             options = resolve_files(options, base)
-        tasks.append(TaskSpec(name, options, _label(entry, name, where)))
+        tasks.extend(expand_folder(TaskSpec(name, options, _label(entry, name, where))))
     memory = head.get("memory", True)
     if not isinstance(memory, bool) and memory != "first-seed":
         raise SuiteError(f"{source}: memory must be true, false or \"first-seed\"; got {memory!r}.")

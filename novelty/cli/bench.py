@@ -68,7 +68,7 @@ def add_parser(subparsers):
                         "or '5,' for seed 5 alone")
     parser.add_argument("--reference", metavar="NAME",
                         help="the detector (its label in the table) each other is paired with, cell by "
-                        "cell (default: the suite's 'reference', else the detector ranked first)")
+                        "cell (default: the suite's 'reference', else its first detector)")
     parser.add_argument("--compare-on-task", action="append", metavar="TASK", default=[],
                         help="compare each detector with the reference on this task alone: a paired "
                         "bootstrap over its test scans (ROC AUC and AP intervals), and the corrected "
@@ -102,7 +102,7 @@ def build_suite(args):
     """The suite the options describe (file, --quick, and command-line overrides)."""
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench import Suite, load_suite, quick_suite_path
-    from ..bench.specs import detector_from_text, parse_seeds, parse_value, task_from_text
+    from ..bench.specs import detector_from_text, parse_seeds, parse_value, tasks_from_text
 
     if args.suite and args.quick:
         raise UserError("Give either a suite file or --quick, not both.")
@@ -115,7 +115,7 @@ def build_suite(args):
     if args.detector:
         suite.detectors = [detector_from_text(t) for t in args.detector]
     if args.task:
-        suite.tasks = [task_from_text(t) for t in args.task]
+        suite.tasks = [task for text in args.task for task in tasks_from_text(text)]
     if args.seeds:
         suite.seeds = parse_seeds(args.seeds, "--seeds")
     if args.threshold:

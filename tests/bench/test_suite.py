@@ -147,7 +147,7 @@ def test_the_example_suites_read():
 
 def test_a_task_from_the_users_file_by_path_relative_to_the_suite(tmp_path):
     (tmp_path / "data").mkdir()
-    (tmp_path / "data" / "scans.csv").write_text("a,y\n1,0\n2,0\n3,1\n")
+    (tmp_path / "data" / "scans.csv").write_text("a,y\n1,0\n2,0\n3,1\n4,0\n")
     suite = load_suite(write(tmp_path, """
 [[detectors]]
 name = "hsom"

@@ -6,6 +6,9 @@ For a task whose scans are split into a training and a test part:
    ``train_passes`` times (``partial_fit``, novelty computed before each scan
    is learned, exactly as a robot repeating its route). A batch-only detector
    (``supports_online = False``) is ``fit`` once on the training scans.
+   The test labels must be 0 or 1, both present (:mod:`novelty.datasets.labels`);
+   a score that is not finite, the detector's own raw score included, fails
+   the cell with their count (a calibrated +inf reads as a constant).
 2. Threshold. The training scans are scored without learning; the alarm
    threshold is their maximum (or the suite's quantile): see
    :func:`novelty.bench.holdout.metrics.training_threshold`. Nothing of the
@@ -13,7 +16,10 @@ For a task whose scans are split into a training and a test part:
 3. Test. The test scans are scored without learning (``novelty(X)``) and the
    metrics of the table :data:`novelty.bench.holdout.metrics.METRICS`
    computed against the labels.
-4. False alarms: the alarms on a clean pass over the familiar route. That is
+4. Route metrics (detection delay, false alarms, integrated novelty, the
+   maximum), for a task whose scans lie along a route (:func:`has_route`);
+   NaN for a table of scans in no order. False alarms: the alarms on a
+   clean pass over the familiar route. That is
    the task's ``metadata["clean_test"]`` (a Dataset or an array of scans) if
    it has one, else the test runs that hold no novel scan (when others do),
    else the normal scans of the test part; the column
@@ -33,17 +39,19 @@ import tracemalloc
 
 import numpy as np
 
-from ..build import check_finite, load_task, make_detector, n_units, resting_novelty, train_detector
+from ...datasets.labels import check_both_classes, check_labels
+from ..build import (check_finite, check_raw_finite, load_task, make_detector, n_units, resting_novelty,
+                     train_detector)
 from ..specs import Cell
 from . import metrics
 
-__all__ = ["evaluate", "clean_pass", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
+__all__ = ["evaluate", "clean_pass", "has_route", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
 
 #: columns that depend only on the cell: identical across backends and reruns
 #: (the task's sizes, the metrics of :data:`novelty.bench.holdout.metrics.METRICS`, the threshold and
 #: what the detector became)
 METRIC_COLUMNS = [
-    "n_train", "n_test", "n_novel", "train_passes", *(m.column for m in metrics.METRICS),
+    "n_train", "n_test", "n_novel", "train_passes", "route", "task_split", *(m.column for m in metrics.METRICS),
     "threshold", "false_alarm_source", "resting_novelty", "n_units",
 ]
 #: columns measured on the machine (times, memory): they vary from run to run
@@ -73,6 +81,18 @@ def clean_pass(data, test, y: np.ndarray) -> tuple[np.ndarray | None, str]:
     return None, "normal test scans"
 
 
+def has_route(data) -> bool:
+    """Whether the task's scans lie along a route, in order: what delay, false alarms and integrated novelty need.
+
+    A task has a route when it says so (``metadata["route"]``), else when its
+    scans carry a distance, a run or a time column. A table of scans drawn at
+    random (a resampled benchmark file, arrays) has none.
+    """
+    if "route" in data.metadata:
+        return bool(data.metadata["route"])
+    return data.distance is not None or data.run is not None or "time" in data.columns
+
+
 def evaluate(cell: Cell) -> tuple[dict, dict]:
     """The row of metrics and the per-scan arrays of a hold-out cell."""
     data = load_task(cell)
@@ -81,7 +101,9 @@ def evaluate(cell: Cell) -> tuple[dict, dict]:
         raise ValueError(f"Task {cell.task.label!r} has no labels (y) for its test part.")
     if len(train) == 0 or len(test) == 0:
         raise ValueError(f"Task {cell.task.label!r} has an empty training or test part.")
-    y = np.asarray(test.y).astype(bool)
+    y = check_labels(test.y, f"Task {cell.task.label!r}: test labels").astype(bool)
+    check_both_classes(y, f"Task {cell.task.label!r}")
+    route = has_route(data)
     passes = data.train_passes
 
     det = make_detector(cell)
@@ -93,6 +115,7 @@ def evaluate(cell: Cell) -> tuple[dict, dict]:
     score_time = time.perf_counter() - start
 
     check_finite(novelty, "test scans")
+    check_raw_finite(det, test.X, "test scans")
     train_novelty = np.asarray(det.novelty(train.X), dtype=np.float64)
     check_finite(train_novelty, "training scans")
     threshold = metrics.training_threshold(train_novelty, cell.threshold)
@@ -100,9 +123,13 @@ def evaluate(cell: Cell) -> tuple[dict, dict]:
     alarm_scores = np.asarray(det.novelty(clean), dtype=np.float64) if clean is not None else novelty[~y]
     check_finite(alarm_scores, "clean-pass scans")
     resting = resting_novelty(det)
+    scored = metrics.compute(metrics.Scored(novelty, y, threshold, alarm_scores, resting))
+    if not route:  # a delay or a count of alarms along no route means nothing
+        scored.update({m.column: float("nan") for m in metrics.METRICS if m.route})
     row = {
         "n_train": len(train), "n_test": len(test), "n_novel": int(y.sum()), "train_passes": passes,
-        **metrics.compute(metrics.Scored(novelty, y, threshold, alarm_scores, resting)),
+        "route": route, "task_split": data.metadata.get("split_description", ""),
+        **scored,
         "threshold": threshold,
         "false_alarm_source": source,
         "resting_novelty": resting,

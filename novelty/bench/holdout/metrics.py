@@ -213,12 +213,16 @@ class Metric:
     ``heading`` is the column's title in the ranking of ``novelty bench``
     (None: in the results only) and ``digits`` the decimals shown there.
     The summary shows a detector's mean over its successful cells.
+    ``route``: the metric reads the test scans as a route, in order (NaN
+    for a task without one); ``bounds``: the interval its values lie in.
     """
 
     column: str
     compute: Callable[[Scored], float]
     heading: str | None = None
     digits: int = 3
+    route: bool = False
+    bounds: tuple[float, float] | None = None
 
 
 def _false_alarm_rate(s: Scored) -> float:
@@ -227,14 +231,15 @@ def _false_alarm_rate(s: Scored) -> float:
 
 #: the metrics of a cell, in the order of the results' columns and the ranking's
 METRICS: tuple[Metric, ...] = (
-    Metric("roc_auc", lambda s: roc_auc(s.novelty, s.y), "ROC AUC"),
-    Metric("average_precision", lambda s: average_precision(s.novelty, s.y), "AP"),
-    Metric("tpr_at_1pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.01), "TPR@1%"),
-    Metric("tpr_at_5pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.05), "TPR@5%"),
-    Metric("detection_delay", lambda s: detection_delay(s.novelty, s.y, s.threshold), "delay", 1),
-    Metric("false_alarms", lambda s: count_alarms(s.alarm_scores, s.threshold), "false alarms", 1),
-    Metric("false_alarm_rate", _false_alarm_rate),
-    Metric("integrated_novelty", lambda s: integrated_novelty(s.novelty, s.resting), "integrated", 2),
+    Metric("roc_auc", lambda s: roc_auc(s.novelty, s.y), "ROC AUC", bounds=(0.0, 1.0)),
+    Metric("average_precision", lambda s: average_precision(s.novelty, s.y), "AP", bounds=(0.0, 1.0)),
+    Metric("tpr_at_1pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.01), "TPR@1%", bounds=(0.0, 1.0)),
+    Metric("tpr_at_5pct_fpr", lambda s: tpr_at_fpr(s.novelty, s.y, 0.05), "TPR@5%", bounds=(0.0, 1.0)),
+    Metric("detection_delay", lambda s: detection_delay(s.novelty, s.y, s.threshold), "delay", 1, route=True),
+    Metric("false_alarms", lambda s: count_alarms(s.alarm_scores, s.threshold), "false alarms", 1, route=True),
+    Metric("false_alarm_rate", _false_alarm_rate, route=True, bounds=(0.0, 1.0)),
+    Metric("integrated_novelty", lambda s: integrated_novelty(s.novelty, s.resting), "integrated", 2,
+           route=True),
     Metric("max_novelty", lambda s: float(np.max(s.novelty)), "max"),
 )
 

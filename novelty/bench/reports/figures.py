@@ -7,12 +7,13 @@ non-interactive Agg backend) only when a plot is drawn.
 
 from __future__ import annotations
 
+import hashlib
 import math
 import re
 from pathlib import Path
 from typing import Sequence
 
-__all__ = ["matplotlib_missing", "pyplot", "slug", "grid", "save", "seeds_text", "DPI"]
+__all__ = ["matplotlib_missing", "pyplot", "slug", "grid", "save", "seeds_text", "DPI", "MAX_SLUG"]
 
 #: resolution of every saved figure
 DPI = 110
@@ -37,13 +38,30 @@ def pyplot():
     return plt
 
 
-def slug(text: str) -> str:
-    """``text`` as a safe part of a file name.
+#: the longest part of a file name a label becomes (file systems allow 255 bytes a name)
+MAX_SLUG = 80
 
-    >>> slug("lab a/b.csv")
-    'lab-a-b.csv'
+
+def slug(text: str) -> str:
+    """``text`` as a safe part of a file name, one name a text.
+
+    A text of letters, digits, ``_.-`` only and at most :data:`MAX_SLUG`
+    characters is its own name. Any other is cleaned (each run of other
+    characters a ``-``), cut to fit, and followed by 8 hex digits of the
+    text's SHA-256: so two labels never write one file (``lab a`` and
+    ``lab/a`` would both clean to ``lab-a``), and a label of 300 characters
+    makes a name a file system takes.
+
+    >>> slug("lab-a_2.csv"), slug("lab a/b.csv")
+    ('lab-a_2.csv', 'lab-a-b.csv-addaa40a')
+    >>> len(slug("x" * 300)) <= MAX_SLUG
+    True
     """
-    return re.sub(r"[^A-Za-z0-9_.-]+", "-", text).strip("-") or "task"
+    if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.-]*", text) and len(text) <= MAX_SLUG:
+        return text
+    cleaned = re.sub(r"[^A-Za-z0-9_.-]+", "-", text).strip("-.") or "task"
+    digest = hashlib.sha256(text.encode("utf-8", "surrogatepass")).hexdigest()[:8]
+    return f"{cleaned[:MAX_SLUG - 9]}-{digest}"
 
 
 def grid(n: int) -> tuple[int, int]:

@@ -17,7 +17,7 @@ from __future__ import annotations
 import math
 from typing import Sequence
 
-__all__ = ["format_table", "number", "mean_spread", "signed", "p_value", "p_is", "yes_no", "MISSING"]
+__all__ = ["format_table", "escape", "number", "mean_spread", "signed", "p_value", "p_is", "yes_no", "MISSING"]
 
 #: how a missing value is written
 MISSING = "-"
@@ -90,8 +90,24 @@ def yes_no(flag: bool) -> str:
     return "yes" if flag else "no"
 
 
+def escape(text: str) -> str:
+    r"""``text`` safe in a markdown table and a generated region: ``|`` escaped, comment markers and line breaks defused.
+
+    A label is the user's text: a ``|`` would split its cell, a ``-->`` or
+    ``<!--`` would end or open an HTML comment (the markers of a generated
+    region in the documents), a line break would end its row.
+
+    >>> print(escape("a|b <!-- end generated -->"))
+    a\|b &lt;!-- end generated --&gt;
+    """
+    text = " ".join(str(text).splitlines())
+    return text.replace("|", "\\|").replace("<!--", "&lt;!--").replace("-->", "--&gt;")
+
+
 def format_table(header: Sequence[str], body: Sequence[Sequence[str]]) -> str:
-    """A markdown table with aligned columns (readable as plain text too)."""
+    """A markdown table with aligned columns (readable as plain text too); every cell :func:`escape`-d."""
+    header = [escape(h) for h in header]
+    body = [[escape(c) for c in row] for row in body]
     widths = [max(len(h), *(len(r[i]) for r in body)) if body else len(h) for i, h in enumerate(header)]
     line = lambda cells: "| " + " | ".join(c.ljust(w) for c, w in zip(cells, widths)) + " |"  # noqa: E731
     rule = "|" + "|".join("-" * (w + 2) for w in widths) + "|"

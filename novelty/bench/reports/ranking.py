@@ -68,11 +68,17 @@ def detector_order(rows: Iterable[dict]) -> list[str]:
 
 
 def reference_of(rows: Sequence[dict], reference: str | None = None) -> str | None:
-    """``reference`` if given, else the detector ranked first (``None`` for no rows)."""
+    """``reference`` if given, else the first detector by label (``None`` for no rows).
+
+    The default never depends on the results: a reference that changed with
+    the ranking would pair the detectors with another one from run to run. A
+    run passes its suite's reference (its ``reference``, else its first
+    detector: :attr:`novelty.bench.suite.Suite.reference_label`).
+    """
     if reference is not None:
         return reference
-    records = rank_detectors(rows)
-    return records[0]["detector"] if records else None
+    labels = sorted({str(r["detector"]) for r in rows})
+    return labels[0] if labels else None
 
 
 def per_task_text(rows: Sequence[dict]) -> str:

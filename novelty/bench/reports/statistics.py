@@ -49,9 +49,9 @@ def _table(rows: Sequence[dict]):
 def paired_text(rows: Sequence[dict], reference: str | None = None) -> str:
     """Each detector's ROC AUC minus the reference's, task by task (means over seeds), in rank order."""
     reference = reference_of(rows, reference)
-    if reference is None:
-        return ""
     table = _table(rows)
+    if reference is None or reference not in table.detectors:  # no row of it yet (an interrupted run)
+        return ""
     records = stats.paired_comparison(table, reference)
     adjusted = stats.pairwise_wilcoxon(table).adjusted[table.detectors.index(reference)]
     if _pairs_cannot_reach(table):  # a p-value that cannot reach the level says nothing: not shown

@@ -13,19 +13,20 @@ import json
 from typing import Sequence
 
 from ..stats.bayesian import ROPE
+from .format import format_table
 from .ranking import reference_of
 from .statistics import paired_text, seeds_text, statistics_markdown, task_ranks_text
 
-__all__ = ["summary_markdown"]
+__all__ = ["summary_markdown", "warning_counts", "warnings_note"]
 
 
 def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequence[str] = (),
                      reference: str | None = None, run: dict | None = None,
-                     sections: Sequence[str] = ()) -> str:
+                     sections: Sequence[str] = (), reference_how: str | None = None) -> str:
     """The ``summary.md`` of a run.
 
-    ``reference``: the detector of the paired comparison (default: the one
-    ranked first); ``run``: how the run was made (``command``, ``versions``
+    ``reference``: the detector of the paired comparison (default: the first
+    by label), ``reference_how`` how it was chosen; ``run``: how the run was made (``command``, ``versions``
     as JSON, ``git_revision``), recorded at the end; ``sections``: the
     protocol's own sections (markdown lines), after the count of cells.
     """
@@ -40,12 +41,13 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         f"{len(failed)} failed.",
         "",
         *sections,
-        *_paired_section(rows, reference),
+        *_paired_section(rows, reference, reference_how),
         "",
         "## ROC AUC per task",
         "",
         "Unit: the seed within a task. Mean over seeds and its 95% confidence interval (Student t over "
-        "the seeds); '1 value' where the seeds repeated one measurement.",
+        "the seeds, truncated to [0, 1], where ROC AUC lies); '1 value' where the seeds repeated one "
+        "measurement.",
         "",
         seeds_text(rows),
         "",
@@ -60,6 +62,7 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
         "",
         *statistics_markdown(rows),
     ]
+    parts += _warnings_section(rows)
     if failed:
         parts += ["", "## Failed cells", ""]
         parts += [f"- {r['detector']} / {r['task']} / seed {r['seed']}: {r.get('error', '')}" for r in failed]
@@ -69,12 +72,12 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
     return "\n".join(parts) + "\n"
 
 
-def _paired_section(rows: Sequence[dict], reference: str | None) -> list[str]:
+def _paired_section(rows: Sequence[dict], reference: str | None, how: str | None = None) -> list[str]:
     chosen = reference_of(rows, reference)
     if chosen is None:
         return []
-    how = ("the suite's `reference`." if reference is not None else
-           "the detector ranked first (set `reference` in the suite or `--reference` to choose).")
+    how = how or ("the given `reference`." if reference is not None else
+                  "the first detector by label (set `reference` in the suite or `--reference` to choose).")
     return [
         "",
         f"## Paired comparison with {chosen}",
@@ -89,6 +92,50 @@ def _paired_section(rows: Sequence[dict], reference: str | None) -> list[str]:
         "",
         paired_text(rows, chosen),
     ]
+
+
+def _categories(row: dict) -> list[str]:
+    """The warning categories a row records (``warning_types``, or read from ``warnings`` in older rows)."""
+    types = row.get("warning_types")
+    if types:
+        return str(types).split(",")
+    text = row.get("warnings") or ""
+    return sorted({part.split(":", 1)[0].strip() for part in str(text).split(" | ") if ":" in part})
+
+
+def warning_counts(rows: Sequence[dict]) -> dict[str, tuple[int, str]]:
+    """``{category: (cells that raised it, the first message)}`` over every cell, categories sorted."""
+    found: dict[str, list] = {}
+    for row in rows:
+        messages = [m for m in str(row.get("warnings") or "").split(" | ") if m]
+        for category in _categories(row):
+            entry = found.setdefault(category, [0, ""])
+            entry[0] += 1
+            entry[1] = entry[1] or next((m for m in messages if m.startswith(category + ":")), "")
+    return {c: (n, m) for c, (n, m) in sorted(found.items())}
+
+
+def warnings_note(rows: Sequence[dict]) -> str | None:
+    """One line for the console: which warnings were raised in how many cells (None: none were)."""
+    counts = warning_counts(rows)
+    if not counts:
+        return None
+    cells = sum(1 for r in rows if _categories(r))
+    named = ", ".join(f"{c} in {n}" for c, (n, _) in counts.items())
+    return (f"Warnings were raised in {cells} of {len(rows)} cells ({named}); they can change results "
+            "(summary.md, Warnings raised in cells, quotes each).")
+
+
+def _warnings_section(rows: Sequence[dict]) -> list[str]:
+    counts = warning_counts(rows)
+    if not counts:
+        return []
+    return ["", "## Warnings raised in cells", "",
+            "Warnings raised while a cell ran (a ScanRangeWarning, for one, says that inputs lie outside the "
+            "range a clusterer assumes, which changes its results): the cells that raised each kind, and its "
+            "first message.", "",
+            format_table(["warning", "cells", "first message"],
+                         [[c, str(n), m[:160]] for c, (n, m) in counts.items()])]
 
 
 def _provenance_lines(rows: Sequence[dict], run: dict) -> list[str]:

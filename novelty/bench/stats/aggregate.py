@@ -22,7 +22,7 @@ import numpy as np
 from scipy import stats as sps
 
 __all__ = ["as_float", "in_order", "mean", "sd", "TaskTable", "task_table", "seed_interval", "distinct",
-           "TIE_TOLERANCE", "CONFIDENCE"]
+           "bounds_of", "TIE_TOLERANCE", "CONFIDENCE"]
 
 
 def as_float(value) -> float:
@@ -81,8 +81,9 @@ class TaskTable:
         repeated one measurement (a fixed split and a deterministic detector).
     ci : ndarray of shape (n_detectors, n_tasks, 2)
         The 95 % Student-t interval of the mean over seeds
-        (``mean ± t_{0.975, n-1} sd / sqrt(n)``); NaN when the seeds gave
-        fewer than two distinct values.
+        (``mean ± t_{0.975, n-1} sd / sqrt(n)``), truncated to the metric's
+        bounds (:func:`bounds_of`); NaN when the seeds gave fewer than two
+        distinct values.
     """
 
     detectors: list[str]
@@ -113,17 +114,38 @@ class TaskTable:
         return out
 
 
-def seed_interval(values: Sequence[float], confidence: float = CONFIDENCE) -> tuple[float, float]:
+def bounds_of(metric: str) -> tuple[float, float] | None:
+    """The interval a metric's values lie in, by its name: a ROC AUC, a precision, a rate lie in [0, 1].
+
+    >>> bounds_of("roc_auc"), bounds_of("detection_delay")
+    ((0.0, 1.0), None)
+    """
+    bounded = (metric in ("roc_auc", "average_precision") or metric.endswith(("_auc", "_rate", "_fraction"))
+               or metric.startswith("tpr_at_"))
+    return (0.0, 1.0) if bounded else None
+
+
+def seed_interval(values: Sequence[float], confidence: float = CONFIDENCE,
+                  bounds: tuple[float, float] | None = None) -> tuple[float, float]:
     """The Student-t interval of the mean of ``values`` (NaN, NaN with fewer than two distinct values).
+
+    ``mean ± t_{(1+c)/2, n-1} sd / sqrt(n)``; with ``bounds``, truncated to
+    them (a mean of ROC AUCs lies in [0, 1]; on two seeds the t quantile is
+    12.7 and the plain interval runs far outside).
 
     >>> [round(x, 4) for x in seed_interval([0.7, 0.8, 0.9])]
     [0.5516, 1.0484]
+    >>> [round(x, 4) for x in seed_interval([0.7, 0.8, 0.9], bounds=(0.0, 1.0))]
+    [0.5516, 1.0]
     """
     arr = np.array([v for v in values if not math.isnan(v)], dtype=float)
     if arr.size < 2 or np.ptp(arr) <= TIE_TOLERANCE:
         return float("nan"), float("nan")
     half = sps.t.ppf(0.5 + confidence / 2, arr.size - 1) * arr.std(ddof=1) / math.sqrt(arr.size)
-    return float(arr.mean() - half), float(arr.mean() + half)
+    low, high = float(arr.mean() - half), float(arr.mean() + half)
+    if bounds is not None:
+        low, high = max(low, bounds[0]), min(high, bounds[1])
+    return low, high
 
 
 def distinct(values: Sequence[float]) -> int:
@@ -158,5 +180,5 @@ def task_table(rows: Iterable[dict], metric: str = "roc_auc", detectors: Sequenc
             v = seeds.get((d, task), [])
             if v:
                 values[i, t], n[i, t], k[i, t] = float(np.mean(v)), len(v), distinct(v)
-                ci[i, t] = seed_interval(v)
+                ci[i, t] = seed_interval(v, bounds=bounds_of(metric))
     return TaskTable(names, tasks, values, n, k, ci)

@@ -8,9 +8,9 @@ def test_the_summary_puts_the_protocols_sections_first_then_the_paired_compariso
     text = summary_markdown(rows, reference="ref", sections=summary_sections(rows))
     assert text.index("## Ranking") < text.index("## Paired comparison with ref") < text.index(
         "## ROC AUC per task")
-    assert "The reference is the suite's `reference`." in text
+    assert "The reference is the given `reference`." in text
     assert "12 cells: 3 detectors x 2 tasks x 2 seeds (0, 1); 1 failed." in text
-    assert "## Paired comparison with b" in summary_markdown(rows)
+    assert "## Paired comparison with a" in summary_markdown(rows)      # the first label, b ranks first
 
 
 def test_the_sections_in_order_each_from_its_module(rows):
