@@ -51,6 +51,7 @@ from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
 from . import persistence
+from .river_composition import register_with_river, unlearned_river_scan
 from ._component import Component, StateError, _is_state_name, check_array_state, check_int_state
 from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
                           frame_names, last_timestamp, scan_names, validate_parameters)
@@ -158,6 +159,8 @@ class NoveltyDetector(OutlierMixin, Component):
     """
 
     _kind = "detector"
+    #: River's flag of a model that learns from labels: a detector does not (novelty.river_composition)
+    _supervised = False
     #: whether ``partial_fit`` / ``learn_one`` keep learning after ``fit``
     supports_online = True
     #: modules of optional dependencies the detector needs to fit (e.g. ``("pyod",)``)
@@ -431,7 +434,8 @@ class NoveltyDetector(OutlierMixin, Component):
         the class notes), once ``x`` is checked.
         """
         if not self._is_fitted():
-            check_one(x, self, None)
+            if not unlearned_river_scan(x):  # River's unlearned scalers give NaN; the answer needs no values
+                check_one(x, self, None)
             self._validate_params()
             return self._first_novelty()
         out = self._novelty_one(check_one(x, self, self.n_features_in_, self._names()))
@@ -474,3 +478,5 @@ class NoveltyDetector(OutlierMixin, Component):
         with _lock_of(self):
             persistence.save(self, path)
 
+
+register_with_river(NoveltyDetector)  # River's pipelines and evaluation take every detector (river_composition)
