@@ -43,8 +43,6 @@ import numbers
 from dataclasses import asdict, dataclass, replace
 
 import numpy as np
-from sklearn.model_selection import train_test_split
-from sklearn.preprocessing import MinMaxScaler, StandardScaler
 
 from ..data import Dataset
 from .labels import check_labels
@@ -69,7 +67,12 @@ DEFAULT_TEST = 0.3
 ADBENCH = {"resample": "stratified", "test": 0.3, "min_rows": 1000, "max_rows": 10000, "scale": "minmax",
            "training": "contaminated"}
 
-_SCALERS = {"minmax": MinMaxScaler, "standard": StandardScaler}
+
+def _scaler(name: str):
+    # imported here: the files task is read by the command line, which starts without scikit-learn
+    from sklearn.preprocessing import MinMaxScaler, StandardScaler
+
+    return {"minmax": MinMaxScaler, "standard": StandardScaler}[name]()
 
 
 def _choice(value, allowed: tuple, name: str, default: str) -> str:
@@ -133,6 +136,9 @@ class Resampling:
         if data.y is None:
             raise ValueError(f"resample={self.resample} needs labels for every row (a y or label column).")
         y = check_labels(data.y, f"{data.name}, labels")
+        # imported here: the command line reads the files task and starts without scikit-learn
+        from sklearn.model_selection import train_test_split
+
         rng = np.random.default_rng(np.random.SeedSequence([int(seed), _tag(data.name)]))
         n = len(data)
         if self.min_rows is not None and n < self.min_rows:
@@ -159,7 +165,7 @@ class Resampling:
             data = data.subset(~((data.split == "train") & (np.asarray(data.y) != 0)))
         if self.scale not in (None, "none"):
             train = data.split == "train"
-            scaler = _SCALERS[self.scale]().fit(data.X[train])
+            scaler = _scaler(self.scale).fit(data.X[train])
             data = replace(data, X=scaler.transform(data.X))
         return data
 

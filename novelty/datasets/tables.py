@@ -22,7 +22,6 @@ from pathlib import Path
 from typing import Sequence
 
 import numpy as np
-from scipy import io as matlab
 
 from .._atomic import not_regular
 from ._files import _is_float
@@ -203,6 +202,9 @@ def _read_npz(path: Path) -> Table:
 
 def _read_mat(path: Path) -> Table:
     """A MATLAB 5 ``.mat`` file (ODDS's ``X`` and ``y``): its sizes checked from the header, then read."""
+    # imported here: the command line reads tables and must start without scipy (tests/test_init.py)
+    from scipy import io as matlab
+
     try:
         declared = matlab.whosmat(str(path))
         total = sum(math.prod(shape) * 8 for _, shape, _ in declared)
@@ -212,8 +214,8 @@ def _read_mat(path: Path) -> Table:
     except NotImplementedError:  # scipy's answer to a MATLAB 7.3 file, which is HDF5
         raise ValueError(f"{path} is a MATLAB 7.3 (HDF5) file, which is not read; save it in MATLAB 5 format "
                          "(save -v7) or as an .npz of X and y.") from None
-    except (OSError, ValueError, TypeError, EOFError) as exc:
-        raise ValueError(f"Cannot read {path} as a MATLAB .mat file: {exc}") from None
+    except (OSError, ValueError, TypeError, EOFError, IndexError, KeyError) as exc:  # scipy's, on a damaged file
+        raise ValueError(f"Cannot read {path} as a MATLAB .mat file: {type(exc).__name__}: {exc}") from None
     arrays = {}
     for key, value in contents.items():
         if key.startswith("__") or not isinstance(value, np.ndarray) or value.dtype.kind not in "biuf":

@@ -50,3 +50,19 @@ def test_a_task_is_named_by_name_or_by_its_file(tmp_path):
     assert spec.label == "corridor" and "name" not in spec.options
     with pytest.raises(SuiteError, match="name= must be a non-empty text"):
         task_from_text("files path=a.csv name=")
+
+
+def test_a_folder_of_data_files_is_one_files_task_a_file(tmp_path):
+    from novelty.bench.specs import tasks_from_text
+
+    for name in ("b.npz", "a.mat", "c.csv", "notes.txt"):
+        (tmp_path / name).write_text("")
+    tasks = tasks_from_text(f"files path={tmp_path} resample=stratified scale=minmax")
+    assert [t.label for t in tasks] == ["a", "b", "c"]
+    assert all(t.options["resample"] == "stratified" and t.options["scale"] == "minmax" for t in tasks)
+    assert tasks[1].options["path"] == str(tmp_path / "b.npz")
+    with pytest.raises(SuiteError, match="one task a file"):
+        tasks_from_text(f"files path={tmp_path} name=mine")
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(SuiteError, match="holds no data file"):
+        tasks_from_text(f"files path={tmp_path / 'empty'}")

@@ -90,3 +90,18 @@ def test_an_npz_array_declaring_more_than_it_holds_is_refused_before_allocation(
         zf.writestr("X.npy", b"\x93NUMPY\x01\x00" + header.getvalue()[8:] + b"\x00" * 64)
     with pytest.raises(ValueError, match=r"liar.npz: the array 'X' declares shape \(1000000000, 16\)"):
         read_table(path)
+
+
+def test_an_odds_mat_file_reads_x_and_its_column_of_labels(tmp_path):
+    from scipy.io import savemat
+
+    from novelty.datasets.files import read_scans
+
+    X = np.arange(12.0).reshape(6, 2)
+    savemat(tmp_path / "odds.mat", {"X": X, "y": np.array([[0], [0], [1], [0], [1], [0]], dtype=float)})
+    data = read_scans(tmp_path / "odds.mat")
+    np.testing.assert_array_equal(data.X, X)
+    assert data.y.tolist() == [0, 0, 1, 0, 1, 0]
+    (tmp_path / "broken.mat").write_bytes(b"MATLAB 5.0 MAT-file, but nothing after")
+    with pytest.raises(ValueError, match="broken.mat"):
+        read_scans(tmp_path / "broken.mat")
