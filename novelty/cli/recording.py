@@ -21,25 +21,39 @@ def add_recording_options(parser) -> None:
         "recordings (--data a CARMEN log .log/.log.gz or a ROS bag .bag/.db3/.mcap; rings are "
         "preprocessed as the paper's, T = --range-threshold)")
     group.add_argument("--topic", metavar="TOPIC",
-                       help="the scans: a LaserScan or Range topic, several Range topics comma-separated "
-                       "(one a sonar), or a CARMEN message (default FLASER, or a bag's only scan topic)")
+                       help="the scans: a LaserScan, MultiEchoLaserScan, PointCloud2 or Range topic; several "
+                       "comma-separated (lasers merged into one ring, or one Range topic a sonar); or a CARMEN "
+                       "message (default FLASER, or a bag's only scan topic)")
     group.add_argument("--pose-topic", metavar="TOPIC",
-                       help="poses: an Odometry, PoseStamped or tf topic, or ODOM in a CARMEN log "
-                       "(default: a CARMEN laser's own corrected pose)")
-    group.add_argument("--base-frame", default="base_link", metavar="FRAME",
-                       help="the robot's frame when --pose-topic is /tf (default base_link)")
+                       help="poses: an Odometry, PoseStamped or tf topic, or ODOM in a CARMEN log (default: a "
+                       "CARMEN laser's own corrected pose; a bag's /tf where it holds the base frame's chain)")
+    group.add_argument("--base-frame", metavar="FRAME",
+                       help="the robot's frame in the bag's tf tree (default: base_link, else base_footprint, "
+                       "as REP 105 says)")
+    group.add_argument("--mount", action="append", metavar="[TOPIC=]X,Y,YAW[,flipped]",
+                       help="where a laser sits on the robot (m, m, degrees; flipped: upside down) when the bag "
+                       "holds no transform for it (repeatable, one a topic)")
+    group.add_argument("--fragments", default="auto", metavar="N",
+                       help="messages a revolution of a scanner that splits them: auto (detected), or N (1: "
+                       "each message a whole scan)")
+    group.add_argument("--echo", default="first", choices=("first", "last", "strongest"),
+                       help="the echo of a MultiEchoLaserScan's beams read (default first)")
+    group.add_argument("--tolerance", type=float, default=0.1, metavar="S",
+                       help="several lasers' scans within S seconds are merged into one ring (default 0.1)")
     group.add_argument("--sectors", type=int, default=16, metavar="N",
                        help="laser beams reduced to N equal sectors (default 16, the paper's sonars)")
     group.add_argument("--reduce", default="min", metavar="HOW",
                        help="a sector's beams to one range: min (a sonar's nearest echo), mean, median or "
                        "a percentile 0-100 (default min)")
     group.add_argument("--front", type=float, default=0.0, metavar="DEG",
-                       help="the angle of the robot's front in the laser's frame, degrees (default 0)")
+                       help="the angle of the robot's front in the scans' frame, degrees (default 0: the base "
+                       "frame's x axis)")
     group.add_argument("--stamps", action="store_true",
                        help="give the detector the messages' times as elapsed time (default: one step a "
                        "scan, as the paper presents one perception a step)")
     group.add_argument("--limits", metavar="LOW,HIGH",
-                       help="the span cut into sectors, degrees from the front (default: the whole scan)")
+                       help="the span cut into sectors, degrees from the front (default: the whole scan; all "
+                       "round from the front for a scan all round)")
 
 
 def _reduce(text: str):
@@ -61,8 +75,23 @@ def _limits(text: str | None):
     return low, high
 
 
-def recording_rings(args):
-    """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes."""
+def _fragments(text: str):
+    if text == "auto":
+        return text
+    try:
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise UserError(f"--fragments must be auto or a count >= 1; got {text!r}.")
+    return n
+
+
+def recording_rings(args, report=None):
+    """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes.
+
+    ``report`` (a :class:`novelty.io.report.ReadReport`) is filled as the reading goes.
+    """
     # deferred: the readers are loaded only for a recording
     from ..io.recording import read_rings
     from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
@@ -72,7 +101,10 @@ def recording_rings(args):
     try:
         rings = read_rings(args.data, topic, sectors=args.sectors, reduce=_reduce(args.reduce),
                            limits=_limits(args.limits), front=math.radians(args.front),
-                           pose_topic=args.pose_topic, base_frame=args.base_frame)
+                           pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
+                           fragments=_fragments(getattr(args, "fragments", "auto")),
+                           mounts=getattr(args, "mount", None), echo=getattr(args, "echo", "first"),
+                           tolerance=getattr(args, "tolerance", 0.1), report=report)
         for ring in rings:
             yield ring.time, preprocess(ring.ranges, threshold), ring.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback

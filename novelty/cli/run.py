@@ -33,10 +33,15 @@ With --data - the scans are read from standard input, a CSV line at a time
 as soon as it is scored: for a live sensor feed.
 
 A robot recording (a CARMEN log, .log or .log.gz; a ROS 1 bag, .bag; a ROS 2
-bag, .db3 or .mcap) is read a message at a time: each laser scan reduced to
---sectors sectors (or each ring of sonar Range readings), preprocessed as
-the paper's (1 - min(r, T) / T), scored, learned, and its row (scan,
-novelty, alarm, time, x, y, theta) written and flushed at once."""
+bag, .db3 or .mcap) is read a message at a time: each laser scan (its
+fragments assembled into a whole revolution, its beams placed through its
+mount in the tf tree or --mount, several lasers merged) reduced to --sectors
+sectors seen from the robot's centre (or each ring of sonar Range readings),
+preprocessed as the paper's (1 - min(r, T) / T), scored, learned, and its
+row (scan, novelty, alarm, time, x, y, theta: the base frame's pose at the
+scan's time) written and flushed at once. What the reading found (scans
+assembled, base frame, mounts, poses) is said on standard error. A run that
+fails leaves an existing --out as it was, or (midway) keeps the rows written."""
 
 EXAMPLES = [
     "novelty run hsom --data scans.csv",
@@ -47,6 +52,7 @@ EXAMPLES = [
     "novelty run hsom --data scans.csv --alarm k-of-n:3,5",
     "novelty run hsom --data run.bag --topic /scan --sectors 16 --pose-topic /odom --out novelty.csv",
     "novelty run hsom --data intel-corrected.log.gz --sectors 16 --reduce min",
+    "novelty run hsom --data robot.bag --topic /scan_front,/scan_rear --mount /scan_rear=-0.3,0,180",
 ]
 
 
@@ -132,14 +138,19 @@ def _is_recording(path: str) -> bool:
 
 def _run_recording(det, args, alarm: Alarm | None) -> int:
     """Score and learn a recording's rings as they are read, writing each ring's row at once."""
+    # deferred: the readers are loaded only for a recording
+    from ..io.report import ReadReport
+
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")
     if args.passes != 1 or args.bin_length is not None or args.columns or args.preprocess != "none":
         raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
                         "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
+    report = ReadReport()
     with RowSink(args.out, pose=args.pose_topic is not None) as sink:
         try:
-            for n, (time, x, pose) in enumerate(recording_rings(args)):
+            for n, (time, x, pose) in enumerate(recording_rings(args, report)):
+                sink.pose = sink.pose or report.has_poses   # known once the reading has begun
                 novelty = det.score_learn_one(x, time if args.stamps else None)
                 row = {"scan": n, "novelty": novelty}
                 if alarm is not None:
@@ -152,6 +163,8 @@ def _run_recording(det, args, alarm: Alarm | None) -> int:
             where = "standard output" if args.out in (None, "-") else args.out
             raise UserError(f"{one_line(exc)} (the first {sink.rows} scans' rows were written to {where} "
                             "before it)") from None
+    for line in report.lines():
+        print(f"novelty run: {line}", file=sys.stderr)
     if sink.rows == 0:
         raise UserError(f"No scans in {args.data}: its messages made no whole scan.")
     return sink.rows

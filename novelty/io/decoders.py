@@ -170,7 +170,7 @@ def _range(c: Cursor, topic: str, options: dict) -> RangeReading:
     stamp, frame = c.header()
     c.one("u1", "radiation_type")
     fov, low, high, value = c.take("f4", "field_of_view", 4)
-    return RangeReading(stamp, value, frame.strip("/"), low, high, fov)
+    return RangeReading(stamp, value, frame.strip("/"), low, high, fov, frame.strip("/"))
 
 
 def _pose(c: Cursor, field: str) -> tuple:

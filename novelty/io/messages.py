@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["LaserScan", "RangeReading", "Pose", "Transform"]
+__all__ = ["LaserScan", "RangeReading", "Pose", "Transform", "Sweep"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,6 +87,8 @@ class RangeReading:
         The sensor's valid range (m).
     field_of_view : float
         The cone's full angle (rad).
+    frame : str
+        The message's frame ("" when unknown).
     """
 
     stamp: float
@@ -95,6 +97,7 @@ class RangeReading:
     range_min: float = 0.0
     range_max: float = math.inf
     field_of_view: float = 0.0
+    frame: str = ""
 
 
 @dataclass(frozen=True)
@@ -139,3 +142,40 @@ class Transform:
     translation: tuple[float, float, float]
     rotation: tuple[float, float, float, float]
     static: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class Sweep:
+    """One whole scan of the robot's surroundings, in its base frame (REP 103: x forward, y left, ccw).
+
+    Attributes
+    ----------
+    time : float
+        The scan's time (s): its first beam's, as ``LaserScan.stamp``.
+    origins : ndarray of shape (n_beams, 2)
+        Each beam's origin: the sensor's position in the base frame (m).
+    angles : ndarray of shape (n_beams,)
+        Each beam's direction in the base frame (rad).
+    ranges : ndarray of shape (n_beams,)
+        Cleaned as :func:`novelty.io.scans.clean_ranges` does (a range in m,
+        ``+inf`` nothing seen, NaN no information), along the beam from its origin.
+    pose : ndarray of shape (3,) or None
+        The base frame's pose (x, y, yaw) in the world frame (odom or map)
+        at ``time``, or None.
+    frame : str
+        The base frame's name (``base_link``, ...; "" when unknown, e.g. a CARMEN log).
+    source : str
+        Where the beams came from (topic(s), CARMEN message name).
+    spread : ndarray of shape (n_beams,) or None
+        Each beam's full cone angle (rad): None (or 0) for a laser, a
+        sonar's field of view.
+    """
+
+    time: float
+    origins: np.ndarray
+    angles: np.ndarray
+    ranges: np.ndarray
+    pose: np.ndarray | None
+    frame: str = ""
+    source: str = ""
+    spread: np.ndarray | None = None

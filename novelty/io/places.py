@@ -34,7 +34,7 @@ from ..datasets.exploration.runs import from_runs
 from ..sonar.preprocessing import PAPER_THRESHOLD
 from .recording import read_recording
 
-__all__ = ["leader_places", "place_visits", "revisit_task"]
+__all__ = ["leader_places", "place_visits", "revisit_task", "finite_positions"]
 
 
 def _poses(poses) -> np.ndarray:
@@ -42,6 +42,17 @@ def _poses(poses) -> np.ndarray:
     if p.ndim != 2 or p.shape[1] < 2 or not np.all(np.isfinite(p)):
         raise ValueError(f"poses must be finite rows of (x, y) or (x, y, theta); got shape {p.shape}.")
     return p
+
+
+def finite_positions(poses) -> np.ndarray:
+    """The (x, y) of every pose; a non-finite one is refused (it has no place on a grid or a path)."""
+    p = np.asarray(poses, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] < 2:
+        raise ValueError(f"poses must be rows of (x, y) or (x, y, theta); got shape {p.shape}.")
+    bad = np.flatnonzero(~np.all(np.isfinite(p[:, :2]), axis=1))
+    if bad.size:
+        raise ValueError(f"pose {bad[0]} is {p[bad[0]].tolist()}; positions must be finite.")
+    return p[:, :2]
 
 
 def _turn(a, b):

@@ -85,7 +85,7 @@ def slerp(a, b, t: float) -> tuple[float, float, float, float]:
     dot = sum(p * q for p, q in zip(a, b))
     if dot < 0:   # q and -q are one rotation: take the shorter way
         b, dot = tuple(-v for v in b), -dot
-    if dot > 0.9995:   # nearly equal: the chord is the arc
+    if dot > 1 - 1e-10:   # equal to 1e-5 rad: the chord is the arc (and sin(theta) too small to divide by)
         return normalized(tuple(p + t * (q - p) for p, q in zip(a, b)))
     theta = math.acos(min(dot, 1.0))
     s = math.sin(theta)

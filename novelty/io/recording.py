@@ -21,7 +21,8 @@ an ``Odometry``, ``PoseStamped`` or ``tf`` topic (the transforms of
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Iterator, Sequence
 
@@ -29,11 +30,13 @@ import numpy as np
 
 from ..data import Dataset
 from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
-from .messages import Pose, RangeReading
-from .rosbag import SCAN_TYPES, Bag, converted, is_bag
+from .bag_sweeps import bag_sweeps, holds
+from .posing import Posing
+from .report import ReadReport
+from .rosbag import SCAN_TYPES, Bag, is_bag
 from .sonar_rings import sonar_rings
-from .sweeps import CARMEN_LASERS, CARMEN_SUFFIXES, RingMaker, _bag_sweeps, bag_scan_topics, holds, \
-    check_pose_topic, read_sweeps
+from .sweeps import CARMEN_LASERS, CARMEN_SUFFIXES, RingMaker, bag_scan_topics, mount_options, read_sweeps
+from .tf import TfError
 
 __all__ = ["Ring", "read_rings", "read_recording", "is_recording", "CARMEN_SUFFIXES", "CARMEN_LASERS"]
 
@@ -55,65 +58,92 @@ def is_recording(path) -> bool:
 
 def read_rings(path, topic: str | Sequence[str] | None = None, *, sectors: int = 16, reduce="min",
                limits=None, front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
-               sensors=None, max_span: float | None = None, base_frame: str = "base_link") -> Iterator[Ring]:
+               sensors=None, max_span: float | None = None, base_frame: str | None = None, fragments="auto",
+               mounts=None, echo: str = "first", tolerance: float = 0.1,
+               report: ReadReport | None = None) -> Iterator[Ring]:
     """The recording's rings, one at a time (see the module docstring).
 
     Laser scans and point clouds are read as sweeps in the robot's base
-    frame (:func:`novelty.io.sweeps.read_sweeps`), each reduced to a ring
+    frame (:func:`novelty.io.sweeps.read_sweeps`: whole scans, mounts, poses,
+    several sensors merged), each reduced to a ring
     (:func:`novelty.io.sweeps.sweep_ring`); sonar ``Range`` readings are
-    gathered into rings of one reading a sonar (:func:`novelty.io.sonar_rings.sonar_rings`).
+    gathered into rings of one reading a sonar (:func:`novelty.io.sonar_rings.sonar_rings`),
+    in the order of their mounting angles from the tf tree where it places
+    every sonar's frame, counter-clockwise from the robot's front.
 
     Parameters
     ----------
     path : str or Path
         A CARMEN log (plain or gzipped) or a bag (``.bag``, ``.db3``, ``.mcap``).
     topic : str or sequence of str, optional
-        The scans' topic or CARMEN message (default: ``FLASER``, or a bag's
-        only ``LaserScan``, ``PointCloud2`` or ``Range`` topic).
+        The scans' topic(s) or CARMEN message (default: ``FLASER``, or a bag's
+        only ``LaserScan``, ``MultiEchoLaserScan``, ``PointCloud2`` or ``Range`` topic).
     sectors, reduce, limits, front, clip
-        How a laser scan becomes a ring (:func:`novelty.io.sweeps.sweep_ring`).
-    pose_topic : str, optional
-        Where poses come from (default: the scans' own, CARMEN's corrected poses).
-    base_frame : str, default="base_link"
-        The robot's frame, when ``pose_topic`` is a ``tf`` topic.
+        How a sweep becomes a ring (:func:`novelty.io.sweeps.sweep_ring`).
+    pose_topic, base_frame, fragments, mounts, echo, tolerance, report
+        As :func:`novelty.io.sweeps.read_sweeps`.
     sensors, max_span
         How sonar readings gather into rings (:func:`novelty.io.sonar_rings.sonar_rings`).
     """
     make_ring = RingMaker(sectors, reduce, limits, front, clip)
+    options = dict(pose_topic=pose_topic, base_frame=base_frame, fragments=fragments, mounts=mounts, echo=echo,
+                   tolerance=tolerance, report=report)
     if is_bag(path):
         with Bag(path) as bag:
             topics = bag_scan_topics(bag, topic)
             kinds = {bag.types[t] for t in topics}
             if kinds == {"sensor_msgs/msg/Range"}:
-                check_pose_topic(bag, pose_topic)
-                messages = bag.messages(topics + ([pose_topic] if pose_topic else []), nonempty=topics)
-                yield from _sonar(converted(messages, base_frame, len(topics) > 1), topics, sensors, max_span)
+                yield from _bag_sonar(bag, topics, pose_topic, base_frame, sensors, max_span,
+                                      report if report is not None else ReadReport())
                 return
             if not kinds <= set(SCAN_TYPES) or "sensor_msgs/msg/Range" in kinds:
                 raise ValueError("The scans' topics must be LaserScan, MultiEchoLaserScan, PointCloud2 or Range "
                                  f"topics, lasers or sonars; {holds(topics, kinds)}.")
-            for sweep in _bag_sweeps(bag, topics, pose_topic, base_frame):
+            options["mounts"] = mount_options(mounts)
+            for sweep in bag_sweeps(bag, topics, **options):
                 yield Ring(sweep.time, make_ring(sweep), sweep.pose)
         return
-    for sweep in read_sweeps(path, topic, pose_topic=pose_topic, base_frame=base_frame):
+    for sweep in read_sweeps(path, topic, **options):
         yield Ring(sweep.time, make_ring(sweep), sweep.pose)
 
 
-def _sonar(messages, topics, sensors, max_span) -> Iterator[Ring]:
-    latest: list = [None]
+def _bag_sonar(bag: Bag, topics: list[str], pose_topic, base_frame, sensors, max_span,
+               report: ReadReport) -> Iterator[Ring]:
+    posing = Posing(bag, pose_topic, base_frame, report, moving_mounts=False)
+    by_topic = len(topics) > 1   # one topic a sonar, named by its topic; else the sonars told apart by frame
 
-    def readings():
-        for msg in messages:
-            if isinstance(msg, Pose):
-                latest[0] = np.array([msg.x, msg.y, msg.theta])
-            elif isinstance(msg, RangeReading):
-                yield msg
-            else:
-                raise ValueError(f"Expected Range messages on {topics}; got a {type(msg).__name__}.")
+    def readings(messages):
+        for topic, _, msg in messages:
+            if not posing.feed(msg):
+                yield replace(msg, sensor=topic) if by_topic or not msg.sensor else msg
 
-    order = sensors if sensors is not None else (topics if len(topics) > 1 else None)
-    for time, ranges in sonar_rings(readings(), order, max_span):
-        yield Ring(time, ranges, latest[0])
+    if sensors is None:
+        sensors = _mounting_angles(bag, topics, posing, readings, report)
+    order = sensors if sensors is not None else (topics if by_topic else None)
+    for time, ranges in sonar_rings(readings(bag.messages(topics + posing.topics, nonempty=topics)), order,
+                                    max_span):
+        yield Ring(time, ranges, posing.pose(time))
+
+
+def _mounting_angles(bag: Bag, topics, posing: Posing, readings, report: ReadReport) -> dict | None:
+    """Each sonar's mounting angle in [0, 2 pi) from the front, where the tf tree places every sonar's frame."""
+    frames = {}
+    for reading in itertools.islice(readings(bag.messages(topics)), 200):
+        frames.setdefault(reading.sensor, reading.frame)
+    placed = {}
+    for sensor, frame in frames.items():
+        try:
+            placed[sensor] = posing.tree.lookup(posing.base, frame, 0.0).planar[2] % (2 * math.pi)
+        except TfError:
+            pass
+    if placed and len(placed) == len(frames):
+        report.notes.append("sonars in the order of their mounting angles from tf: " + ", ".join(
+            f"{s} {math.degrees(a):.0f} deg" for s, a in sorted(placed.items(), key=lambda kv: kv[1])))
+        return placed
+    if placed:
+        report.notes.append(f"the tf tree places {len(placed)} of {len(frames)} sonars "
+                            f"(not {', '.join(sorted(set(frames) - set(placed)))}): sonars in name order")
+    return None
 
 
 def read_recording(path, topic=None, *, threshold: float | None = PAPER_THRESHOLD, limit: int | None = None,

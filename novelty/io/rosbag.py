@@ -21,7 +21,7 @@ Messages read, by type (ROS 1 and ROS 2 names alike), into the types of
   several topics are read (one topic a sonar) or the frame is empty;
 - ``sensor_msgs/PointCloud2`` -> :class:`~novelty.io.messages.LaserScan`:
   the points (fields x, y, z) flattened into 360 one-degree beams all round,
-  each the nearest point's horizontal range (:func:`novelty.io.scans.cloud_scan`);
+  each the nearest point's horizontal range (:func:`novelty.io.clouds.cloud_scan`);
 - ``nav_msgs/Odometry``, ``geometry_msgs/PoseStamped`` and
   ``geometry_msgs/PoseWithCovarianceStamped`` -> :class:`~novelty.io.messages.Pose`
   (the heading is the yaw of the orientation quaternion);
@@ -56,7 +56,7 @@ from .caps import MessageError, Where
 from .decoders import decode, largest, peek
 from .messages import LaserScan, Pose, RangeReading, Transform
 from .quaternions import yaw
-from .scans import cloud_scan
+from .clouds import cloud_scan
 
 __all__ = ["BagError", "Bag", "bag_topics", "topic_types", "topic_counts", "read_bag", "bag_messages", "converted",
            "SUPPORTED_TYPES",

@@ -17,7 +17,8 @@ three steps make rings of them, then the paper's preprocessing
    :func:`laser_ring`): the beams' angles, measured from the robot's
    ``front``, are cut into ``n_sectors`` equal sectors between the angular
    ``limits``, ordered counter-clockwise (for a front laser: from the
-   robot's right to its left), and each sector's valid beams are reduced to
+   robot's right to its left; a scan all round starts at the robot's front,
+   whatever angle its driver starts at), and each sector's valid beams are reduced to
    one range: their minimum (what a sonar's cone reports: its nearest echo,
    the paper's sensor), their mean, their median or a percentile. A sector
    with no valid beam reads ``+inf`` (nothing seen). By default each beam
@@ -53,8 +54,11 @@ import numpy as np
 
 from .messages import LaserScan
 
-__all__ = ["clean_ranges", "sector_index", "scan_limits", "reduce_sectors", "laser_ring", "cloud_scan", "REDUCTIONS"]
+__all__ = ["clean_ranges", "sector_index", "scan_limits", "all_round", "reduce_sectors", "laser_ring", "REDUCTIONS"]
 
+#: Angles (rad) this close below a sector's boundary count in the sector beyond it: a message's float32
+#: angles are exact to about 4e-7 rad near pi.
+SNAP = 1e-6
 #: Named ways to reduce a sector's beams to one range (a number q is the q-th percentile).
 REDUCTIONS = ("min", "mean", "median")
 
@@ -91,7 +95,8 @@ def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = No
         sectors; a beam's angle counts within the turn from ``low``. Default:
         the scan's span, each beam owning an equal slice of it (half a beam's
         spacing beyond the first and last beams), so the ring starts at the
-        first beam.
+        first beam; a scan all round (:func:`all_round`) starts at the front:
+        ``(0, 2 pi)``.
     front : float, default=0.0
         The angle (rad) of the robot's front in the scan's frame.
 
@@ -106,7 +111,10 @@ def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = No
     if isinstance(n_sectors, bool) or not isinstance(n_sectors, numbers.Integral) or n_sectors < 1:
         raise ValueError(f"n_sectors must be an int >= 1; got {n_sectors!r}.")
     a = np.asarray(angles, dtype=np.float64) - front
-    if limits is None:
+    if limits is None and all_round(a):
+        low, high = 0.0, 2 * math.pi
+        a = np.mod(a, 2 * math.pi)
+    elif limits is None:
         a, low, high = _span(a)
     else:
         low, high = _checked_limits(limits)
@@ -127,8 +135,34 @@ def scan_limits(angles, front: float = 0.0) -> tuple[float, float]:
     >>> [round(float(np.rad2deg(v)), 1) for v in scan_limits(np.deg2rad([-90, -45, 0, 45, 90]))]
     [-112.5, 112.5]
     """
-    _, low, high = _span(np.asarray(angles, dtype=np.float64) - front)
+    a = np.asarray(angles, dtype=np.float64) - front
+    if all_round(a):
+        return 0.0, 2 * math.pi
+    _, low, high = _span(a)
     return low, high
+
+
+def all_round(angles) -> bool:
+    """Whether the beams look all round: at least 32, no gap between neighbours wider than twice the usual one.
+
+    A scan all round (a 360-degree lidar, fragments of a whole revolution,
+    sensors merged) has its ring start at the robot's front, whatever angle
+    its driver starts at. A scan of fewer beams keeps its first beam's
+    start: a few coarse beams do not tell a turn from a turn with a hole, and
+    sectors counted from the front need not meet them.
+
+    Examples
+    --------
+    >>> all_round(np.deg2rad(np.arange(-180, 180))), all_round(np.deg2rad(np.arange(0, 359)))
+    (True, True)
+    >>> all_round(np.deg2rad(np.arange(-135, 135))), all_round(np.deg2rad([0, 90, 180, 270]))
+    (False, False)
+    """
+    a = np.sort(np.mod(np.asarray(angles, dtype=np.float64), 2 * math.pi))
+    if len(a) < 32:
+        return False
+    gaps = np.diff(np.concatenate([a, [a[0] + 2 * math.pi]]))
+    return bool(gaps.max() <= 2 * np.median(gaps))
 
 
 def _span(a: np.ndarray) -> tuple[np.ndarray, float, float]:
@@ -148,8 +182,16 @@ def _checked_limits(limits) -> tuple[float, float]:
 
 
 def _sectors_within(a: np.ndarray, low: float, high: float, n_sectors: int) -> np.ndarray:
-    """Each angle's sector of [low, high] cut in ``n_sectors`` (-1 beyond either limit)."""
-    k = np.floor((a - low) / (high - low) * n_sectors + 1e-9).astype(np.intp)
+    """Each angle's sector of [low, high] cut in ``n_sectors`` (-1 beyond either limit).
+
+    A beam within :data:`SNAP` below a sector's first angle counts in that
+    sector: a beam on a boundary (a 0.5-degree lidar's every 45th, cut in 16
+    sectors) falls on the same side whatever the float32 rounding of its
+    driver's first angle and spacing.
+    """
+    if high - low >= 2 * math.pi - 1e-12:   # a whole turn: its high end is its low end, where sector 0 begins
+        a = np.where(a >= high - SNAP, low, a)
+    k = np.floor((a - low + SNAP) / (high - low) * n_sectors).astype(np.intp)
     # a beam on the high limit belongs to the last sector; beyond either limit to none
     k = np.where(np.isclose(a, high), n_sectors - 1, k)
     return np.where((a < low - 1e-12) | (a > high + 1e-12) | (k < 0) | (k >= n_sectors), -1, k)
@@ -236,34 +278,3 @@ def laser_ring(scan: LaserScan, n_sectors: int, reduce="min", limits=None, front
     index = sector_index(scan.angles, n_sectors, limits, front)
     ranges = clean_ranges(scan.ranges, scan.range_min, scan.range_max)
     return reduce_sectors(ranges, index, n_sectors, reduce, clip)
-
-
-def cloud_scan(points, stamp: float, resolution: float = math.pi / 180, z_limits=None,
-               source: str = "") -> LaserScan:
-    """A point cloud flattened into a planar scan all round: each beam the nearest point in its angle.
-
-    The points' angles about the sensor's z axis are cut into beams of
-    ``resolution`` radians from -pi; a beam's range is the horizontal
-    distance of its nearest point, ``+inf`` where no point falls (no
-    return). Points with a non-finite coordinate, and outside ``z_limits``
-    (m, e.g. to leave out the floor), are dropped.
-
-    Examples
-    --------
-    >>> scan = cloud_scan([[1.0, 0.0, 0.0], [2.0, 0.0, 0.5], [0.0, -3.0, 0.0]], 0.0, resolution=np.pi / 2)
-    >>> np.rad2deg(scan.angles).tolist(), scan.ranges.tolist()
-    ([-180.0, -90.0, 0.0, 90.0], [inf, 3.0, 1.0, inf])
-    """
-    p = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-    keep = np.all(np.isfinite(p), axis=1)
-    if z_limits is not None:
-        keep &= (p[:, 2] >= z_limits[0]) & (p[:, 2] <= z_limits[1])
-    p = p[keep]
-    n = int(round(2 * math.pi / resolution))
-    beam = np.floor((np.arctan2(p[:, 1], p[:, 0]) + math.pi) / resolution).astype(np.intp) % n
-    ranges = np.full(n, np.inf)
-    np.minimum.at(ranges, beam, np.hypot(p[:, 0], p[:, 1]))
-    return LaserScan(stamp, ranges, angle_min=-math.pi, angle_increment=2 * math.pi / n, source=source)
-
-
-# ------------------------------------------------------------------ sonar rings

@@ -35,70 +35,39 @@ REP 103, "Standard Units of Measure and Coordinate Conventions"; REP 105,
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterator, Sequence
 
 import numpy as np
 
 from .carmen import CarmenLog
-from .messages import LaserScan, Pose
-from .rosbag import POSE_TYPES, SCAN_TYPES, Bag, converted, is_bag
+from .messages import LaserScan, Pose, Sweep
+from .bag_sweeps import LASER_TYPES, bag_sweeps
+from .mounts import Mount, parse_mount
+from .report import ReadReport
+from .rosbag import SCAN_TYPES, Bag, is_bag
 from .scans import _check_reduce, _checked_limits, _sectors_within, clean_ranges, reduce_sectors, \
     scan_limits, sector_index
 
-__all__ = ["Sweep", "read_sweeps", "sweep_ring", "RingMaker", "scan_sweep", "CARMEN_SUFFIXES", "CARMEN_LASERS",
-           "LASER_TYPES"]
+__all__ = ["Sweep", "read_sweeps", "sweep_ring", "RingMaker", "scan_sweep", "bag_scan_topics", "mount_options",
+           "CARMEN_SUFFIXES", "CARMEN_LASERS", "LASER_TYPES"]
 
 #: File names taken for CARMEN logs (``.clf``: the "CARMEN log file" of some data sets).
 CARMEN_SUFFIXES = (".log", ".log.gz", ".clf", ".clf.gz", ".carmen", ".carmen.gz")
 #: The CARMEN messages that are laser scans.
 CARMEN_LASERS = ("FLASER", "RLASER", "ROBOTLASER1")
-#: The bag message types read as sweeps.
-LASER_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/MultiEchoLaserScan", "sensor_msgs/msg/PointCloud2")
-
-
-@dataclass(frozen=True, eq=False)
-class Sweep:
-    """One whole scan of the robot's surroundings, in its base frame (REP 103: x forward, y left, ccw).
-
-    Attributes
-    ----------
-    time : float
-        The scan's time (s): its first beam's, as ``LaserScan.stamp``.
-    origins : ndarray of shape (n_beams, 2)
-        Each beam's origin: the sensor's position in the base frame (m).
-    angles : ndarray of shape (n_beams,)
-        Each beam's direction in the base frame (rad).
-    ranges : ndarray of shape (n_beams,)
-        Cleaned as :func:`novelty.io.scans.clean_ranges` does (a range in m,
-        ``+inf`` nothing seen, NaN no information), along the beam from its origin.
-    pose : ndarray of shape (3,) or None
-        The base frame's pose (x, y, yaw) in the world frame (odom or map)
-        at ``time``, or None.
-    frame : str
-        The base frame's name (``base_link``, ...; "" when unknown, e.g. a CARMEN log).
-    source : str
-        Where the beams came from (topic(s), CARMEN message name).
-    spread : ndarray of shape (n_beams,) or None
-        Each beam's full cone angle (rad): None (or 0) for a laser, a
-        sonar's field of view.
-    """
-
-    time: float
-    origins: np.ndarray
-    angles: np.ndarray
-    ranges: np.ndarray
-    pose: np.ndarray | None
-    frame: str = ""
-    source: str = ""
-    spread: np.ndarray | None = None
 
 
 # ------------------------------------------------------------------ reading
 def read_sweeps(path, topic: str | Sequence[str] | None = None, *, pose_topic: str | None = None,
-                base_frame: str | None = None, fov: float = math.pi) -> Iterator[Sweep]:
+                base_frame: str | None = None, fov: float = math.pi, fragments="auto", mounts=None,
+                echo: str = "first", tolerance: float = 0.1, report: ReadReport | None = None) -> Iterator[Sweep]:
     """The recording's laser scans as sweeps in the robot's base frame, one at a time.
+
+    A bag's scans are read as :mod:`novelty.io.bag_sweeps` says: fragments
+    assembled into whole scans, each sensor placed through its mount, poses
+    looked up at each scan's time in the tf tree or a pose topic, several
+    sensors merged.
 
     Parameters
     ----------
@@ -106,27 +75,58 @@ def read_sweeps(path, topic: str | Sequence[str] | None = None, *, pose_topic: s
         A CARMEN log (plain or gzipped) or a bag (``.bag``, ``.db3``, ``.mcap``).
     topic : str or sequence of str, optional
         The scans: a CARMEN message (default ``FLASER``; ``RLASER``,
-        ``ROBOTLASER1``) or a bag's ``LaserScan`` or ``PointCloud2`` topic
-        (default: its only one).
+        ``ROBOTLASER1``), or a bag's ``LaserScan``, ``MultiEchoLaserScan`` or
+        ``PointCloud2`` topic (default: its only one); several topics (one a
+        sensor) are merged into one sweep.
     pose_topic : str, optional
         Where poses come from: a CARMEN log's own corrected poses (None) or
-        ``ODOM``; a bag's ``Odometry``, ``PoseStamped`` or ``tf`` topic, the
-        latest pose before each scan.
+        ``ODOM`` (the latest before each scan); a bag's ``Odometry``,
+        ``PoseStamped`` or ``tf`` topic (default: ``/tf`` when it holds a
+        moving chain to the base frame), interpolated at each scan's time.
     base_frame : str, optional
-        The robot's frame, whose transforms a ``tf`` pose topic gives
-        (default ``base_link``).
+        The robot's frame in a bag's tf tree (default: REP 105's ``base_link``,
+        else ``base_footprint``).
     fov : float, default=pi
         The field of view (rad) of CARMEN's ``FLASER``/``RLASER``, which do not state it.
+    fragments : "auto" or int, default="auto"
+        Messages a revolution of a scanner that splits them (:mod:`novelty.io.assembly`): detected, or
+        stated; 1 turns assembly off.
+    mounts : Mount, str, or dict of topic to Mount or str, optional
+        Where a bag's sensor sits when the bag holds no transform for it (or to override the bag's):
+        :class:`novelty.io.mounts.Mount`, or ``"X,Y,YAW[,flipped]"`` (m, m, degrees); a dict maps
+        topics to mounts, a single mount is every topic's.
+    echo : {"first", "last", "strongest"}, default="first"
+        The echo of a ``MultiEchoLaserScan``'s beams read.
+    tolerance : float, default=0.1
+        Seconds within which several sensors' sweeps are merged into one.
+    report : ReadReport, optional
+        Filled with what the reading found and chose (scans assembled, frames, mounts, poses).
     """
     if is_bag(path):
         with Bag(path) as bag:
             topics = bag_scan_topics(bag, topic)
-            yield from _bag_sweeps(bag, topics, pose_topic, base_frame or "base_link")
+            yield from bag_sweeps(bag, topics, pose_topic=pose_topic, base_frame=base_frame, fragments=fragments,
+                                  mounts=mount_options(mounts), echo=echo, tolerance=tolerance, report=report)
         return
     if not Path(path).name.lower().endswith(CARMEN_SUFFIXES):
         raise ValueError(f"{path} is neither a CARMEN log ({', '.join(CARMEN_SUFFIXES)}) nor a bag "
                          "(.bag, .db3, .mcap, a ROS 2 bag folder).")
     yield from _carmen(path, topic or "FLASER", pose_topic, fov)
+
+
+def mount_options(mounts) -> dict:
+    """``mounts`` as a dict of topic (None: every topic) to :class:`~novelty.io.mounts.Mount`."""
+    if mounts is None:
+        return {}
+    if isinstance(mounts, (str, Mount)):
+        mounts = [mounts]
+    if isinstance(mounts, dict):
+        return {topic: parse_mount(m)[1] if isinstance(m, str) else m for topic, m in mounts.items()}
+    out = {}
+    for m in mounts:
+        topic, mount = parse_mount(m) if isinstance(m, str) else (None, m)
+        out[topic] = mount
+    return out
 
 
 def bag_scan_topics(bag: Bag, topic) -> list[str]:
@@ -140,31 +140,6 @@ def bag_scan_topics(bag: Bag, topic) -> list[str]:
         listing = ", ".join(f"{t} ({k})" for t, k in bag.types.items()) or "none"
         raise ValueError(f"Name the scans' topic of {bag.path} (topic=, --topic); its topics: {listing}.")
     return scans
-
-
-def check_pose_topic(bag: Bag, pose_topic: str | None) -> None:
-    """Refuse a pose topic that does not hold poses."""
-    if pose_topic is None:
-        return
-    bag.check([pose_topic])
-    if bag.types[pose_topic] not in POSE_TYPES:
-        raise ValueError(f"pose_topic {pose_topic} must hold poses (one of {', '.join(POSE_TYPES)}); it "
-                         f"holds {bag.types[pose_topic]}.")
-
-
-def _bag_sweeps(bag: Bag, topics: list[str], pose_topic: str | None, base_frame: str) -> Iterator[Sweep]:
-    kinds = {bag.types[t] for t in topics}
-    if not kinds <= set(LASER_TYPES):
-        raise ValueError(f"Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 topics; "
-                         f"{holds(topics, kinds)}.")
-    check_pose_topic(bag, pose_topic)
-    messages = bag.messages(topics + ([pose_topic] if pose_topic else []), nonempty=topics)
-    yield from _sweeps(converted(messages, base_frame), use_own_pose=False)
-
-
-def holds(topics, kinds) -> str:
-    """``/a holds T`` or ``/a, /b hold T, U``."""
-    return f"{', '.join(topics)} {'holds' if len(topics) == 1 else 'hold'} {', '.join(sorted(kinds))}"
 
 
 def _carmen(path, topic: str, pose_topic: str | None, fov: float) -> Iterator[Sweep]:

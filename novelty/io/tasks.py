@@ -29,6 +29,7 @@ import numpy as np
 from ..data import Dataset
 from ..datasets.exploration.runs import from_runs
 from ..sonar.preprocessing import PAPER_THRESHOLD
+from .places import finite_positions
 from .recording import read_recording
 
 __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
@@ -141,19 +142,8 @@ def place_features(poses, cell: float) -> list[tuple[str, ...]]:
     """
     if not cell > 0:
         raise ValueError(f"cell must be a positive length (m); got {cell!r}.")
-    p = np.floor(_positions(poses) / cell).astype(np.int64)
+    p = np.floor(finite_positions(poses) / cell).astype(np.int64)
     return [(f"{_PLACE}{i},{j}",) for i, j in p.tolist()]
-
-
-def _positions(poses) -> np.ndarray:
-    """The (x, y) of every pose; a non-finite one is refused (it has no place on a grid or a path)."""
-    p = np.asarray(poses, dtype=np.float64)
-    if p.ndim != 2 or p.shape[1] < 2:
-        raise ValueError(f"poses must be rows of (x, y) or (x, y, theta); got shape {p.shape}.")
-    bad = np.flatnonzero(~np.all(np.isfinite(p[:, :2]), axis=1))
-    if bad.size:
-        raise ValueError(f"pose {bad[0]} is {p[bad[0]].tolist()}; positions must be finite.")
-    return p[:, :2]
 
 
 def split_runs(time, *, gap: float | None = None, intervals=None) -> np.ndarray:
@@ -201,7 +191,7 @@ def visit_counts(poses, radius: float, leave: float | None = None) -> np.ndarray
     >>> visit_counts(np.c_[x, np.zeros(6)], radius=1.5).tolist()
     [0, 0, 0, 1, 1, 1]
     """
-    p = _positions(poses)
+    p = finite_positions(poses)
     if not radius > 0:
         raise ValueError(f"radius must be positive (m); got {radius!r}.")
     leave = 2 * radius if leave is None else leave

@@ -3,6 +3,7 @@
 import argparse
 import csv
 import io
+import math
 
 import numpy as np
 import pytest
@@ -52,7 +53,7 @@ def test_a_bag_streams_its_laser_with_odometry(bag, tmp_path, capsys):
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/scan", "--sectors", "2", "--pose-topic",
                  "/odom", "--out", str(out), "--param", "n_rows=2", "--param", "n_columns=2"]) == 0
     rows = table(out.read_text())
-    assert [r["x"] for r in rows] == ["0.95", "0.95", "1.15", "5.95", "5.95"]
+    assert [r["x"] for r in rows] == ["1", "1.1", "1.2", "5.95", "5.95"]   # interpolated at each scan's time
     assert rows[0]["novelty"] == "1" and float(rows[2]["novelty"]) < 1
     npz = tmp_path / "novelty.npz"
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/sonar", "--out", str(npz)]) == 0
@@ -194,3 +195,55 @@ def test_a_run_failing_midway_keeps_its_rows_and_says_how_many(tmp_path, capsys)
         else:
             with np.load(out) as saved:
                 assert saved["time"].tolist() == [1.0, 2.0]
+
+
+def test_a_scanner_that_splits_revolutions_reads_as_one_ring_a_revolution(tmp_path, capsys):
+    # a safety laser: each 275-degree revolution as 6 messages, 87 revolutions
+    from ..io.scenes import laser_ranges, scan_message, write_robot_bag
+
+    n, per = 1100, 6
+    inc = math.radians(275) / n
+    start = -math.radians(137.5)
+    messages = []
+    for k in range(87):
+        t = 1.0 + 0.04 * k
+        ranges = laser_ranges((0.5 * math.cos(0.1 * k), 0.0, 0.05 * k), (0, 0, 0), start + inc * np.arange(n))
+        for f in range(per):
+            piece = slice(f * n // per, (f + 1) * n // per)
+            messages.append((t + 0.005 * f, "/scan", "sensor_msgs/msg/LaserScan",
+                             lambda ts, t=t, f=f, piece=piece, ranges=ranges: scan_message(
+                                 ts, t + 0.005 * f, "laser", start + inc * piece.start, inc, ranges[piece])))
+    bag = write_robot_bag(tmp_path / "safety.bag", "ros1", messages)
+    out = tmp_path / "novelty.csv"
+    assert main(["run", "hsom", "--data", str(bag), "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "novelty run: /scan: 87 scans assembled from 522 messages (6 a revolution)" in err
+    assert len(table(out.read_text())) == 87
+    assert main(["run", "hsom", "--data", str(bag), "--out", str(out), "--fragments", "1"]) == 0
+    assert len(table(out.read_text())) == 522 and "assembled" not in capsys.readouterr().err
+    assert main(["run", "hsom", "--data", str(bag), "--fragments", "none"]) == 2
+    assert "--fragments must be auto or a count >= 1; got 'none'" in capsys.readouterr().err
+
+
+def test_the_console_says_which_frame_mount_and_poses_were_used(tmp_path, capsys):
+    from ..io.scenes import laser_ranges, quaternion, scan_message, tf_message, transform, write_robot_bag
+
+    angles = -1.5 + 0.01 * np.arange(300)
+    messages = [(0.5 + 0.1 * k, "/scan", "sensor_msgs/msg/LaserScan", lambda ts, k=k: scan_message(
+        ts, 0.5 + 0.1 * k, "base_scan", -1.5, 0.01, laser_ranges((0.1 * k, 0.0, 0.0), (0, 0, 0), angles)))
+        for k in range(5)]
+    messages += [(0.05 * k, "/tf", "tf2_msgs/msg/TFMessage", lambda ts, k=k: tf_message(ts, [transform(
+        ts, 0.05 * k, "odom", "base_footprint", (0.005 * k, 0.0, 0.0))])) for k in range(30)]
+    messages.append((0.0, "/tf_static", "tf2_msgs/msg/TFMessage", lambda ts: tf_message(ts, [transform(
+        ts, 0.0, "base_footprint", "base_scan", (-0.03, 0.0, 0.17), quaternion())])))
+    bag = write_robot_bag(tmp_path / "tb3.bag", "ros1", messages)
+    out = tmp_path / "novelty.csv"
+    assert main(["run", "hsom", "--data", str(bag), "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "novelty run: base frame base_footprint (REP 105's fallback: the tf tree has no base_link)" in err
+    assert "novelty run: /scan: x=-0.03 m, y=0 m, yaw=0 deg, from tf (base_footprint -> base_scan)" in err
+    assert "novelty run: poses from /tf: odom -> base_footprint, interpolated at each scan's time" in err
+    assert [r["x"] for r in table(out.read_text())] == ["0.05", "0.06", "0.07", "0.08", "0.09"]
+    assert main(["run", "hsom", "--data", str(bag), "--out", str(out), "--mount", "0.2,0,180,flipped"]) == 0
+    assert ("/scan: x=0.2 m, y=0 m, yaw=180 deg, upside down, from option (the bag's own transform "
+            "base_footprint -> base_scan is not used)") in capsys.readouterr().err

@@ -19,7 +19,7 @@ SCAN_RANGES = [[1.0, math.inf, 2.0, 3.0], [math.nan, 1.5, -math.inf, 12.0]] + [[
 SONAR = [(1.0, "s2", 3.0), (1.01, "s0", 1.0), (1.02, "s1", math.inf), (1.1, "s2", 4.0), (1.11, "s0", 2.0),
          (1.12, "s1", 0.5), (6.0, "s2", 1.0), (6.01, "s0", 9.0), (6.02, "s1", 1.0)]
 #: odometry: x = t metres, heading 0.5 rad; tf at the same times: base_link at x = t + 10 in odom
-#: (and a laser frame at x = 99, which is not the robot)
+#: (and the laser's frame at base_link's origin, facing forward)
 ODOM_TIMES = (0.95, 1.15, 5.95)
 
 
@@ -90,7 +90,13 @@ def _tf(ts, t, quaternion):
                          ts, "geometry_msgs/msg/Transform", rotation=quaternion,
                          translation=_make(ts, "geometry_msgs/msg/Vector3", x=x)))
 
-    return _make(ts, "tf2_msgs/msg/TFMessage", transforms=[transform("laser", 99.0), transform("base_link", t + 10)])
+    def mount(child):   # the laser at the robot's centre, facing forward, as a state publisher says it on /tf
+        return _make(ts, "geometry_msgs/msg/TransformStamped", header=_header(ts, t, "base_link"),
+                     child_frame_id=child, transform=_make(
+                         ts, "geometry_msgs/msg/Transform", rotation=_make(ts, "geometry_msgs/msg/Quaternion", w=1.0),
+                         translation=_make(ts, "geometry_msgs/msg/Vector3")))
+
+    return _make(ts, "tf2_msgs/msg/TFMessage", transforms=[mount("laser"), transform("base_link", t + 10)])
 
 
 def write_sonar_topics(path):

@@ -128,7 +128,7 @@ def test_poses_ranges_and_transforms_decode_as_rosbags_deserializes_them(ros1):
     sonar = _make(ts, "sensor_msgs/msg/Range", header=_header(ts, 5.5, "/sonar_3"), field_of_view=0.5,
                   min_range=0.2, max_range=5.0, range=1.25)
     reading = decode("sensor_msgs/msg/Range", serialize(ts, sonar, "sensor_msgs/msg/Range", ros1), ros1, WHERE, "/s")
-    assert reading == RangeReading(5.5, 1.25, "sonar_3", np.float32(0.2), 5.0, np.float32(0.5))
+    assert reading == RangeReading(5.5, 1.25, "sonar_3", np.float32(0.2), 5.0, np.float32(0.5), "sonar_3")
     transforms = [_make(ts, "geometry_msgs/msg/TransformStamped", header=_header(ts, 6.0 + k, "odom/"),
                         child_frame_id=f"/base_{k}", transform=_make(
                             ts, "geometry_msgs/msg/Transform", rotation=quaternion(ts, q),

@@ -66,10 +66,11 @@ def test_laser_rings_from_a_bag(bag):
     rings = list(read_rings(bag, "/scan", sectors=2, pose_topic="/odom"))
     # 4 beams at -90, -30, 30, 90 degrees; range 0.1..10: [1, inf | 2, 3] and [NaN, 1.5 | -inf -> 0.1, 12 -> NaN]
     assert [r.ranges.tolist() for r in rings[:2]] == [[1.0, 2.0], [1.5, pytest.approx(0.1)]]
-    # the latest odometry before each scan (odometry at 0.95, 1.15, 6.0 s; its x is its time)
-    assert [round(r.pose[0], 2) for r in rings] == [0.95, 0.95, 1.15, 5.95, 5.95]
+    # odometry at 0.95, 1.15, 5.95 s (its x is its time), interpolated at each scan's time; the scans at
+    # 6.0 and 6.1 s, after the last, hold it (within 0.2 s)
+    assert [round(r.pose[0], 2) for r in rings] == [1.0, 1.1, 1.2, 5.95, 5.95]
     data = read_recording(bag, "/scan", sectors=2, pose_topic="/odom")
-    np.testing.assert_allclose(data.distance, [0, 0, 0.2, 5.0, 5.0])
+    np.testing.assert_allclose(data.distance, [0, 0.1, 0.2, 4.95, 4.95])
 
 
 def test_sonar_rings_from_a_bag(bag):
@@ -96,10 +97,10 @@ def test_one_topic_a_sonar(tmp_path):
 
 
 def test_point_cloud_rings_from_a_bag(bag):
-    # the cloud's beams: 1 m at 0 degrees, 1.5 m at 90; four sectors all round from -180: back-right,
-    # front-right (-90..0), front-left (0..90, holding the 0-degree beam), back-left (90.., the 90-degree beam)
+    # the cloud's beams: 1 m at 0 degrees, 1.5 m at 90; four sectors all round from the robot's front:
+    # front-left (0..90, holding the 0-degree beam), back-left (90.., the 90-degree beam), back-right, front-right
     (ring,) = list(read_rings(bag, "/cloud", sectors=4))
-    assert ring.ranges.tolist() == [math.inf, math.inf, 1.0, 1.5]
+    assert ring.ranges.tolist() == [1.0, 1.5, math.inf, math.inf]
 
 
 def test_a_bag_needs_its_topic_named(bag):

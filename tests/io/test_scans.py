@@ -8,7 +8,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from novelty.io.messages import LaserScan, RangeReading
-from novelty.io.scans import clean_ranges, laser_ring, reduce_sectors, sector_index
+from novelty.io.scans import all_round, clean_ranges, laser_ring, reduce_sectors, sector_index
 from novelty.io.sonar_rings import sonar_rings
 from novelty.sonar.preprocessing import preprocess
 
@@ -49,13 +49,31 @@ def test_front_and_limits():
 @settings(max_examples=40, deadline=None)
 @given(st.integers(2, 400), st.integers(1, 32), st.floats(-7.0, 7.0), st.floats(0.1, 2 * math.pi))
 def test_sectors_are_contiguous_and_in_angle_order(n_beams, n_sectors, front, span):
-    # a scan of any span (up to a whole turn) centred on the robot's front, the front anywhere
+    # a scan of any span short of a whole turn centred on the robot's front, the front anywhere
     assume(n_sectors <= n_beams)
     angles = -span / 2 + span / (n_beams - 1) * np.arange(n_beams)
+    assume(not all_round(angles))
     k = sector_index(angles + front, n_sectors, front=front)
     # every beam in a sector, the sectors in angle order, each one a run of neighbouring beams
     assert k.min() == 0 and k.max() == n_sectors - 1 and np.all(np.diff(k) >= 0)
     assert np.all(np.diff(k) <= 1)
+
+
+@pytest.mark.parametrize("n_beams", [360, 720, 1147])
+def test_a_ring_all_round_starts_at_the_front_whatever_the_drivers_first_angle(n_beams):
+    # one scene (a wall 1 m ahead within 10 degrees, 2 m to the left, 4 m elsewhere) seen by drivers that
+    # start their beams at 0, at -pi and at +pi: the same ring, its first sector beginning at the front
+    def scene(a):
+        a = np.mod(a + np.pi, 2 * np.pi) - np.pi
+        return np.where(np.abs(a) < np.deg2rad(10), 1.0, np.where(np.abs(a - np.pi / 2) < 0.3, 2.0, 4.0))
+
+    rings = []
+    for start in (0.0, -np.pi, np.pi):
+        increment = 2 * np.pi / n_beams
+        scan = LaserScan(0.0, scene(start + increment * np.arange(n_beams)), angle_min=start,
+                         angle_increment=increment)
+        rings.append(laser_ring(scan, 8))
+    assert rings[0].tolist() == rings[1].tolist() == rings[2].tolist() == [1.0, 2.0, 2.0, 4.0, 4.0, 4.0, 4.0, 1.0]
 
 
 def test_a_rear_laser_stays_in_one_piece():

@@ -114,7 +114,7 @@ def test_bag_sweeps_are_cleaned_and_share_their_geometry(bag):
     assert sweeps[0].ranges.tolist() == [1.0, INF, 2.0, 3.0]
     assert sweeps[1].ranges[2] == pytest.approx(0.1) and np.isnan(sweeps[1].ranges[3])
     assert all(s.angles is sweeps[0].angles for s in sweeps) and not sweeps[0].angles.flags.writeable
-    assert [round(s.pose[0], 2) for s in sweeps] == [0.95, 0.95, 1.15, 5.95, 5.95]
+    assert [round(s.pose[0], 2) for s in sweeps] == [1.0, 1.1, 1.2, 5.95, 5.95]
     with pytest.raises(ValueError, match="Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 "
                                          "topics; /sonar holds sensor_msgs/msg/Range"):
         next(read_sweeps(bag, "/sonar"))

@@ -1,0 +1,184 @@
+"""A bag's laser messages as sweeps in the robot's base frame: assembled, placed, posed and merged.
+
+What a robot's recording holds beyond one centred laser, read as ROS's own
+tools would (tf2 looks transforms up through the tree at each message's
+time; laser assemblers and mergers put scans into one frame before anything
+reads them):
+
+1. **Whole scans** (:mod:`.assembly`): a scanner's fragments of one
+   revolution become one scan.
+2. **The tree, the base frame and the poses** (:mod:`.posing`); a scan
+   waits until the poses have moved past its time (at most :data:`WAIT`
+   seconds of the recording), so that its pose is interpolated, not
+   extrapolated.
+3. **Mounts** (:mod:`.mounts`): each sensor's frame placed in the base
+   frame through the tree, or by the user's ``mounts`` where the bag holds
+   no transform (a user's mount also overrides the bag's, and says so);
+   with neither, the sensor is taken at the robot's centre facing forward,
+   and the report says so.
+4. **Several sensors** (:mod:`.merge`): their sweeps merged within ``tolerance``.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import math
+from typing import Iterator
+
+import numpy as np
+
+from .assembly import Assembler
+from .decoders import ECHOES
+from .merge import Merger
+from .messages import LaserScan, Sweep
+from .mounts import Mount
+from .posing import Posing
+from .quaternions import matrix
+from .report import ReadReport
+from .rosbag import Bag
+from .clouds import cloud_scan
+from .scans import clean_ranges
+from .tf import TfError
+
+__all__ = ["bag_sweeps", "LASER_TYPES", "WAIT", "holds"]
+
+#: The bag message types read as sweeps.
+LASER_TYPES = ("sensor_msgs/msg/LaserScan", "sensor_msgs/msg/MultiEchoLaserScan", "sensor_msgs/msg/PointCloud2")
+#: Seconds of the recording a scan waits for the poses after its time.
+WAIT = 1.0
+
+
+def bag_sweeps(bag: Bag, topics: list[str], *, pose_topic: str | None = None, base_frame: str | None = None,
+               fragments="auto", mounts: dict | None = None, echo: str = "first", tolerance: float = 0.1,
+               report: ReadReport | None = None) -> Iterator[Sweep]:
+    """The sweeps of the laser ``topics`` of an open bag (see the module docstring)."""
+    report = report if report is not None else ReadReport()
+    if echo not in ECHOES:
+        raise ValueError(f"echo must be one of {', '.join(ECHOES)}; got {echo!r}.")
+    kinds = {bag.types[t] for t in topics}
+    if not kinds <= set(LASER_TYPES):
+        raise ValueError("Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 topics; "
+                         f"{holds(topics, kinds)}.")
+    posing = Posing(bag, pose_topic, base_frame, report)
+    placing = _Placing(posing, mounts or {}, report)
+    assemblers = {t: Assembler(fragments, t) for t in topics}
+    merger = Merger(topics, tolerance) if len(topics) > 1 else None
+    pending: list = []   # a heap of (stamp, count, topic, scan or cloud) waiting for the poses after their time
+    counter = itertools.count()
+
+    def release(now: float):
+        # in time order across the topics: none before a message a topic still holds (learning its fragments)
+        held = min(a.holding_since for a in assemblers.values())
+        while pending and pending[0][0] <= held and (pending[0][0] < now - WAIT or posing.ready(pending[0][0])):
+            stamp, _, topic, scan = heapq.heappop(pending)
+            sweep = placing.sweep(topic, scan, posing.pose(stamp))
+            whole = sweep if merger is None else merger.push(topic, sweep)
+            if whole is not None:
+                yield whole
+
+    def hold(topic, stamp, scan):
+        heapq.heappush(pending, (stamp, next(counter), topic, scan))
+
+    for topic, _, msg in bag.messages(topics + posing.topics, nonempty=topics, echo=echo):
+        if posing.feed(msg):
+            continue
+        if isinstance(msg, tuple):   # a point cloud (stamp, frame, points): whole as it comes
+            assemblers[topic].messages += 1
+            assemblers[topic].scans += 1
+            hold(topic, msg[0], msg)
+            yield from release(msg[0])
+        else:
+            for whole in assemblers[topic].push(msg):
+                hold(topic, whole.stamp, whole)
+            yield from release(msg.stamp)
+    for topic, assembler in assemblers.items():
+        for whole in assembler.flush():
+            hold(topic, whole.stamp, whole)
+        report.assembly[topic] = (assembler.messages, assembler.scans, assembler.incomplete,
+                                  assembler.per_revolution)
+    yield from release(math.inf)
+    if merger is not None:
+        report.merged = (merger.merged, merger.dropped + len(merger.latest))
+
+
+def holds(topics, kinds) -> str:
+    """``/a holds T`` or ``/a, /b hold T, U``."""
+    return f"{', '.join(topics)} {'holds' if len(topics) == 1 else 'hold'} {', '.join(sorted(kinds))}"
+
+
+class _Placing:
+    """Each sensor's beams in the base frame, its mount looked up once where it does not move."""
+
+    def __init__(self, posing: Posing, mounts: dict, report: ReadReport):
+        self.posing, self.base, self.mounts, self.report = posing, posing.base, mounts, report
+        self.fixed: dict[str, Mount] = {}
+        self.geometry: dict[tuple, tuple] = {}
+
+    def mount(self, topic: str, frame: str, time: float) -> Mount:
+        if topic in self.fixed:
+            return self.fixed[topic]
+        given = self.mounts.get(topic, self.mounts.get(None))
+        if given is not None:
+            self.report.mounts[topic] = given.describe() + _overridden(self.posing.probe, self.base, frame)
+            self.fixed[topic] = given
+            return given
+        if not frame or frame == self.base or not self.base:
+            self.report.mounts[topic] = "at the robot's centre, facing forward" + (
+                "" if frame == self.base and frame else " (assumed: no base frame or no sensor frame to place "
+                f"{frame or 'it'} by; give --mount)")
+            self.fixed[topic] = Mount(origin="the scan's own frame" if frame == self.base and frame else "assumed")
+            return self.fixed[topic]
+        tree, probe = self.posing.tree, self.posing.probe
+        try:
+            placement = tree.lookup(self.base, frame, time)
+        except TfError:
+            try:   # not yet in the tree at this time: the transform as /tf first gave it
+                placement, tree = probe.lookup(self.base, frame, time), probe
+            except TfError as exc:
+                self.report.mounts[topic] = f"at the robot's centre, facing forward (assumed: {exc} Give --mount)"
+                self.fixed[topic] = Mount()
+                return self.fixed[topic]
+        chain = probe.chain(frame)
+        chain = chain[:chain.index(self.base) + 1] if self.base in chain else chain
+        mount = Mount(placement, f"tf ({' -> '.join(reversed(chain))})")
+        if probe.is_static(self.base, frame):
+            self.fixed[topic] = mount
+        self.report.mounts.setdefault(topic, mount.describe())
+        return mount
+
+    def sweep(self, topic: str, scan: LaserScan | tuple, pose) -> Sweep:
+        """A scan (or a point cloud: ``(stamp, frame, points)``) as a sweep in the base frame."""
+        if isinstance(scan, tuple):
+            return self._cloud(topic, *scan, pose)
+        mount = self.mount(topic, scan.frame, scan.stamp)
+        key = (topic, len(scan.ranges), scan.angle_min, scan.angle_increment)
+        known = self.geometry.get(key)
+        if known is None or known[0].placement != mount.placement:
+            if mount.centred:   # the beams as the scan gives them: a centred laser's ring as it always was
+                origins, angles, scale = np.zeros((len(scan.ranges), 2)), scan.angles, None
+            else:
+                origins, angles, scale = mount.beams(scan.angles)
+                scale = None if np.all(scale == 1.0) else scale
+            for a in (origins, angles):
+                a.flags.writeable = False
+            known = self.geometry[key] = (mount, origins, angles, scale)
+        _, origins, angles, scale = known
+        ranges = clean_ranges(scan.ranges, scan.range_min, scan.range_max)
+        if scale is not None:
+            ranges = ranges * scale
+        return Sweep(scan.stamp, origins, angles, ranges, pose, self.base, topic)
+
+    def _cloud(self, topic: str, stamp: float, frame: str, points: np.ndarray, pose) -> Sweep:
+        """The cloud's points placed in the base frame, then flattened all round seen from its origin."""
+        placement = self.mount(topic, frame, stamp).placement
+        points = points @ matrix(placement.rotation).T + np.asarray(placement.translation)
+        flat = cloud_scan(points, stamp, source=topic)
+        angles = flat.angles
+        return Sweep(stamp, np.zeros((len(angles), 2)), angles, flat.ranges, pose, self.base, topic)
+
+
+def _overridden(tree, base: str, frame: str) -> str:
+    if base and frame and tree.has(frame) and tree.has(base):
+        return f" (the bag's own transform {base} -> {frame} is not used)"
+    return ""
