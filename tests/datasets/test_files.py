@@ -205,3 +205,15 @@ def test_a_bad_cell_of_an_npz_file_is_named_by_row_and_column(tmp_path):
     np.savez(tmp_path / "d.npz", X=X, y=np.array([0, 1, 0]))
     with pytest.raises(ValueError, match=r"d\.npz, row 1, column 's1': expected a finite number, got nan\."):
         read_scans(tmp_path / "d.npz")
+
+
+@pytest.mark.parametrize("labels, message", [
+    (["0", "1", "nan", "0"], r"scans.csv, line 4, column 'y' \(the label\): expected a finite number, got nan"),
+    (["1", "-1", "1", "1"], r"scans.csv, line 3, column 'y' \(the label\): the labels are -1 and \+1, scikit-learn's"),
+    (["0", "0.5", "1", "0"], r"scans.csv, line 3, column 'y' \(the label\): expected a label 0 \(normal\) or 1 \(novel\), got 0.5"),
+])
+def test_a_label_column_of_other_values_is_refused_by_line(tmp_path, labels, message):
+    # before: y != 0 made NaN and -1 novel, and 0.5 novel too
+    path = write(tmp_path, "a,y\n" + "".join(f"{i},{v}\n" for i, v in enumerate(labels)))
+    with pytest.raises(ValueError, match=message):
+        files(path, train_rows=2)
