@@ -17,7 +17,10 @@ RESULTS is either the output folder of 'novelty bench' (or its results.jsonl
 or results.csv): one panel a detector, for one task and seed, with the novel
 scans shaded and the alarm threshold dashed; or the output of 'novelty run' /
 'novelty score' (.csv or .npz with a 'novelty' column, and optionally
-'distance' and 'y')."""
+'distance', 'y' (1 for a novel scan), 'alarm' and 'run'): the novelty along
+the route, each alarm marked and each run's start drawn. A recording's output
+(columns 'x' and 'y': the robot's position) is drawn on the robot's path
+too; a file with 'x' but no 'y' has no path, and is drawn along the scans."""
 
 EXAMPLES = [
     "novelty plot novelty.csv --out route.png",
@@ -60,6 +63,10 @@ def _bench_folder(path: Path) -> Path | None:
     return None
 
 
+#: the columns of a run's output that a plot reads
+_COLUMNS = ("novelty", "distance", "y", "x", "alarm", "run")
+
+
 def _read_run_output(path: Path) -> dict:
     # deferred: `novelty --help` does not read files
     from ..datasets.tables import bounded_lines
@@ -74,19 +81,23 @@ def _read_run_output(path: Path) -> dict:
             raise UserError(f"{path} has no rows.")
         try:
             data = {k: np.array([float(r[k]) if r[k] != "" else np.nan for r in rows])
-                    for k in rows[0] if k in ("novelty", "distance", "y", "x")}
+                    for k in rows[0] if k in _COLUMNS}
         except (TypeError, ValueError):
-            raise UserError(f"{path}: the novelty, distance, y, x columns must be numbers.") from None
+            raise UserError(f"{path}: the {', '.join(_COLUMNS)} columns must be numbers.") from None
     if "x" in data and "y" in data:   # the robot's position: y is its second coordinate, not a label
         data["position_y"] = data.pop("y")
+    elif "x" in data:
+        print(f"novelty plot: {path} has an 'x' column but no 'y', so no path to draw; the novelty is "
+              "drawn along the scans.", file=sys.stderr)
+        del data["x"]
     if "novelty" not in data:
         raise UserError(f"{path} has no 'novelty' column; expected the output of 'novelty run' or a bench folder.")
     return data
 
 
-def _plot_bench(folder: Path, args, plt):
+def _plot_bench(folder: Path, args):
     # deferred: plotting imports matplotlib; `novelty --help` does not
-    from ..bench.holdout.plots import plot_route
+    from ..bench.reports.route import route_figure
     from ..bench.results import ResultsStore
 
     store = ResultsStore(folder)
@@ -107,33 +118,42 @@ def _plot_bench(folder: Path, args, plt):
         rows = [r for r in rows if r["detector"] in args.detector]
     if not rows:
         raise UserError(f"No cells for task {task!r} with seed {seed} in {folder}.")
-    fig, axes = plt.subplots(len(rows), 1, figsize=(9, 1.7 * len(rows) + 0.6), squeeze=False, sharex=True)
-    for ax, row in zip(axes[:, 0], rows):
+    panels = []
+    for row in rows:
         a = store.arrays(row["cell_id"])
         if a is None:
             raise UserError(f"The per-scan novelty of {row['detector']} is missing from {folder}/cells.")
-        plot_route(ax, a["novelty"], a["y"], a["distance"], float(a["threshold"]), resting=float(a["resting"]))
-        ax.set_title(row["detector"], fontsize=9, loc="left")
-        ax.set_ylabel("novelty", fontsize=8)
-    axes[-1, 0].set_xlabel("distance along the route (m) or scan")
-    fig.suptitle(f"{task}, seed {seed}: novelty of the test scans", fontsize=10)
-    return fig
+        panels.append((row["detector"], a))
+    return route_figure(f"{task}, seed {seed}: novelty of the test scans", panels)
 
 
 def _plot_path(data: dict, path: Path, plt):
-    """The robot's path coloured by novelty, and the novelty scan by scan below it."""
+    """The robot's path coloured by novelty, and the novelty scan by scan below it; alarms on both."""
     # deferred: plotting imports matplotlib; `novelty --help` does not
-    from ..bench.holdout.plots import plot_route
+    from ..bench.reports.route import ALARM, plot_route
     from ..io.plotting import plot_path
 
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8), gridspec_kw={"height_ratios": [3, 1]})
-    placed = ~np.isnan(data["x"])
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8.4), gridspec_kw={"height_ratios": [3, 1]})
+    placed = ~np.isnan(data["x"]) & ~np.isnan(data["position_y"])
     high = max(1.0, float(np.nanmax(data["novelty"])))
     plot_path(top, data["x"][placed], data["position_y"][placed], data["novelty"][placed], vmax=high)
+    alarm = data.get("alarm")
+    if alarm is not None and np.any(alarm[placed] == 1):
+        raised = placed & (alarm == 1)
+        top.scatter(data["x"][raised], data["position_y"][raised], s=30, facecolors="none",
+                    edgecolors="darkred", linewidths=0.8, zorder=4, label=ALARM)
+    top.legend(fontsize=7, loc="best")
     top.set_title(f"{path.name}: novelty on the robot's path", fontsize=10)
-    along = plot_route(bottom, data["novelty"], None, None)
+    along = plot_route(bottom, data["novelty"], None, None, run=data.get("run"),
+                       alarm=None if alarm is None else alarm == 1)
     bottom.set(xlabel=along, ylabel="novelty")
+    _legend_if_any(bottom)
     return fig
+
+
+def _legend_if_any(ax) -> None:
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="upper right", ncols=2)
 
 
 def run(args) -> int:
@@ -155,20 +175,24 @@ def run(args) -> int:
 def _plot(path: Path, args, plt) -> int:
     folder = _bench_folder(path)
     if folder is not None:
-        fig = _plot_bench(folder, args, plt)
+        fig = _plot_bench(folder, args)
     elif path.is_dir():
         raise UserError(f"{path} is not a benchmark output folder (no results.jsonl).")
     else:
-        from ..bench.holdout.plots import plot_route
+        from ..bench.reports.route import plot_route
 
         data = _read_run_output(path)
         if "x" in data:
             fig = _plot_path(data, path, plt)
         else:
-            fig, ax = plt.subplots(figsize=(9, 3))
-            along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"))
+            fig, ax = plt.subplots(figsize=(9, 3.2))
+            alarm = data.get("alarm")
+            along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"), run=data.get("run"),
+                               alarm=None if alarm is None else alarm == 1)
             ax.set(xlabel=along, ylabel="novelty", title=path.name)
-    fig.tight_layout()
+            _legend_if_any(ax)
+    if fig.get_layout_engine() is None:  # the bench figure is laid out as it is drawn
+        fig.tight_layout()
     fig.savefig(args.out, dpi=110)
     plt.close(fig)
     print(f"Wrote {args.out}.", file=sys.stderr)

@@ -14,7 +14,8 @@ __all__ = ["plot_path"]
 
 def plot_path(ax, x, y, novelty, *, cmap: str = "viridis", size: float = 8.0, colorbar: bool = True,
               vmin: float = 0.0, vmax: float = 1.0):
-    """Draw the path (x, y) in metres, each scan a dot coloured by its novelty; the start marked.
+    """Draw the path (x, y) in metres, each scan a dot coloured by its novelty; the start marked (and
+    named in the axes' legend).
 
     Parameters
     ----------
@@ -37,7 +38,8 @@ def plot_path(ax, x, y, novelty, *, cmap: str = "viridis", size: float = 8.0, co
                          f"{novelty.shape}.")
     ax.plot(x, y, color="0.85", lw=0.8, zorder=1)
     dots = ax.scatter(x, y, c=novelty, s=size, cmap=cmap, vmin=vmin, vmax=vmax, zorder=2, linewidths=0)
-    ax.plot(x[:1], y[:1], marker="*", color="#d62728", ms=10, zorder=3, label="start")
+    ax.plot(x[:1], y[:1], marker="*", color="#d62728", ms=10, zorder=3, linestyle="none", label="start")
+    ax.legend(fontsize=7, loc="best")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set(xlabel="x (m)", ylabel="y (m)")
     if colorbar:

@@ -24,6 +24,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..reports.figures import grid, pyplot, save, slug
+from ..reports.route import route_legend
 
 __all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves",
            "mean_over_seeds"]
@@ -48,20 +49,21 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
     plt = pyplot()
     first = {d: rows[0] for d, rows in cells.items()}
     seed = min(r["seed"] for r in first.values())
-    fig, axes = plt.subplots(len(first), 1, figsize=(11, 1.6 * len(first) + 0.8), squeeze=False, sharex=True)
+    fig, axes = plt.subplots(len(first), 1, figsize=(11, 1.6 * len(first) + 1.2), squeeze=False, sharex=True,
+                             layout="constrained")
     for ax, (detector, row) in zip(axes[:, 0], first.items()):
         a = arrays(row["cell_id"])
         if a is None:
             continue
         x = np.arange(a["novelty"].size)
-        ax.plot(x, a["novelty"], linewidth=0.7, color="tab:blue")
+        ax.plot(x, a["novelty"], linewidth=0.7, color="tab:blue", label="novelty")
         tracked = a["exposure"] >= 0
         for mask, colour, label in ((tracked & (a["exposure"] == 0), "tab:red", "first exposure"),
                                     (a["exposure"] > 0, "tab:orange", "later exposures")):
             ax.scatter(x[mask], a["novelty"][mask], s=4, color=colour, label=label, zorder=3)
         starts = np.r_[0, np.flatnonzero(np.diff(a["run"])) + 1]
-        for s in starts:
-            ax.axvline(s, color="0.8", linewidth=0.6)
+        for i, s in enumerate(starts):
+            ax.axvline(s, color="0.8", linewidth=0.6, label="run start (its environment named above)" if i == 1 else None)
             if ax is axes[0, 0]:
                 ax.text(s + 2, 1.02, str(a["environment"][s]), fontsize=6, transform=ax.get_xaxis_transform())
         ax.axvspan(0, starts[int(a["warmup"])] if int(a["warmup"]) < starts.size else x[-1],
@@ -71,10 +73,10 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
                        label="alarm threshold (from the last warm-up run)")
         ax.set_title(f"{detector} (seed {row['seed']})", fontsize=8, loc="left")
         ax.set_ylabel("novelty", fontsize=7)
-    axes[0, 0].legend(fontsize=6, loc="upper right", ncols=2)
-    axes[-1, 0].set_xlabel("scan, runs in order (vertical lines: run starts, named by environment)")
+    axes[-1, 0].set_xlabel("scan (the runs in order)")
     fig.suptitle(f"{task}: novelty of every scan before it is learned, seed {seed}", fontsize=10)
-    return save(fig, out / f"exploration-route-{slug(task)}.png")
+    route_legend(fig, axes[:, 0])
+    return save(fig, out / f"exploration-route-{slug(task)}.png", tight=False)
 
 
 def mean_over_seeds(curves: Sequence[np.ndarray]) -> np.ndarray:
@@ -139,8 +141,8 @@ def plot_learning_curves(task: str, cells: dict, out: Path) -> Path | None:
         ax.plot(np.arange(width), np.mean([c[:width] for c in curves], axis=0), marker=".", label=detector)
         warmup = int(rows[0].get("warmup_runs") or 0)
     if warmup:
-        ax.axvspan(-0.5, warmup - 0.5, color="0.9", zorder=0)
-    ax.set(xlabel="run (grey: warm-up)", ylabel="integrated novelty (resting subtracted)")
+        ax.axvspan(-0.5, warmup - 0.5, color="0.9", zorder=0, label="warm-up runs")
+    ax.set(xlabel="run", ylabel="integrated novelty (resting subtracted)")
     ax.set_title(f"{task}: integrated novelty per run, {_seeds(cells)}", fontsize=9)
     ax.legend(fontsize=6, ncols=2)
     return save(fig, out / f"exploration-learning-{slug(task)}.png")

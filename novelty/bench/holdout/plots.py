@@ -1,5 +1,5 @@
-"""Plots of a hold-out run (matplotlib, optional): ROC curves, novelty along the route,
-ROC AUC per task and boxplots over seeds.
+"""Plots of a hold-out run (matplotlib, optional): ROC curves, novelty along the route
+(:mod:`novelty.bench.reports.route`), ROC AUC per task and boxplots over seeds.
 
 Every function returns the paths it wrote, and every figure says which seeds
 it shows (ROC curves and routes: the lowest seed of each task) or aggregates.
@@ -15,12 +15,13 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..reports.figures import grid, pyplot, save, seeds_text, slug
+from ..reports.figures import grid, pyplot, save, seeds_text, slug, wrapped
 from ..reports.ranking import detector_order, per_task
+from ..reports.route import route_figure
 from ..stats.aggregate import as_float
 from . import metrics
 
-__all__ = ["plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_route", "plot_boxplots"]
+__all__ = ["plot_run", "plot_roc", "plot_routes", "plot_ranking", "plot_boxplots"]
 
 
 def _first_seed_cells(rows: Sequence[dict]) -> dict[str, dict[str, dict]]:
@@ -58,58 +59,22 @@ def plot_roc(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Pa
         ax.legend(fontsize=7, loc="lower right")
     for ax in list(axes.flat)[len(chosen):]:
         ax.set_visible(False)
-    fig.suptitle("ROC curves of one seed of each task, named in each panel (that seed's ROC AUC in "
-                 "brackets; dotted: chance)", fontsize=10)
+    fig.suptitle(wrapped("ROC curves of one seed of each task, named in each panel (that seed's ROC AUC in "
+                         "brackets; dotted: chance)", fig), fontsize=10)
     path = save(fig, out / "roc.png")
     return [path]
 
 
-def plot_route(ax, novelty, y=None, distance=None, threshold=None, label=None, resting=None) -> str:
-    """Novelty along the route on ``ax``, novel scans shaded, threshold dashed; returns the x axis' name."""
-    novelty = np.asarray(novelty, dtype=float)
-    x = np.arange(novelty.size) if distance is None else np.asarray(distance, dtype=float)
-    along = "scan" if distance is None else "distance along the route (m)"
-    if distance is not None and np.any(np.diff(x) < 0):  # several runs: plot along scans instead
-        x, along = np.arange(novelty.size), "scan (runs one after another)"
-    if y is not None and np.any(y):
-        ymax = max(float(np.nanmax(novelty)), 1e-9) * 1.05
-        ax.fill_between(x, 0, ymax, where=np.asarray(y).astype(bool), color="tab:red", alpha=0.12,
-                        step="mid", linewidth=0, label="novel scans")
-    ax.plot(x, novelty, linewidth=1.0, label=label)
-    if threshold is not None and np.isfinite(threshold):
-        ax.axhline(threshold, color="k", linestyle="--", linewidth=0.8,
-                   label="alarm threshold (from the training scans)")
-    if resting:
-        ax.axhline(resting, color="0.5", linestyle=":", linewidth=0.8, label="resting novelty")
-    return along
-
-
 def plot_routes(rows: Sequence[dict], arrays: Callable[[str], dict | None], out: Path) -> list[Path]:
-    """One figure a task: the test novelty along the route, one panel a detector."""
-    plt = pyplot()
+    """One figure a task: the test novelty along the route, one panel a detector (lowest seed)."""
     paths = []
     for task, cells in _first_seed_cells(rows).items():
-        fig, axes = plt.subplots(len(cells), 1, figsize=(9, 1.7 * len(cells) + 0.6), squeeze=False,
-                                 sharex=True)
-        along = "scan"
-        for ax, (detector, row) in zip(axes[:, 0], cells.items()):
-            a = arrays(row["cell_id"])
-            if a is None:
-                continue
-            has_distance = bool(np.any(a["distance"] != np.arange(a["distance"].size)))
-            along = plot_route(ax, a["novelty"], a["y"], a["distance"] if has_distance else None,
-                               float(a["threshold"]), label="novelty", resting=float(a["resting"]))
-            ax.set_ylabel("novelty", fontsize=8)
-            ax.set_title(detector, fontsize=9, loc="left")
-        handles, labels = axes[0, 0].get_legend_handles_labels()
-        if handles:
-            axes[0, 0].legend(handles, labels, fontsize=7, loc="lower right", bbox_to_anchor=(1, 1),
-                              ncols=len(handles), frameon=False)
-        axes[-1, 0].set_xlabel(along)
+        panels = [(detector, a) for detector, row in cells.items() if (a := arrays(row["cell_id"])) is not None]
+        if not panels:
+            continue
         seed = min(row["seed"] for row in cells.values())
-        fig.suptitle(f"{task}, seed {seed}: novelty of the test scans (shaded: novel scans)", fontsize=10)
-        path = save(fig, out / f"route-{slug(task)}.png")
-        paths.append(path)
+        fig = route_figure(f"{task}, seed {seed}: novelty of the test scans", panels)
+        paths.append(save(fig, out / f"route-{slug(task)}.png", tight=False))
     return paths
 
 
@@ -128,10 +93,11 @@ def plot_ranking(rows: Sequence[dict], out: Path) -> list[Path]:
         sds = [table.get(d, {}).get(task, (np.nan, np.nan))[1] for d in order]
         xs = np.arange(len(order)) + (j - (len(tasks) - 1) / 2) * width
         ax.bar(xs, means, width, yerr=np.nan_to_num(sds), capsize=2, label=task)
+    ax.errorbar([], [], yerr=[], color="k", capsize=2, linestyle="none", label="± sd over seeds")
     ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8, label="chance (0.5)")
     ax.set_xticks(np.arange(len(order)), order, rotation=30, ha="right", fontsize=8)
-    ax.set(ylabel="ROC AUC (mean ± sd over seeds)", ylim=(0, 1.05),
-           title=f"Detectors ranked by mean ROC AUC ({_seeds(rows)})")
+    ax.set(ylabel="mean ROC AUC over seeds", ylim=(0, 1.05),
+           title=f"Detectors ranked by mean ROC AUC ({_seeds(rows)}; a bar a task)")
     ax.legend(fontsize=7, ncols=min(len(tasks), 4))
     path = save(fig, out / "ranking.png")
     return [path]
@@ -151,9 +117,14 @@ def plot_boxplots(rows: Sequence[dict], out: Path) -> list[Path]:
                             and r["detector"] == d and r.get("status") == "ok"]) for d in order]
         values = [v[~np.isnan(v)] for v in values]
         positions = np.arange(1, len(order) + 1)
-        ax.boxplot(values, positions=positions, widths=0.6, showfliers=False)
+        ax.boxplot(values, positions=positions, widths=0.6, showfliers=False, whis=(0, 100),
+                   medianprops={"color": "tab:orange"})
         for x, v in zip(positions, values):
             ax.plot(np.full(v.size, x), v, "o", color="tab:blue", markersize=3, alpha=0.7)
+        ax.plot([], [], "o", color="tab:blue", markersize=3, label="a seed")
+        ax.plot([], [], color="tab:orange", label="median over seeds")
+        ax.plot([], [], "s", markerfacecolor="none", markeredgecolor="k",
+                label="box: middle half of the seeds; whiskers: all")
         ax.axhline(0.5, color="0.6", linestyle=":", linewidth=0.8, label="chance (0.5)")
         ax.legend(fontsize=7, loc="lower right")
         ax.set_xticks(positions, order, rotation=30, ha="right", fontsize=8)

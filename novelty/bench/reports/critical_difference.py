@@ -61,7 +61,7 @@ def plot_critical_difference(rows: Sequence[dict], out: Path, alpha: float = ALP
     Groups come from the Wilcoxon signed-rank test of each pair with Holm's
     correction (Benavoli, Corani & Mangili 2016), not from Nemenyi's critical
     difference, whose verdict on a pair depends on the other detectors in the
-    comparison; the caption gives Nemenyi's CD beside Friedman's p-value.
+    comparison; the title names the test the bars come from and Friedman's p-value.
     Nothing is written when Friedman's test cannot apply (fewer than three
     detectors or two complete tasks).
     """
@@ -82,8 +82,8 @@ def plot_critical_difference(rows: Sequence[dict], out: Path, alpha: float = ALP
     seeds = seeds_text([r["seed"] for r in rows if r["task"] in complete and r.get("status") == "ok"])
     friedman_text = (f"Friedman p = {result.pvalue:.2g}" if result.min_pvalue <= alpha else
                      f"too few tasks for any test at alpha = {alpha}")
-    fig.suptitle(f"Average rank of ROC AUC over {result.n_tasks} tasks (each the mean over {seeds}); "
-                 f"{friedman_text}, Nemenyi CD = {stats.nemenyi_cd(result.k, result.n_tasks, alpha):.2f}\n"
-                 f"bars: no significant difference (exact Wilcoxon signed-rank over tasks, Holm, "
+    fig.suptitle(f"Average rank of ROC AUC over {result.n_tasks} tasks (1 = best; each task the mean over "
+                 f"{seeds}), in brackets; {friedman_text}\n"
+                 f"bars join detectors no test separates (exact Wilcoxon signed-rank over tasks, Holm, "
                  f"alpha = {alpha})", fontsize=9)
     return [save(fig, out / "critical-difference.png", tight=False)]

@@ -10,10 +10,11 @@ from __future__ import annotations
 import hashlib
 import math
 import re
+import textwrap
 from pathlib import Path
 from typing import Sequence
 
-__all__ = ["matplotlib_missing", "pyplot", "slug", "grid", "save", "seeds_text", "DPI", "MAX_SLUG"]
+__all__ = ["matplotlib_missing", "pyplot", "slug", "grid", "save", "seeds_text", "wrapped", "DPI", "MAX_SLUG"]
 
 #: resolution of every saved figure
 DPI = 110
@@ -88,3 +89,9 @@ def seeds_text(seeds: Sequence[int]) -> str:
     """
     seeds = sorted(set(int(s) for s in seeds))
     return ("seed " if len(seeds) == 1 else "seeds ") + ", ".join(map(str, seeds))
+
+
+def wrapped(text: str, fig, fontsize: float = 10) -> str:
+    """``text`` in lines that fit across ``fig`` at ``fontsize`` (a title over a narrow figure)."""
+    width_points = fig.get_figwidth() * 72
+    return "\n".join(textwrap.wrap(text, max(20, int(width_points / (0.55 * fontsize)))))
