@@ -358,6 +358,14 @@ _DATASETS = {
     "exploration-radish-intel": "novelty.io.radish:radish_intel",
     "exploration-radish-aces": "novelty.io.radish:radish_aces",
     "exploration-radish-csail": "novelty.io.radish:radish_csail",
+    "inspection-objects": "novelty.io.objects.tasks:inspection_task",
+    "exploration-objects": "novelty.io.objects.tasks:exploration_task",
+    "inspection-objects-radish-intel": "novelty.io.objects.radish:inspection_objects_intel",
+    "inspection-objects-radish-aces": "novelty.io.objects.radish:inspection_objects_aces",
+    "inspection-objects-radish-csail": "novelty.io.objects.radish:inspection_objects_csail",
+    "exploration-objects-radish-intel": "novelty.io.objects.radish:exploration_objects_intel",
+    "exploration-objects-radish-aces": "novelty.io.objects.radish:exploration_objects_aces",
+    "exploration-objects-radish-csail": "novelty.io.objects.radish:exploration_objects_csail",
 }
 
 datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)

@@ -162,10 +162,9 @@ def inject(sweep, objects: Sequence, *, margin: float = 0.1, within: float = mat
 
     Examples
     --------
-    >>> from types import SimpleNamespace
+    >>> from novelty.io.sweeps import Sweep
     >>> from novelty.io.objects.shapes import Box
-    >>> corridor = SimpleNamespace(time=0.0, origins=np.zeros((3, 2)), angles=np.array([-0.5, 0.0, 0.5]),
-    ...                            ranges=np.array([2.0, np.inf, 2.0]), pose=np.zeros(3), spread=None)
+    >>> corridor = Sweep(0.0, np.zeros((3, 2)), np.array([-0.5, 0.0, 0.5]), np.array([2.0, np.inf, 2.0]), np.zeros(3))
     >>> out = inject(corridor, [Box("crate", x=1.0, y=0.0, length=0.2, width=0.2)])
     >>> out.sweep.ranges.tolist(), out.shortened.tolist()
     ([2.0, 0.9, 2.0], [1])
