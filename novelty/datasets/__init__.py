@@ -22,6 +22,12 @@ Built in:
   (:mod:`novelty.io.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
   ``exploration-radish-intel``, ``exploration-radish-aces``,
   ``exploration-radish-csail``;
+- virtual objects placed in a recording (:mod:`novelty.io.objects`):
+  ``inspection-objects`` and ``exploration-objects`` for any recording with
+  poses (``path=``, ``objects=`` a CSV or TOML file, or objects drawn by the
+  seed), and the Radish logs' ``inspection-objects-radish-intel``,
+  ``-aces``, ``-csail`` and ``exploration-objects-radish-intel``, ``-aces``,
+  ``-csail``;
 - real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
   ``uci-sonar-mines``;
