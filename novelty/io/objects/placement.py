@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import csv
 import math
-import tomllib
+import sys
 from dataclasses import replace
 from pathlib import Path
 from typing import Sequence
@@ -28,6 +28,11 @@ import numpy as np
 from .labels import cast_all, passes, sightings
 from .raycast import world_beams
 from .shapes import SHAPES, Box, Cylinder
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10: tomli, a dependency there (pyproject.toml)
+    import tomli as tomllib
 
 __all__ = ["read_objects", "object_from_fields", "refusals", "check_objects", "draw_objects", "FIELDS"]
 
