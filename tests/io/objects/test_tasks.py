@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from novelty import datasets
+from novelty import bench, datasets
 from novelty.io.objects.labels import cast_all, passes, sightings
 from novelty.io.objects.shapes import Cylinder
 from novelty.io.objects.tasks import exploration_task, familiar_places, inspection_task, object_rings
@@ -74,3 +74,11 @@ def test_familiar_places_need_the_place_and_the_heading():
     known = [[0.0, 0.0, 0.0]]
     assert familiar_places([[0.9, 0.0, 0.1], [0.9, 0.0, 3.0], [1.1, 0.0, 0.0]], known).tolist() == [True, False,
                                                                                                      False]
+
+
+def test_a_users_recording_is_benchmarked_by_name_as_the_command_line_gives_it(drive_log, tmp_path):
+    objects = tmp_path / "objects.toml"
+    objects.write_text('[[objects]]\nkind = "cylinder"\nname = "bin"\nx = 5.0\ny = 0.6\nradius = 0.25\nstart = 42\n')
+    results = bench.run(["nearest-memory"], f"inspection-objects path={drive_log} objects={objects} sectors=8")
+    row = results.rows[0]
+    assert row["status"] == "ok" and row["n_novel"] == expected_sightings()[42:].sum() and row["roc_auc"] > 0.5
