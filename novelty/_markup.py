@@ -1,10 +1,10 @@
-"""Docstring markup as plain text, for what a terminal or a Python prompt shows."""
+"""Text for what a terminal or a Python prompt shows: docstring markup as plain text, a count with its noun."""
 
 from __future__ import annotations
 
 import re
 
-__all__ = ["plain_text", "plain_descriptions"]
+__all__ = ["plain_text", "plain_descriptions", "counted"]
 
 #: a Sphinx role (:func:`~novelty.x.name`, :py:class:`Title <target>`) or a literal (``name``, `name`)
 _MARKUP = re.compile(r":[a-z]+(?::[a-z]+)?:`(~?)([^`<]*?)(?:\s*<[^>]*>)?`|``([^`]+)``|`([^`]+)`")
@@ -31,3 +31,12 @@ def plain_text(text: str) -> str:
 def plain_descriptions(registry) -> dict:
     """``{name: description}`` of a registry, in plain text (a description is a docstring's first line)."""
     return {name: plain_text(text) for name, text in registry.descriptions().items()}
+
+
+def counted(n: int, noun: str, plural: str | None = None) -> str:
+    """``n`` and the noun, singular for one.
+
+    >>> counted(1, "task"), counted(2, "task"), counted(0, "cell"), counted(3, "fix", "fixes")
+    ('1 task', '2 tasks', '0 cells', '3 fixes')
+    """
+    return f"{n} {noun if n == 1 else plural or noun + 's'}"

@@ -53,6 +53,7 @@ from typing import Iterable
 
 import numpy as np
 
+from ._markup import counted
 from ._validation import Interval
 
 __all__ = ["Alarm", "Threshold", "KOfN", "Hysteresis", "parse_alarm", "ALARM_FORMS"]
@@ -222,7 +223,7 @@ def parse_alarm(spec: str, threshold: float | None = None) -> Alarm:
     least, most = shapes[name]
     if not least <= len(args) <= most:
         form = next(f for f in ALARM_FORMS if f.startswith(name))
-        raise ValueError(f"Alarm {spec!r} takes {form}; got {len(args)} value(s).")
+        raise ValueError(f"Alarm {spec!r} takes {form}; got {counted(len(args), 'value')}.")
     if name == "hysteresis":
         return Hysteresis(args[0], args[1])
     if name == "k-of-n" and not all(math.isfinite(v) and v == int(v) for v in args[:2]):

@@ -1,9 +1,5 @@
 """The habituating novelty filter: a clusterer composed with a synapse bank.
 
-One module although it is long (about 40% of it documentation): one
-estimator, its reference loop and the hooks that share its state (start,
-calibrate the match scale, learn, score), which read best together.
-
 Marsland, Nehmzow & Shapiro (2000), section 2: each input is presented to a
 clustering network; every unit connects to an output neuron through a
 habituating synapse; the efficacy of the winner's synapse is the novelty of
@@ -19,6 +15,10 @@ With learning off (the paper's non-learning runs) the output is a pure
 function of the state, computed for a whole batch at once.
 
 The per-scan loop is :func:`learn_stream`, on plain arrays, in one place.
+
+One module although it is long (about 40% of it documentation): one
+estimator, its reference loop and the hooks that share its state (start,
+calibrate the match scale, learn, score), which read best together.
 """
 
 from __future__ import annotations
@@ -668,11 +668,16 @@ class HabituatingFilter(NoveltyDetector):
         self._check_fitted()
         return _kernels.path(self.clusterer_, self.synapse_)
 
-    def winners(self, X) -> np.ndarray:
-        """Stable ids of the winning units of ``X``, without learning."""
+    def winners(self, X) -> tuple[np.ndarray, np.ndarray]:
+        """The winning units of ``X`` and their squared distances, without learning.
+
+        As :meth:`Clusterer.winners <novelty.clusterers.Clusterer.winners>` returns them, but each
+        unit by its stable id (``clusterer_.unit_ids_``), which a growing network keeps while its
+        rows move as units are removed.
+        """
         self._check_fitted()
-        rows, _ = self.clusterer_.winners(check_batch(X, self, self.n_features_in_))
-        return self.clusterer_.unit_ids_[rows]
+        rows, distances = self.clusterer_.winners(check_batch(X, self, self.n_features_in_))
+        return self.clusterer_.unit_ids_[rows], distances
 
     def _first_novelty(self) -> float:
         # A first perception wins a unit whose synapse has not habituated: y0.

@@ -130,24 +130,22 @@ def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | No
         if isinstance(x, dict):
             key = next((k for k, v in x.items() if isinstance(v, _TEXT)), None)
             if key is not None:
-                raise _NotReal(_text_in_scan(owner, x[key], f"the value of key {key!r}"))
+                raise ValueError(_text_in_scan(owner, x[key], f"the value of key {key!r}"))
             x = _dict_values(x, owner, n_features, names)
         try:
             arr = np.asarray(x)
-            if arr.dtype.kind in _MAY_HOLD_TEXT:
-                _refuse_text_values(x, arr, owner)
-            _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
+        except (TypeError, ValueError) as exc:  # ragged
+            raise _not_numeric(owner, exc) from None
+        # refused by what they hold, before a conversion to float64 would damage them silently
+        if arr.dtype.kind in _MAY_HOLD_TEXT:
+            _refuse_text_values(x, arr, owner)
+        _refuse_not_real(arr.dtype.kind, f"{type(owner).__name__} expects one scan as real numbers")
+        try:
             arr = arr.astype(np.float64, copy=False)
         except OverflowError:  # a Python int beyond float64
             raise _beyond_float(owner, "the scan") from None
         except (TypeError, ValueError) as exc:
-            if isinstance(exc, _NotReal):
-                raise
-
-            raise ValueError(
-                f"{type(owner).__name__} expects one scan as a 1-D sequence of numbers; "
-                f"got values that are not numeric ({exc})."
-            ) from None
+            raise _not_numeric(owner, exc) from None
         if arr.ndim != 1:
             raise ValueError(
                 f"{type(owner).__name__} expects one scan as a 1-D array of shape "
@@ -177,6 +175,11 @@ _TEXT = (str, bytes)
 _MAY_HOLD_TEXT = "USO"
 
 
+def _not_numeric(owner: Any, exc: Exception) -> ValueError:
+    return ValueError(f"{type(owner).__name__} expects one scan as a 1-D sequence of numbers; "
+                      f"got values that are not numeric ({exc}).")
+
+
 def _text_in_scan(owner: Any, value: Any, where: str) -> str:
     return (f"{type(owner).__name__} expects one scan of numbers; got the string {value!r} as {where}; "
             "convert text to numbers first.")
@@ -187,7 +190,7 @@ def _refuse_text_values(x: Any, arr: np.ndarray, owner: Any) -> None:
     values = x if isinstance(x, (list, tuple)) else arr.reshape(-1).tolist()
     i = next((i for i, v in enumerate(values) if isinstance(v, _TEXT)), None)
     if i is not None:
-        raise _NotReal(_text_in_scan(owner, values[i], f"value {i}"))
+        raise ValueError(_text_in_scan(owner, values[i], f"value {i}"))
 
 
 def _refuse_text_cells(X: Any, owner: Any) -> None:
@@ -201,7 +204,7 @@ def _refuse_text_cells(X: Any, owner: Any) -> None:
     is_text = np.frompyfunc(lambda v: isinstance(v, _TEXT), 1, 1)(cells).astype(bool)
     if is_text.any():
         i, j = np.argwhere(is_text)[0]
-        raise _NotReal(
+        raise ValueError(
             f"{type(owner).__name__} expects X as a 2-D array of numbers; got the string "
             f"{cells[i, j]!r} in row {i}, column {j}; convert text to numbers first.")
 
@@ -211,10 +214,6 @@ def _beyond_float(owner: Any, what: str) -> ValueError:
         f"{type(owner).__name__}: {what} holds an integer beyond the float64 range (about 1.8e308); "
         f"scans are vectors of finite numbers of norm at most {MAX_SCAN_NORM:g}."
     )
-
-
-class _NotReal(ValueError):
-    """Input of a kind that converting to float64 would silently damage."""
 
 
 def _dtype_kinds(X: Any) -> str:
@@ -236,7 +235,7 @@ def _refuse_not_real(kinds: str, expected: str) -> None:
         if kind in kinds:
             # scikit-learn's wording for complex input, which its estimator checks look for
             prefix = "Complex data not supported: " if kind == "c" else ""
-            raise _NotReal(f"{prefix}{expected}; got {what}. Convert them to real numbers first.")
+            raise ValueError(f"{prefix}{expected}; got {what}. Convert them to real numbers first.")
 
 
 def _too_large(name: str, owner: Any, where: str) -> str:

@@ -7,11 +7,15 @@ from typing import Any
 
 import numpy as np
 
-from .scans import _NotReal, _refuse_not_real
+from .scans import _refuse_not_real
 
 __all__ = ["check_timestamps", "last_timestamp", "pass_timestamps"]
 
 _INT64_MAX = np.iinfo(np.int64).max
+
+
+def _not_numeric(exc: Exception) -> ValueError:
+    return ValueError(f"timestamps must be numbers; got values that are not numeric ({exc}).")
 
 
 def check_timestamps(timestamps: Any, n_samples: int, last_time: float | int | None) -> np.ndarray:
@@ -25,14 +29,15 @@ def check_timestamps(timestamps: Any, n_samples: int, last_time: float | int | N
     """
     try:
         t = np.asarray(timestamps)
-        _refuse_not_real(t.dtype.kind, "timestamps must be real numbers")
-        exact = t.dtype.kind in "iu" and t.dtype.itemsize <= 8 and not (t.dtype.kind == "u" and t.size
-                                                                        and t.max() > _INT64_MAX)
+    except (TypeError, ValueError) as exc:  # ragged
+        raise _not_numeric(exc) from None
+    _refuse_not_real(t.dtype.kind, "timestamps must be real numbers")
+    exact = t.dtype.kind in "iu" and t.dtype.itemsize <= 8 and not (t.dtype.kind == "u" and t.size
+                                                                    and t.max() > _INT64_MAX)
+    try:
         t = t.astype(np.int64 if exact else np.float64, copy=False)
     except (TypeError, ValueError) as exc:
-        if isinstance(exc, _NotReal):
-            raise
-        raise ValueError(f"timestamps must be numbers; got values that are not numeric ({exc}).") from None
+        raise _not_numeric(exc) from None
     if t.ndim != 1 or t.shape[0] != n_samples:
         raise ValueError(
             f"timestamps must be a 1-D array with one value per scan ({n_samples}); "

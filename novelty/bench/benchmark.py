@@ -29,7 +29,9 @@ from __future__ import annotations
 
 import hashlib
 import json
+import shutil
 import tempfile
+import weakref
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Sequence
@@ -227,13 +229,22 @@ def task_specs(tasks) -> list[TaskSpec]:
     return [spec for name, item in items for spec in _task_spec(name, item)]
 
 
+class _Scratch:
+    """A temporary folder, removed when the last reference to it goes or at exit, without the
+    ResourceWarning a ``TemporaryDirectory`` left to the garbage collector gives."""
+
+    def __init__(self):
+        self.name = tempfile.mkdtemp(prefix="novelty-bench-")
+        self._remove = weakref.finalize(self, shutil.rmtree, self.name, ignore_errors=True)
+
+
 # ------------------------------------------------------------------- runs
 def run_suite(suite: Suite, out=None, backend: str = "serial", jobs: int = 1, plots: bool = True,
               quiet: bool = True, **options) -> Results:
     """Run a checked :class:`~novelty.bench.suite.Suite` into ``out`` (a temporary folder if None)."""
     keep = None
     if out is None:
-        keep = tempfile.TemporaryDirectory(prefix="novelty-bench-")
+        keep = _Scratch()
         out, plots = keep.name, False
     report = run_bench(suite, out, backend=backend, jobs=jobs, plots=plots, quiet=quiet, **options)
     return Results(report.rows, suite.protocol, Path(out), report, suite.reference_label, keep)

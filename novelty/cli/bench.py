@@ -6,6 +6,7 @@ import os
 import shlex
 import sys
 
+from .._markup import counted
 from ._common import UserError, add_command
 
 DESCRIPTION = """Run detectors x tasks x seeds and rank the detectors.
@@ -144,8 +145,9 @@ def run(args) -> int:
     suite = build_suite(args)
     n_cells = len(suite.detectors) * len(suite.tasks) * len(suite.seeds)
     if not args.quiet:
-        print(f"Suite {suite.name!r}: {len(suite.detectors)} detectors x {len(suite.tasks)} tasks x "
-              f"{len(suite.seeds)} seeds = {n_cells} cells, backend {backend}"
+        print(f"Suite {suite.name!r}: {counted(len(suite.detectors), 'detector')} x "
+              f"{counted(len(suite.tasks), 'task')} x {counted(len(suite.seeds), 'seed')} = "
+              f"{counted(n_cells, 'cell')}, backend {backend}"
               + (f" ({args.jobs} jobs)" if backend != "serial" else "") + ".", file=sys.stderr)
     unknown = [t for t in args.compare_on_task if t not in {task.label for task in suite.tasks}]
     if unknown:
@@ -164,7 +166,7 @@ def run(args) -> int:
         print(note)
     summary = os.path.join(args.out, "summary.md")
     if report.failed:
-        print(f"{report.failed} of {len(report.rows)} cell(s) failed; their errors are in {summary}.")
+        print(f"{report.failed} of {counted(len(report.rows), 'cell')} failed; their errors are in {summary}.")
     print(f"Results in {args.out}: results.csv, results.jsonl, summary.md"
           + (", plots/" if any(p.suffix == ".png" for p in report.files) else "") + ".")
     if report.interrupted:

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 from .. import datasets
+from .._markup import counted
 from ._common import UserError, add_command
 
 DESCRIPTION = """Simulate a robot's sonar scans along a corridor and write them to a file.
@@ -71,7 +72,7 @@ def run(args) -> int:
         data.to_npz(out)
     else:
         data.to_csv(out)
-    what = f"{args.runs} run(s) of " if data.split is None else "task "
+    what = f"{counted(args.runs, 'run')} of " if data.split is None else "task "
     print(f"Wrote {len(data)} scans of {data.n_sensors} sensors ({what}{args.environment}, "
           f"seed {args.seed}) to {out}.", file=sys.stderr)
     return 0

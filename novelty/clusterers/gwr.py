@@ -1,9 +1,5 @@
 """The Grow-When-Required network of Marsland, Shapiro & Nehmzow (2002).
 
-One module although it is long (nearly half of it documentation): the
-published algorithm's ten steps, our options for novelty and their checks are
-read side by side with the paper; the compiled steps are in ``_gwr_steps``.
-
 A topology-learning network like Growing Neural Gas, but one that adds a unit
 whenever an input is matched badly by a unit that has already learned (fired
 often), instead of at fixed intervals: it grows while the inputs show it
@@ -72,6 +68,10 @@ that grows when required. Neural Networks, 15(8-9), 1041-1058.
 
 Stanley, J. C. (1976). Computer simulation of a model of habituation.
 Nature, 261, 146-148.
+
+One module although it is long (nearly half of it documentation): the
+published algorithm's ten steps, our options for novelty and their checks are
+read side by side with the paper; the compiled steps are in ``_gwr_steps``.
 """
 
 from __future__ import annotations

@@ -1,9 +1,5 @@
 """Wang & Hsu's (1990) habituating synapse with long-term memory.
 
-One module although it is long (nearly half of it documentation): the two
-equations, their closed forms and the Euler and exact integrators are checked
-against each other in one place; the compiled steps are in ``_wang_hsu_steps``.
-
 The efficacy ``y`` of a synapse is coupled with a second variable ``z``, the
 *speed of recovery*:
 
@@ -131,6 +127,10 @@ Surveys, 3, 157-195 (the review of habituation models; equations (1)-(2)).
 
 Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features of
 an environment using habituation. Proc. SAB 2000 (the time scale and tau).
+
+One module although it is long (nearly half of it documentation): the two
+equations, their closed forms and the Euler and exact integrators are checked
+against each other in one place; the compiled steps are in ``_wang_hsu_steps``.
 """
 
 from __future__ import annotations

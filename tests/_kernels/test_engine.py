@@ -631,7 +631,7 @@ def test_weights_written_in_place_are_what_the_next_compiled_call_reads():
         d.clusterer_.weights_[4] = X[11]
         d.clusterer_.weights_[7, 2] = 0.0
     assert det.clusterer_.weights_[4].tolist() == X[11].tolist()
-    assert det.winners(X[11:12])[0] == det.clusterer_.unit_ids_[4]
+    assert det.winners(X[11:12])[0][0] == det.clusterer_.unit_ids_[4]
     with reference_only():
         expected = [slow.score_one(X[11]), slow.score_learn_one(X[11]), slow.score_one(far)]
         slow.partial_fit(X[12:30])

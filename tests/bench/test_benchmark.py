@@ -1,5 +1,8 @@
 """novelty.bench.run: names, objects, task objects and arrays benchmarked without registering anything."""
 
+import gc
+import warnings
+
 import numpy as np
 import pytest
 
@@ -128,3 +131,16 @@ def test_first_rows_of_a_file_stored_anomalies_last_are_said_to_be_so(tmp_path):
         bench.run(["lof"], f"files path={folder}/2_walls.mat train_rows=0.95")
     row = bench.run(["lof"], f"files path={folder}/2_walls.mat train_rows=0.5").rows[0]
     assert row["task_split"].startswith("the first 500 of 1000 rows in file order trained (not shuffled)")
+
+
+def test_results_without_out_leave_no_folder_and_no_resource_warning():
+    rng = np.random.default_rng(0)
+    results = bench.run("parzen", {"t": (rng.random((30, 3)), rng.random((10, 3)), np.r_[np.ones(3), np.zeros(7)])})
+    folder = results.out
+    assert (folder / "results.csv").exists()
+    with warnings.catch_warnings(record=True) as caught:  # a finalizer's warning is recorded, never raised
+        warnings.simplefilter("always")
+        del results
+        gc.collect()
+    assert not folder.exists()
+    assert not [w for w in caught if issubclass(w.category, ResourceWarning)], [str(w.message) for w in caught]

@@ -49,7 +49,7 @@ def test_an_unknown_reference_is_a_user_error(toy_task, tmp_path, capsys):
 
 def test_a_partial_failure_exits_0_and_says_how_many_failed(toy_task, tmp_path, capsys):
     assert bench(tmp_path, "hsom", toy.BROKEN) == 0
-    assert "1 of 2 cell(s) failed" in capsys.readouterr().out
+    assert "1 of 2 cells failed" in capsys.readouterr().out
 
 
 def test_a_bench_where_every_cell_fails_exits_1(toy_task, tmp_path, capsys):

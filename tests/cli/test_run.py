@@ -139,7 +139,7 @@ def test_alarm_policy_hysteresis_on_stdin(monkeypatch, capsys):
 
 
 @pytest.mark.parametrize("spec, message", [
-    ("k-of-n:3", r"--alarm: Alarm 'k-of-n:3' takes k-of-n:K,N[,T]; got 1 value(s)."),
+    ("k-of-n:3", r"--alarm: Alarm 'k-of-n:3' takes k-of-n:K,N[,T]; got 1 value."),
     ("sometimes", r"--alarm: Unknown alarm 'sometimes'; expected one of threshold[:T], k-of-n:K,N[,T]"),
 ])
 def test_a_bad_alarm_policy_is_a_user_error(spec, message, tmp_path, capsys):

@@ -81,7 +81,10 @@ def test_a_different_input_wins_a_fresh_unit(tiny_kmeans):
         det.learn_one(a)
     assert det.score_one(a) == pytest.approx(euler(5))
     assert det.score_one(b) == 1.0
-    np.testing.assert_array_equal(det.winners(np.array([a, b])), [0, 3])
+    ids, distances = det.winners(np.array([a, b]))
+    np.testing.assert_array_equal(ids, [0, 3])
+    np.testing.assert_allclose(distances, [np.sum((a - det.clusterer_.weights_[0]) ** 2),
+                                           np.sum((b - det.clusterer_.weights_[3]) ** 2)])
     np.testing.assert_array_equal(det.novelty(np.array([a, b])), [det.score_one(a), 1.0])
 
 
@@ -116,7 +119,7 @@ def test_through_the_filter_novelty_is_in_range(name, corridor, traversals):
     assert np.all((out >= det.resting_novelty - 1e-12) & (out <= 1.0))
     assert out[0] == 1.0
     assert det.synapse_.n_units_ == det.clusterer_.n_units_
-    assert np.all(np.isin(det.winners(X), det.clusterer_.unit_ids_))
+    assert np.all(np.isin(det.winners(X)[0], det.clusterer_.unit_ids_))
 
 
 @pytest.mark.parametrize("name", ["gng", "gwr", "online-kmeans"])

@@ -146,7 +146,7 @@ def _alternating(spacing, others, synapse, n=10):
                        method="exact", others=others)
     X = np.array([A, B] * n)
     novelty_ = det.stream(X, timestamps=np.arange(2 * n) * float(spacing))
-    rows = det.winners(np.array([A, B]))
+    rows, _ = det.winners(np.array([A, B]))
     assert rows[0] != rows[1], "A and B must win different units for this test"
     return novelty_[0::2]
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 from typing import Sequence
 
+from ..._markup import counted
 from ..stats.bayesian import ROPE
 from .format import format_table
 from .ranking import reference_of
@@ -36,9 +37,9 @@ def summary_markdown(rows: Sequence[dict], title: str = "Benchmark", notes: Sequ
     parts = [
         f"# {title}",
         "",
-        f"{len(rows)} cells: {len({r['detector'] for r in rows})} detectors x "
-        f"{len({r['task'] for r in rows})} tasks x {len(seeds)} seeds ({', '.join(map(str, seeds))}); "
-        f"{len(failed)} failed.",
+        f"{counted(len(rows), 'cell')}: {counted(len({r['detector'] for r in rows}), 'detector')} x "
+        f"{counted(len({r['task'] for r in rows}), 'task')} x {counted(len(seeds), 'seed')} "
+        f"({', '.join(map(str, seeds))}); {len(failed)} failed.",
         "",
         *sections,
         *_paired_section(rows, reference, reference_how),

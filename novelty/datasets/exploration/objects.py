@@ -89,9 +89,10 @@ def irregular(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: in
 
 def returning(seed: int = 0, difficulty: str = "easy", warmup: int = 3, before: int = 3,
               absence: int = 6, after: int = 2, length: float = 18.0):
-    """An object met on ``before`` runs, absent for ``absence`` runs, then back for ``after`` runs.
+    """An object met on a few runs, absent for several, then back.
 
-    The object (``returning``) stays at one place; the runs of its absence
+    Met on ``before`` runs, absent for ``absence``, back for ``after``. The
+    object (``returning``) stays at one place; the runs of its absence
     are clean runs of the corridor. ``metadata["exploration"]["returns"]``
     is ``{"returning": before + 1}``, the exposure of its return.
     """
@@ -109,9 +110,9 @@ def returning(seed: int = 0, difficulty: str = "easy", warmup: int = 3, before: 
 
 
 def moving(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: int = 6, length: float = 18.0):
-    """One object (``mover``, always of one kind) at a new place on each of ``runs`` runs.
+    """One object (``mover``, always of one kind) at a new place on every run.
 
-    ``metadata["moving_places"]`` lists its (wall, position along the
+    ``runs`` runs after the warm-up; ``metadata["moving_places"]`` lists its (wall, position along the
     corridor in m) on each run.
     """
     _check(warmup=(warmup, 1), runs=(runs, 1))

@@ -140,7 +140,7 @@ def learn_counting_winners(det, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         winners[0] = int(np.argmin(det.synapse_.efficacy_))
         start = 1
     for i in range(start, len(X)):
-        winners[i] = det.winners(X[i:i + 1])[0]
+        winners[i] = det.winners(X[i:i + 1])[0][0]
         novelty_[i] = det.score_learn_one(X[i])
     return novelty_, winners
 
@@ -162,7 +162,7 @@ def six_trials(seed: int, params: dict | None = None, environment="a", options: 
             nov, won = learn_counting_winners(det, X)
             learned.append(won)
         else:
-            nov, won = det.novelty(X), det.winners(X)
+            nov, (won, _) = det.novelty(X), det.winners(X)
         above = nov - det.resting_novelty
         integrated.append(float(above.sum()))
         distinct.append(int(np.unique(won).size))

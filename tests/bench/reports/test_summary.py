@@ -32,3 +32,9 @@ def test_the_summary_records_how_the_run_was_made(rows):
     assert text.endswith("## How this run was made\n\n- command: `novelty bench --quick`\n"
                          "- versions: numpy 2.0, python 3.11.7\n- revision: def456+dirty\n"
                          "- cells from earlier runs were computed at revision abc123\n")
+
+
+def test_one_task_and_one_seed_are_counted_in_the_singular(rows):
+    one = [r for r in rows if r["task"] == rows[0]["task"] and r["seed"] == rows[0]["seed"]]
+    first = summary_markdown(one).splitlines()[2]
+    assert first.startswith(f"{len(one)} cells: 3 detectors x 1 task x 1 seed ({rows[0]['seed']}); "), first
