@@ -88,20 +88,14 @@ class Assembler:
             self._learning.append(scan)
             if len(self._learning) < LEARN:
                 return
-            self._learn()
-            learned, self._learning = self._learning, []
-            for s in learned:
-                yield from self._assemble(s)
+            yield from self._replay()
             return
         yield from self._assemble(scan)
 
     def flush(self) -> Iterator[LaserScan]:
         """The whole scans of the messages still held, when the topic has no more."""
         if self.per_revolution is None and self._learning:
-            self._learn()
-            learned, self._learning = self._learning, []
-            for s in learned:
-                yield from (self._assemble(s) if self.per_revolution != 1 else self._whole(s))
+            yield from self._replay()
         self._drop()
 
     @property
@@ -109,9 +103,16 @@ class Assembler:
         """The time of the oldest message held while the pattern is learned (``inf`` when none is)."""
         return self._learning[0].stamp if self._learning else math.inf
 
-    def _whole(self, scan: LaserScan) -> Iterator[LaserScan]:
-        self.scans += 1
-        yield scan
+    def _replay(self) -> Iterator[LaserScan]:
+        """Learn the pattern from the messages held, then pass them through it."""
+        self._learn()
+        learned, self._learning = self._learning, []
+        for scan in learned:
+            if self.per_revolution == 1:
+                self.scans += 1
+                yield scan
+            else:
+                yield from self._assemble(scan)
 
     # -------------------------------------------------------------- the pattern
     def _learn(self) -> None:

@@ -38,7 +38,6 @@ from .quaternions import matrix
 from .report import ReadReport
 from .rosbag import Bag
 from .clouds import cloud_scan
-from .scans import clean_ranges
 from .tf import TfError
 
 __all__ = ["bag_sweeps", "LASER_TYPES", "WAIT", "holds"]
@@ -67,9 +66,13 @@ def bag_sweeps(bag: Bag, topics: list[str], *, pose_topic: str | None = None, ba
     pending: list = []   # a heap of (stamp, count, topic, scan or cloud) waiting for the poses after their time
     counter = itertools.count()
 
+    learners = list(assemblers.values())
+
     def release(now: float):
         # in time order across the topics: none before a message a topic still holds (learning its fragments)
-        held = min(a.holding_since for a in assemblers.values())
+        while learners and learners[-1].per_revolution is not None:
+            learners.pop()
+        held = min(a.holding_since for a in learners) if learners else math.inf
         while pending and pending[0][0] <= held and (pending[0][0] < now - WAIT or posing.ready(pending[0][0])):
             stamp, _, topic, scan = heapq.heappop(pending)
             sweep = placing.sweep(topic, scan, posing.pose(stamp))
@@ -80,7 +83,12 @@ def bag_sweeps(bag: Bag, topics: list[str], *, pose_topic: str | None = None, ba
     def hold(topic, stamp, scan):
         heapq.heappush(pending, (stamp, next(counter), topic, scan))
 
-    for topic, _, msg in bag.messages(topics + posing.topics, nonempty=topics, echo=echo):
+    messages = bag.messages(topics + posing.topics, nonempty=topics, echo=echo)
+    if merger is None and not posing.topics:
+        # one sensor, nothing to wait for: each whole scan's sweep as it comes, in the topic's order
+        yield from _direct(messages, topics[0], assemblers[topics[0]], placing, report)
+        return
+    for topic, _, msg in messages:
         if posing.feed(msg):
             continue
         if isinstance(msg, tuple):   # a point cloud (stamp, frame, points): whole as it comes
@@ -102,6 +110,20 @@ def bag_sweeps(bag: Bag, topics: list[str], *, pose_topic: str | None = None, ba
         report.merged = (merger.merged, merger.dropped + len(merger.latest))
 
 
+def _direct(messages, topic: str, assembler: Assembler, placing: "_Placing", report: ReadReport) -> Iterator[Sweep]:
+    for _, _, msg in messages:
+        if isinstance(msg, tuple):   # a point cloud (stamp, frame, points): whole as it comes
+            assembler.messages += 1
+            assembler.scans += 1
+            yield placing.sweep(topic, msg, None)
+        else:
+            for whole in assembler.push(msg):
+                yield placing.sweep(topic, whole, None)
+    for whole in assembler.flush():
+        yield placing.sweep(topic, whole, None)
+    report.assembly[topic] = (assembler.messages, assembler.scans, assembler.incomplete, assembler.per_revolution)
+
+
 def holds(topics, kinds) -> str:
     """``/a holds T`` or ``/a, /b hold T, U``."""
     return f"{', '.join(topics)} {'holds' if len(topics) == 1 else 'hold'} {', '.join(sorted(kinds))}"
@@ -111,6 +133,7 @@ class _Placing:
     """Each sensor's beams in the base frame, its mount looked up once where it does not move."""
 
     def __init__(self, posing: Posing, mounts: dict, report: ReadReport):
+        self.clean_into = None   # compiled, imported at the first scan
         self.posing, self.base, self.mounts, self.report = posing, posing.base, mounts, report
         self.fixed: dict[str, Mount] = {}
         self.geometry: dict[tuple, tuple] = {}
@@ -164,7 +187,14 @@ class _Placing:
                 a.flags.writeable = False
             known = self.geometry[key] = (mount, origins, angles, scale)
         _, origins, angles, scale = known
-        ranges = clean_ranges(scan.ranges, scan.range_min, scan.range_max)
+        if self.clean_into is None:
+            # deferred: numba's import (about half a second) is paid at a bag's first scan, not by importing
+            # novelty.io nor by a bag refused before it
+            from ._sweep_kernels import clean_into
+
+            self.clean_into = clean_into
+        ranges = np.empty(len(scan.ranges))
+        self.clean_into(scan.ranges, scan.range_min, scan.range_max, ranges)   # as clean_ranges, in one pass
         if scale is not None:
             ranges = ranges * scale
         return Sweep(scan.stamp, origins, angles, ranges, pose, self.base, topic)

@@ -29,17 +29,15 @@ import numpy as np
 
 from . import caps
 from .caps import Where
+from .clouds import cloud_points
 from .messages import LaserScan, Pose, RangeReading, Transform
 from .quaternions import yaw
 from .wire import Cursor
 
-__all__ = ["decode", "peek", "DECODED", "ECHOES", "largest", "POINT_TYPES"]
+__all__ = ["decode", "peek", "DECODED", "ECHOES", "largest"]
 
-#: PointField datatypes (sensor_msgs/PointField) as numpy's, with their sizes
-POINT_TYPES = {1: "i1", 2: "u1", 3: "i2", 4: "u2", 5: "i4", 6: "u4", 7: "f4", 8: "f8"}
 #: Which echo of a MultiEchoLaserScan's beam is read.
 ECHOES = ("first", "last", "strongest")
-_SCAN_FIELDS = ("angle_min", "angle_max", "angle_increment", "time_increment", "scan_time", "range_min", "range_max")
 
 
 def _scan_head(c: Cursor) -> tuple[float, str, tuple]:
@@ -95,12 +93,14 @@ def _little_endian_scan(c: Cursor) -> LaserScan | None:
 
 
 def _scan(where: Where, stamp, frame, head, ranges, topic) -> LaserScan:
-    values = dict(zip(_SCAN_FIELDS, head))
-    for name in ("angle_min", "angle_increment"):
-        if not math.isfinite(values[name]):
-            raise where.error(name, f"is {values[name]}; a scan's beams need finite angles.")
-    return LaserScan(stamp, ranges.astype(np.float64), values["angle_min"], values["angle_increment"],
-                     values["range_min"], values["range_max"] if values["range_max"] > 0 else math.inf,
+    # LaserScan's seven floats: angle_min, angle_max, angle_increment, time_increment, scan_time, range_min,
+    # range_max
+    angle_min, _, increment, _, _, range_min, range_max = head
+    for name, value in (("angle_min", angle_min), ("angle_increment", increment)):
+        if not math.isfinite(value):
+            raise where.error(name, f"is {value}; a scan's beams need finite angles.")
+    # the ranges as the message holds them (float32, read-only): cleaning them makes the float64 copy
+    return LaserScan(stamp, ranges, angle_min, increment, range_min, range_max if range_max > 0 else math.inf,
                      source=topic, frame=frame.strip("/"))
 
 
@@ -125,45 +125,6 @@ def _multi_echo(c: Cursor, topic: str, options: dict) -> LaserScan:
 def _echoes(c: Cursor, field: str) -> list[np.ndarray]:
     n = c.count(field, caps.MAX_BEAMS, "beams", "MAX_BEAMS", 4)
     return [c.array("f4", f"{field}[{i}].echoes", caps.MAX_ECHOES, "echoes", "MAX_ECHOES") for i in range(n)]
-
-
-def _cloud(c: Cursor, topic: str, options: dict) -> tuple[float, str, np.ndarray]:
-    """A PointCloud2's stamp, frame and the (x, y, z) of every point, whatever its layout."""
-    stamp, frame = c.header()
-    height, width = c.take("u4", "height", 2)
-    n_fields = c.count("fields", caps.MAX_FIELDS, "fields", "MAX_FIELDS", 13)
-    fields = {}
-    for i in range(n_fields):
-        name = c.string(f"fields[{i}].name")
-        offset, datatype, count = c.one("u4", f"fields[{i}].offset"), c.one("u1", f"fields[{i}].datatype"), \
-            c.one("u4", f"fields[{i}].count")
-        fields[name] = (i, offset, datatype, count)
-    bigendian = c.one("u1", "is_bigendian")
-    point_step, row_step = c.take("u4", "point_step", 2)
-    data = c.array("u1", "data", caps.MAX_MESSAGE_BYTES, "bytes", "MAX_MESSAGE_BYTES")
-    where = c.where
-    where.count(height * width, caps.MAX_POINTS, "height x width", "points", "MAX_POINTS")
-    if not {"x", "y", "z"} <= set(fields):
-        raise where.error("fields", f"are {sorted(fields)}; x, y and z are needed.")
-    formats = []
-    for k in "xyz":
-        i, offset, datatype, _ = fields[k]
-        if datatype not in POINT_TYPES:
-            raise where.error(f"fields[{i}].datatype", f"is {datatype} for {k}; PointField's datatypes are 1-8.")
-        if offset + np.dtype(POINT_TYPES[datatype]).itemsize > point_step:
-            raise where.error(f"fields[{i}].offset", f"puts {k} at byte {offset} of a {point_step}-byte point.")
-        formats.append((">" if bigendian else "<") + POINT_TYPES[datatype])
-    if width * point_step > row_step:
-        raise where.error("row_step", f"is {row_step}: a row of {width} points of {point_step} bytes needs "
-                          f"{width * point_step}.")
-    where.within(height * row_step, len(data), "data")
-    if width == 0 or height == 0:
-        return stamp, frame, np.zeros((0, 3))
-    dtype = np.dtype({"names": list("xyz"), "formats": formats, "offsets": [fields[k][1] for k in "xyz"],
-                      "itemsize": point_step})
-    rows = data[:height * row_step].reshape(height, row_step)[:, :width * point_step]
-    points = np.ascontiguousarray(rows).view(dtype).reshape(-1)   # a row may be padded beyond its points
-    return stamp, frame, np.column_stack([points[k].astype(np.float64) for k in "xyz"])
 
 
 def _range(c: Cursor, topic: str, options: dict) -> RangeReading:
@@ -204,8 +165,11 @@ def _planar(stamp: float, values: tuple, topic: str) -> Pose:
 
 
 def _transforms(c: Cursor, topic: str, options: dict) -> list[Transform]:
-    n = c.count("transforms", caps.MAX_TRANSFORMS, "transforms", "MAX_TRANSFORMS", 60)
     static = options.get("static", False)
+    fast = _little_endian_transforms(c, static)
+    if fast is not None:
+        return fast
+    n = c.count("transforms", caps.MAX_TRANSFORMS, "transforms", "MAX_TRANSFORMS", 60)
     out = []
     for i in range(n):
         stamp, parent = c.header()
@@ -215,10 +179,60 @@ def _transforms(c: Cursor, topic: str, options: dict) -> list[Transform]:
     return out
 
 
+_SEVEN_DOUBLES, _U32 = struct.Struct("<7d"), struct.Struct("<I")
+
+
+def _little_endian_transforms(c: Cursor, static: bool) -> list[Transform] | None:
+    """The common case of :func:`_transforms` read in a few unpacks a transform, to the same values (tested);
+    None sends anything else (a cap passed, a truncated message, a pose not finite, big-endian CDR) to the
+    field-by-field path for its error."""
+    data, pos, ros1 = c.data, c.pos, c.ros1
+    end = len(data)
+    if (not ros1 and c.order != "<") or pos + 4 > end:
+        return None
+    (n,) = _U32.unpack_from(data, pos)
+    pos += 4
+    if n > caps.MAX_TRANSFORMS:
+        return None
+    out = []
+    for _ in range(n):
+        if ros1:
+            if pos + 16 > end:
+                return None
+            _, sec, nsec, size = _ROS1_HEAD.unpack_from(data, pos)
+            pos += 16
+        else:
+            pos += -(pos - 4) % 4
+            if pos + 12 > end:
+                return None
+            sec, nsec, size = _CDR_HEAD.unpack_from(data, pos)
+            pos += 12
+        names = []
+        for _ in range(2):   # the header's frame, then the child's
+            if size > caps.MAX_NAME or pos + size + 4 > end:
+                return None
+            raw = bytes(data[pos:pos + size])
+            names.append((raw if ros1 else raw.rstrip(b"\0")).decode("utf-8", "replace").strip("/"))
+            pos += size
+            if len(names) == 1:
+                pos += 0 if ros1 else -(pos - 4) % 4
+                (size,) = _U32.unpack_from(data, pos)
+                pos += 4
+        pos += 0 if ros1 else -(pos - 4) % 8
+        if pos + 56 > end:
+            return None
+        values = _SEVEN_DOUBLES.unpack_from(data, pos)
+        pos += 56
+        if not all(map(math.isfinite, values)):
+            return None
+        out.append(Transform(sec + nsec * 1e-9, names[0], names[1], values[:3], values[3:], static))
+    return out
+
+
 _DECODERS = {
     "sensor_msgs/msg/LaserScan": _laser_scan,
     "sensor_msgs/msg/MultiEchoLaserScan": _multi_echo,
-    "sensor_msgs/msg/PointCloud2": _cloud,
+    "sensor_msgs/msg/PointCloud2": cloud_points,
     "sensor_msgs/msg/Range": _range,
     "nav_msgs/msg/Odometry": _odometry,
     "geometry_msgs/msg/PoseStamped": _pose_stamped,

@@ -32,6 +32,7 @@ class Merger:
         self.sources, self.tolerance = list(sources), float(tolerance)
         self.latest: dict[str, Sweep] = {}
         self.merged = self.dropped = 0
+        self._geometry: dict = {}
 
     def push(self, source: str, sweep: Sweep) -> Sweep | None:
         """Take one sensor's sweep; the merged sweep when this completes a round, else None."""
@@ -47,15 +48,31 @@ class Merger:
             return None
         parts, self.latest = [self.latest[k] for k in self.sources], {}
         self.merged += 1
-        return merged(parts)
+        return merged(parts, self._geometry)
 
 
-def merged(parts: Sequence[Sweep]) -> Sweep:
-    """The sweeps' beams as one sweep: the earliest part's time, pose and frame."""
+def merged(parts: Sequence[Sweep], geometry: dict | None = None) -> Sweep:
+    """The sweeps' beams as one sweep: the earliest part's time, pose and frame.
+
+    ``geometry`` (a dict kept between calls) keeps the joined origins and
+    angles while the parts' own arrays are the same ones (a reader shares
+    them between the sweeps of a sensor), read-only, so that the rings of
+    the merged sweeps reuse what they worked out for them.
+    """
     first = min(parts, key=lambda s: s.time)
     spread = None
     if any(p.spread is not None for p in parts):
         spread = np.concatenate([np.zeros(len(p.angles)) if p.spread is None else p.spread for p in parts])
-    return Sweep(first.time, np.concatenate([p.origins for p in parts]), np.concatenate([p.angles for p in parts]),
-                 np.concatenate([p.ranges for p in parts]), first.pose, first.frame,
+    key = tuple((id(p.origins), id(p.angles)) for p in parts)
+    shared = geometry is not None and all(not p.origins.flags.writeable and not p.angles.flags.writeable
+                                          for p in parts)
+    if shared and geometry.get("key") == key:
+        origins, angles = geometry["arrays"]
+    else:
+        origins, angles = np.concatenate([p.origins for p in parts]), np.concatenate([p.angles for p in parts])
+        if shared:
+            origins.flags.writeable = angles.flags.writeable = False
+            # the parts are held too, so that their ids stay theirs while the key is kept
+            geometry.update(key=key, arrays=(origins, angles), parts=[(p.origins, p.angles) for p in parts])
+    return Sweep(first.time, origins, angles, np.concatenate([p.ranges for p in parts]), first.pose, first.frame,
                  ",".join(p.source for p in parts), spread)

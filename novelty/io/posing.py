@@ -30,7 +30,7 @@ from .tf import TfBuffer, TfError
 __all__ = ["Posing"]
 
 #: The first messages of /tf read to learn its frames before the scans are read.
-PROBE = 500
+PROBE = 200
 _WORLD, _ROBOT = "pose source", "robot"
 
 

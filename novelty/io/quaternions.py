@@ -76,8 +76,11 @@ def rotate(q, v) -> tuple[float, float, float]:
     >>> [round(c, 6) + 0.0 for c in rotate(flipped, (0.0, 1.0, 0.0))]   # y (left) becomes -y (right)
     [0.0, -1.0, 0.0]
     """
-    x, y, z = (float(c) for c in matrix(q) @ np.asarray(v, dtype=np.float64))
-    return (x, y, z)
+    # v + 2 w (q x v) + 2 q x (q x v), with q's vector part (x, y, z): no matrix made
+    qx, qy, qz, qw = q
+    vx, vy, vz = v
+    tx, ty, tz = 2 * (qy * vz - qz * vy), 2 * (qz * vx - qx * vz), 2 * (qx * vy - qy * vx)
+    return (vx + qw * tx + qy * tz - qz * ty, vy + qw * ty + qz * tx - qx * tz, vz + qw * tz + qx * ty - qy * tx)
 
 
 def slerp(a, b, t: float) -> tuple[float, float, float, float]:

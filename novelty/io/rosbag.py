@@ -234,7 +234,8 @@ def bag_messages(path, topics: str | Sequence[str], **options) -> Iterator[tuple
 def _restamped(msg, msgtype: str, record_time: int):
     """A zero header stamp (a driver that leaves it unset) takes the bag's record time."""
     if msgtype in TF_TYPES:
-        return [t if t.stamp > 0 else _with_stamp(t, record_time) for t in msg]
+        return msg if all(t.stamp > 0 for t in msg) else [t if t.stamp > 0 else _with_stamp(t, record_time)
+                                                          for t in msg]
     if msgtype == "sensor_msgs/msg/PointCloud2":
         stamp, frame, points = msg
         return (stamp if stamp > 0 else record_time * 1e-9), frame, points

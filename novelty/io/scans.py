@@ -75,9 +75,15 @@ def clean_ranges(ranges, range_min: float = 0.0, range_max: float = math.inf) ->
     [1.0, inf, 0.1, nan, nan, nan]
     """
     r = np.array(ranges, dtype=np.float64)
-    out = np.where(np.isfinite(r) & ((r < range_min) | (r > range_max)), np.nan, r)
-    out[r == -np.inf] = range_min   # (np.isneginf's wrapper costs more than the scan's comparison)
-    return out
+    # NaN compares False (and stays NaN); only the few beams outside the range are looked at again
+    low, high = r < range_min, r > range_max
+    # (count_nonzero: ndarray.any's wrapper costs more than the scan's comparison)
+    if np.count_nonzero(low):
+        r[low] = np.where(r[low] == -np.inf, range_min, np.nan)
+    if np.count_nonzero(high):
+        high &= r != np.inf
+        r[high] = np.nan
+    return r
 
 
 def sector_index(angles, n_sectors: int, limits: tuple[float, float] | None = None,
@@ -192,8 +198,9 @@ def _sectors_within(a: np.ndarray, low: float, high: float, n_sectors: int) -> n
     if high - low >= 2 * math.pi - 1e-12:   # a whole turn: its high end is its low end, where sector 0 begins
         a = np.where(a >= high - SNAP, low, a)
     k = np.floor((a - low + SNAP) / (high - low) * n_sectors).astype(np.intp)
-    # a beam on the high limit belongs to the last sector; beyond either limit to none
-    k = np.where(np.isclose(a, high), n_sectors - 1, k)
+    # a beam on the high limit belongs to the last sector; beyond either limit to none (np.isclose's
+    # test with its defaults, written out: its wrapper costs more than the scan)
+    k = np.where(np.abs(a - high) <= 1e-8 + 1e-5 * abs(high), n_sectors - 1, k)
     return np.where((a < low - 1e-12) | (a > high + 1e-12) | (k < 0) | (k >= n_sectors), -1, k)
 
 

@@ -46,8 +46,8 @@ from .bag_sweeps import LASER_TYPES, bag_sweeps
 from .mounts import Mount, parse_mount
 from .report import ReadReport
 from .rosbag import SCAN_TYPES, Bag, is_bag
-from .scans import _check_reduce, _checked_limits, _sectors_within, clean_ranges, reduce_sectors, \
-    scan_limits, sector_index
+from .scans import clean_ranges
+from .sweep_rings import RingMaker
 
 __all__ = ["Sweep", "read_sweeps", "sweep_ring", "RingMaker", "scan_sweep", "bag_scan_topics", "mount_options",
            "CARMEN_SUFFIXES", "CARMEN_LASERS", "LASER_TYPES"]
@@ -210,82 +210,3 @@ def sweep_ring(sweep: Sweep, n_sectors: int = 16, reduce="min", limits=None, fro
     [2.291, 1.5, inf]
     """
     return RingMaker(n_sectors, reduce, limits, front, clip)(sweep)
-
-
-class RingMaker:
-    """:func:`sweep_ring` with its parameters fixed, keeping the sectors of the geometries it has met.
-
-    The beams' sectors depend on their directions alone where every origin
-    is zero: they are worked out once for a geometry (the same ``angles``
-    array, or equal ones) and reused.
-    """
-
-    def __init__(self, n_sectors: int = 16, reduce="min", limits=None, front: float = 0.0,
-                 clip: float | None = None):
-        _check_reduce(reduce)
-        self.n_sectors, self.reduce, self.front, self.clip = n_sectors, reduce, float(front), clip
-        self.limits = None if limits is None else _checked_limits(limits)
-        self._known: list[_Sectors] = []
-
-    def __call__(self, sweep: Sweep) -> np.ndarray:
-        geometry = self._geometry(sweep.angles)
-        origins = sweep.origins
-        if origins is geometry.origins or not np.any(origins):
-            if not getattr(origins, "flags", origins).writeable:   # a reader's shared, read-only origins:
-                geometry.origins = origins                           # the next sweep's need no test
-            if self.reduce == "min":
-                return geometry.nearest(sweep.ranges, self.clip)
-            return reduce_sectors(sweep.ranges, geometry.index, self.n_sectors, self.reduce, self.clip)
-        bearings, ranges = _seen_from_centre(np.asarray(origins, dtype=np.float64), geometry.angles,
-                                             np.asarray(sweep.ranges, dtype=np.float64))
-        low, high = geometry.limits
-        index = _sectors_within(low + np.mod(bearings - self.front - low, 2 * math.pi), low, high, self.n_sectors)
-        if self.reduce == "min":
-            inside = index >= 0
-            ring = np.full(self.n_sectors, np.inf)
-            np.fmin.at(ring, index[inside], ranges[inside] if self.clip is None else np.minimum(ranges[inside],
-                                                                                                 self.clip))
-            return ring
-        return reduce_sectors(ranges, index, self.n_sectors, self.reduce, self.clip)
-
-    def _geometry(self, angles) -> _Sectors:
-        """The sectors of ``angles`` by direction (cached)."""
-        for known in self._known:
-            if known.angles is angles or (known.angles.shape == np.shape(angles)
-                                          and np.array_equal(known.angles, angles)):
-                return known
-        sectors = _Sectors(np.asarray(angles, dtype=np.float64), self.n_sectors, self.limits, self.front)
-        self._known = [sectors] + self._known[:3]   # a few sensors' geometries
-        return sectors
-
-
-class _Sectors:
-    """A geometry's beams by sector: their index, and their order for reducing a sector at a time."""
-
-    def __init__(self, angles: np.ndarray, n_sectors: int, limits, front: float):
-        self.angles, self.origins = angles, None
-        # raises where the beams cannot fill the sectors
-        self.index = sector_index(angles, n_sectors, limits, front)
-        self.limits = limits if limits is not None else scan_limits(angles, front)
-        inside = np.flatnonzero(self.index >= 0)
-        self.order = inside[np.argsort(self.index[inside], kind="stable")]
-        if np.array_equal(self.order, np.arange(len(angles))):
-            self.order = None   # the beams are in sector order already (a single scan): no gathering
-        self.starts = np.searchsorted(self.index[inside][np.argsort(self.index[inside], kind="stable")],
-                                      np.arange(n_sectors))
-
-    def nearest(self, ranges: np.ndarray, clip: float | None) -> np.ndarray:
-        """Each sector's nearest valid range (``+inf`` where none): ``reduce_sectors(..., "min")``'s values."""
-        r = ranges if self.order is None else ranges[self.order]
-        ring = np.fmin.reduceat(r, self.starts)   # fmin passes NaN (no information) over
-        ring[np.isnan(ring)] = np.inf
-        return ring if clip is None else np.minimum(ring, clip)
-
-
-def _seen_from_centre(origins: np.ndarray, angles: np.ndarray, ranges: np.ndarray):
-    """Each beam's end point as a bearing and a range from the base frame's origin."""
-    hit = np.isfinite(ranges)
-    r = np.where(hit, ranges, 0.0)
-    x = origins[:, 0] + r * np.cos(angles)
-    y = origins[:, 1] + r * np.sin(angles)
-    return np.where(hit, np.arctan2(y, x), angles), np.where(hit, np.hypot(x, y), ranges)

@@ -13,7 +13,8 @@ common ancestor and composes the edges at the time asked:
   extrapolation; a recording's streams start and stop a few milliseconds
   apart, so a small hold keeps the last scans);
 - samples older than ``cache`` seconds before an edge's newest are
-  forgotten (tf2's default cache is 10 s), so memory stays bounded.
+  forgotten (tf2's default cache is 10 s; here in batches, once they are
+  twice that old), so memory stays bounded.
 
 A lookup that fails raises :class:`TfError`, which names the frames, the
 chains found from each to its root, and the times held.
@@ -50,9 +51,9 @@ class Placement:
 
     def then(self, inner: "Placement") -> "Placement":
         """This placement after ``inner``: a point of ``inner``'s child frame in this one's parent."""
-        moved = rotate(self.rotation, inner.translation)
-        return Placement(tuple(a + b for a, b in zip(moved, self.translation)),
-                         normalized(multiply(self.rotation, inner.rotation)))
+        mx, my, mz = rotate(self.rotation, inner.translation)
+        tx, ty, tz = self.translation
+        return Placement((mx + tx, my + ty, mz + tz), multiply(self.rotation, inner.rotation))
 
     def inverse(self) -> "Placement":
         back = conjugate(self.rotation)
@@ -87,6 +88,7 @@ class TfBuffer:
     def __init__(self, tolerance: float = 0.2, cache: float = 10.0):
         self.tolerance, self.cache = float(tolerance), float(cache)
         self._edges: dict[str, _Edge] = {}
+        self._paths: dict[tuple[str, str], tuple[list[str], list[str]]] = {}   # until the tree's shape changes
 
     # -------------------------------------------------------------- adding
     def add(self, transform: Transform) -> None:
@@ -94,20 +96,30 @@ class TfBuffer:
         child, parent = transform.child, transform.parent
         if not child or not parent or child == parent:
             raise TfError(f"A transform needs two different frames; got {parent!r} -> {child!r}.")
-        value = Placement(tuple(float(v) for v in transform.translation), normalized(transform.rotation))
+        q = transform.rotation
+        if abs(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] - 1.0) > 1e-9:   # most arrive unit already
+            q = normalized(q)
+        value = Placement(tuple(transform.translation), tuple(q))
         edge = self._edges.get(child)
         if edge is None or edge.parent != parent or edge.static != transform.static:
             # a frame moved to another parent (or between /tf and /tf_static): the newest word wins, as in tf2
             edge = self._edges[child] = _Edge(parent, transform.static)
+            self._paths.clear()
         if transform.static:
             edge.times, edge.values = [transform.stamp], [value]
             return
-        at = bisect.bisect_right(edge.times, transform.stamp)
-        edge.times.insert(at, transform.stamp)
-        edge.values.insert(at, value)
-        old = bisect.bisect_left(edge.times, edge.times[-1] - self.cache)
-        if old > 1:   # keep one sample before the window, for interpolating into it
-            del edge.times[:old - 1], edge.values[:old - 1]
+        times = edge.times
+        if not times or transform.stamp >= times[-1]:   # in time order, as a recording mostly is
+            times.append(transform.stamp)
+            edge.values.append(value)
+        else:
+            at = bisect.bisect_right(times, transform.stamp)
+            times.insert(at, transform.stamp)
+            edge.values.insert(at, value)
+        if times[0] < times[-1] - 2 * self.cache:   # forgotten in batches: a sample's deletion is O(samples)
+            old = bisect.bisect_left(times, times[-1] - self.cache)
+            # keep one sample before the window, for interpolating into it
+            del times[:old - 1], edge.values[:old - 1]
 
     def add_all(self, transforms) -> None:
         for t in transforms:
@@ -170,6 +182,12 @@ class TfBuffer:
 
     def _path(self, target: str, source: str) -> tuple[list[str], list[str]]:
         """The frames whose edges lead from ``source`` and from ``target`` up to their common ancestor."""
+        known = self._paths.get((target, source))
+        if known is None:
+            known = self._paths[(target, source)] = self._walk(target, source)
+        return known
+
+    def _walk(self, target: str, source: str) -> tuple[list[str], list[str]]:
         for frame, role in ((target, "target"), (source, "source")):
             if not self.has(frame):
                 raise TfError(f"No transform names frame {frame!r} (the {role}); the tree: {self.describe()}.")

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.assembly import Assembler
+from novelty.io.assembly import LEARN, Assembler
 from novelty.io.messages import LaserScan
 
 INC = math.radians(0.5)
@@ -48,10 +48,12 @@ def test_all_round_fragments_start_at_the_smallest_angle():
     assert a.per_revolution == 4 and out[0].angle_min == pytest.approx(-math.pi) and a.incomplete == 1
 
 
-def test_whole_scans_and_unrelated_geometries_pass_through():
-    whole = [LaserScan(float(k), np.ones(10), -1.0, 0.2) for k in range(5)]
+@pytest.mark.parametrize("n", [5, LEARN + 7])
+def test_whole_scans_and_unrelated_geometries_pass_through(n):
+    # fewer messages than the pattern is learned from, and more: every one comes through, in order
+    whole = [LaserScan(float(k), np.ones(10), -1.0, 0.2) for k in range(n)]
     a, out = assemble(whole)
-    assert out == whole and a.per_revolution == 1
+    assert out == whole and a.per_revolution == 1 and (a.messages, a.scans, a.incomplete) == (n, n, 0)
     # two geometries that overlap rather than tile: each message whole
     odd = [LaserScan(float(k), np.ones(10), -1.0 + 0.5 * (k % 2), 0.2) for k in range(6)]
     a, out = assemble(odd)

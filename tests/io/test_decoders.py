@@ -139,6 +139,17 @@ def test_poses_ranges_and_transforms_decode_as_rosbags_deserializes_them(ros1):
     assert [(t.stamp, t.parent, t.child, t.translation, t.static) for t in got] == [
         (6.0 + k, "odom", f"base_{k}", (float(k), 2.0, -1.0), True) for k in range(3)]
     assert got[0].rotation == pytest.approx(q)
+    # the field-by-field path reads the same transforms
+    import novelty.io.decoders as decoders
+
+    fast = decoders._little_endian_transforms
+    try:
+        decoders._little_endian_transforms = lambda c, static: None
+        slow = decode("tf2_msgs/msg/TFMessage", serialize(ts, tf, "tf2_msgs/msg/TFMessage", ros1), ros1, WHERE,
+                      "/tf", static=True)
+    finally:
+        decoders._little_endian_transforms = fast
+    assert slow == got
 
 
 @ENCODINGS

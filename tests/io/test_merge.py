@@ -28,3 +28,16 @@ def test_a_merged_sweep_holds_every_beam():
     assert whole.time == 0.9 and whole.pose.tolist() == [0.9, 0, 0] and whole.source == "/a,/b"
     with pytest.raises(ValueError, match="tolerance"):
         Merger(["/a"], tolerance=-1)
+
+
+def test_the_joined_geometry_is_kept_while_the_parts_share_theirs():
+    a, b = sweep(0.0, "/a", (1.0, 2.0)), sweep(0.01, "/b", (3.0,))
+    for s in (a, b):
+        s.origins.flags.writeable = s.angles.flags.writeable = False
+    kept = {}
+    first = merged([a, b], kept)
+    again = merged([Sweep(0.1, a.origins, a.angles, np.array([5.0, 6.0]), None), b], kept)
+    assert again.angles is first.angles and again.origins is first.origins and not again.angles.flags.writeable
+    assert again.ranges.tolist() == [5.0, 6.0, 3.0]
+    other = merged([sweep(0.2, "/a", (1.0, 2.0)), b], kept)   # writeable parts: joined afresh, nothing kept
+    assert other.angles is not first.angles
