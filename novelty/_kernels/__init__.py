@@ -17,11 +17,14 @@ kernel on every call, falling back to the reference when they answer ``None``:
   other than ``0`` (for comparisons; :func:`reference_loops` sets it for a
   block of code).
 
-The machinery, one job per module: :mod:`.compiling` (compiling in a child
-process, readiness, numba's disk cache), :mod:`.params` (state and
-parameters read from the components' declarations), :mod:`.drivers` (the one
-loop, generated per pair), :mod:`.engine` (a pair's state and parameters
-handed to its driver, the state grown),
+The machinery, one job per module: :mod:`.compiling` (one background
+compiler, readiness, numba's disk cache), :mod:`.children` (the compiling
+children and the tricks' self-check), :mod:`.tricks` (whether the drivers use
+:mod:`._uncounted` and :mod:`._lanes`, which lean on numba's internals, decided
+by a self-check), :mod:`.params` (state and parameters read from the
+components' declarations), :mod:`.drivers` (the one loop, generated per
+pair), :mod:`.engine` (a pair's state and parameters handed to its driver,
+the state grown),
 :mod:`.handover` (from the reference to the kernel mid-stream),
 :mod:`._distances` (the project's summation order, :mod:`novelty.distances`). Batch
 scoring is :mod:`.scoring`: a float32 pre-filter with exact re-checks, on

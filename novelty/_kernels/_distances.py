@@ -16,8 +16,6 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ._lanes import difference, minus_one
-
 #: the units a vector holds (eight float64 in AVX-512): the distance loops run in whole vectors
 #: over the columns a transposed copy has beyond its units, when it has them (the engine gives
 #: its copy room in whole vectors, zero: ``novelty._kernels.engine.VECTOR``, kept equal)
@@ -27,13 +25,6 @@ VECTOR = 8
 @njit(cache=True, error_model="numpy", inline="always")
 def sq(WT, k, j, x):
     d = WT[k, j] - x[k]
-    return d * d
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def sq_fused(WT, k, j, x, minus):
-    """:func:`sq`, its difference on the multipliers' units where they fuse (``._lanes``)."""
-    d = difference(WT[k, j], x[k], minus)
     return d * d
 
 
@@ -59,18 +50,15 @@ def block_cols(WT, x, out, acc, lo, n, n_units):
                 (sq(WT, lo + 4, j, x) + sq(WT, lo + 5, j, x))
                 + (sq(WT, lo + 6, j, x) + sq(WT, lo + 7, j, x)))
     elif 16 <= n < 24:
-        # the adders' and the multipliers' units about equally busy: half the differences
-        # on the latter (about 0.1 of the distances' time where they fuse)
-        m = minus_one()
         for j in range(n_units):
-            r0 = sq(WT, lo, j, x) + sq_fused(WT, lo + 8, j, x, m)
-            r1 = sq(WT, lo + 1, j, x) + sq_fused(WT, lo + 9, j, x, m)
-            r2 = sq(WT, lo + 2, j, x) + sq_fused(WT, lo + 10, j, x, m)
-            r3 = sq(WT, lo + 3, j, x) + sq_fused(WT, lo + 11, j, x, m)
-            r4 = sq(WT, lo + 4, j, x) + sq_fused(WT, lo + 12, j, x, m)
-            r5 = sq(WT, lo + 5, j, x) + sq_fused(WT, lo + 13, j, x, m)
-            r6 = sq(WT, lo + 6, j, x) + sq_fused(WT, lo + 14, j, x, m)
-            r7 = sq(WT, lo + 7, j, x) + sq_fused(WT, lo + 15, j, x, m)
+            r0 = sq(WT, lo, j, x) + sq(WT, lo + 8, j, x)
+            r1 = sq(WT, lo + 1, j, x) + sq(WT, lo + 9, j, x)
+            r2 = sq(WT, lo + 2, j, x) + sq(WT, lo + 10, j, x)
+            r3 = sq(WT, lo + 3, j, x) + sq(WT, lo + 11, j, x)
+            r4 = sq(WT, lo + 4, j, x) + sq(WT, lo + 12, j, x)
+            r5 = sq(WT, lo + 5, j, x) + sq(WT, lo + 13, j, x)
+            r6 = sq(WT, lo + 6, j, x) + sq(WT, lo + 14, j, x)
+            r7 = sq(WT, lo + 7, j, x) + sq(WT, lo + 15, j, x)
             out[j] = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
     elif n >= 24:
         for m in range(8):

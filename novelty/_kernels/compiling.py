@@ -7,50 +7,58 @@ when set) and later processes load it in a fraction of a second (at once,
 when the cache holds it). So that no call waits for the compiler, a
 background thread has a child process compile the module into the cache
 (numba's compiler would hold this process's GIL) and then loads it from
-there; meanwhile the caller runs the reference (:mod:`.handover`). A process
-that ends early waits for the thread at exit, so that the cache gets written;
-Ctrl-C during that wait stops the compiler and exits quietly with status 130.
-Processes that need one module at once (test workers, benchmark workers) compile
-it once: the first holds a lock file beside the cache while its child compiles,
-the others wait for it and load what it cached.
-The child runs isolated (``python -I``, in the package's folder): nothing in
-the user's working directory or ``PYTHON*`` variables is imported or read.
+there; meanwhile the caller runs the reference (:mod:`.handover`), with the
+same results.
 
+**One compiler at a time, and nobody waits for it at exit.** The modules
+asked for queue for one background thread, which compiles them one after
+another: on two cores, five compilers at once took both cores from the work
+they were compiling for. A process that ends while a child compiles does not
+wait for it: the child is a process of its own and finishes writing numba's
+cache; the modules still queued are handed to one last child, which compiles
+them one by one after the process is gone, and the next process loads them
+(``novelty bench --quick`` with an empty cache took 4x its warm time, most
+of it waiting at exit for compilers whose kernels the run no longer needed).
+The children stay in the caller's process group, so Ctrl-C stops them too
+(nothing is cached then; a later process compiles again).
+:meth:`Compiled.wait` compiles a module that is still queued at once, in a
+child of its own, and blocks until it is ready.
+
+Processes that need one module at once (test workers, benchmark workers)
+compile it once: the first holds a lock file beside the cache while its
+child compiles, the others wait for it and load what it cached
+(:func:`.children.one_compiler`).
+
+Every child runs isolated (``python -I``, in the package's folder): nothing
+in the user's working directory or ``PYTHON*`` variables is imported or read.
 A module that fails (numba missing or failing) is reported by one
-``RuntimeWarning`` and never retried; ``NOVELTY_NO_KERNELS`` set to a non-empty
-value other than ``0`` when a module is first asked for disables it.
+``RuntimeWarning`` and never retried; ``NOVELTY_NO_KERNELS`` set to a
+non-empty value other than ``0`` when a module is first asked for disables it.
 """
 
 from __future__ import annotations
 
 import atexit
-import contextlib
 import glob
-import hashlib
 import importlib
 import importlib.util
 import os
 import sys
 import threading
 import warnings
+from typing import Callable
 
-try:
-    import fcntl
-except ImportError:  # Windows: no lock; each process compiles what it does not find cached
-    fcntl = None
+from . import children
 
 __all__ = ["Compiled", "cache_files", "disabled", "load"]
 
-#: what the compiling child runs: ``python -I -c _CHILD module file path...`` (file: "" for a
-#: module found on the path)
-_CHILD = ("import importlib, importlib.util, sys; sys.path[:0] = sys.argv[3:]; "
-          "name, file = sys.argv[1:3]; spec = file and importlib.util.spec_from_file_location("
-          "name, file); module = spec and importlib.util.module_from_spec(spec); "
-          "sys.modules.update({name: module} if spec else {}); "
-          "spec.loader.exec_module(module) if spec else importlib.import_module(name)")
-
-#: every module of kernels made in this process, for fork handling and :func:`wait_all`
+#: every module of kernels made in this process, for fork handling and :func:`live`
 _all: list["Compiled"] = []
+#: the modules waiting for the background compiler, in the order asked for, and its thread
+_queue: list["Compiled"] = []
+_worker: threading.Thread | None = None
+_queue_lock = threading.Lock()
+_handed_over_at_exit = False
 
 
 #: the environment's own mapping and the variable's key in it: read on every learning call,
@@ -98,18 +106,23 @@ def cache_files(stem: str, source: str, kinds: tuple = ("nbi", "nbc")) -> list[s
 
 class Compiled:
     """One module of kernels: loaded at once when numba's disk cache holds it, else
-    compiled by a child process that a background thread waits for, while the
-    caller goes on with the reference."""
+    compiled by a child process of the background compiler (one module at a time), while
+    the caller goes on with the reference."""
 
-    def __init__(self, name: str, file: str | None = None, label: str | None = None):
+    def __init__(self, name: str | None, file: str | None = None, label: str | None = None,
+                 resolve: Callable[[bool], tuple[str, str] | None] | None = None):
         self.name = name
         self.file = file  # a generated driver's path; None: a module of the package
         self.label = label or name.rsplit(".", 1)[-1]
+        # a generated driver's: ``resolve(settle)`` writes it and gives its name and file, or
+        # None while that waits for a decision only ``settle=True`` may take (:mod:`.tricks`)
+        self.resolve = resolve
         self.module = None  # once ready
         self.failed = False  # numba missing, broken or disabled: never retried
         self.started = False
-        self.thread: threading.Thread | None = None  # the background compiler, if one runs
-        self.error: BaseException | None = None  # raised in the thread, warned about here
+        self.background = False  # queued for (or compiled by) the background compiler
+        self.done = threading.Event()  # set when compiling (or loading) ended, ready or not
+        self.error: BaseException | None = None  # raised while compiling, warned about by get()
         self.child = None  # the compiling child process (a subprocess.Popen), while it runs
         _all.append(self)
 
@@ -138,54 +151,51 @@ class Compiled:
                 # with a loader thread would cost the caller, so load now.
                 self._compile()
                 return self.get()
-            # A daemon joined at exit by _wait_at_exit, not by the interpreter, which would
-            # report Ctrl-C during that wait as a traceback and exit with status 0.
-            self.thread = threading.Thread(target=self._compile, name=f"novelty-{self.label}",
-                                           daemon=True)
-            self.thread.start()
-            atexit.register(self._wait_at_exit)
+            self.background = True
+            _enqueue(self)
         return None
 
-    def _wait_at_exit(self) -> None:
-        try:
-            if self.thread is not None:
-                self.thread.join()
-        except KeyboardInterrupt:
-            child = self.child
-            if child is not None and child.poll() is None:
-                child.kill()
-            for stream in (sys.stdout, sys.stderr):
-                try:
-                    stream.flush()
-                except (AttributeError, OSError, ValueError):
-                    pass
-            os._exit(130)  # 128 + SIGINT, as the command line returns for Ctrl-C
+    def _resolved(self, settle: bool) -> bool:
+        """Whether the module's name and file are known (a generated driver's, once written)."""
+        if self.resolve is None:
+            return True
+        where = self.resolve(settle)
+        if where is None:
+            return False
+        self.name, self.file = where
+        self.resolve = None
+        return True
 
     def _compile(self) -> None:
         try:
+            self._resolved(settle=True)
             if self.name not in sys.modules and not self._cached():
-                with _one_compiler(self._source()):
-                    if not self._cached():  # another process may have compiled it while this one waited
+                with children.one_compiler(self._source()):
+                    if not self._cached():  # another process may have compiled it meanwhile
                         self._compile_in_child()
             self.module = load(self.name, self.file)  # loads what the child cached
         except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
             self.error = exc
-
-    def _source(self) -> str:
-        """The module's source file ("" if it cannot be found)."""
-        if self.file is not None:
-            return self.file
-        spec = importlib.util.find_spec(self.name)
-        return (spec.origin if spec is not None else "") or ""
+        finally:
+            self.done.set()
 
     def _cached(self) -> bool:
         """Whether numba's disk cache seems to hold this module's kernels (an index file).
 
         A stale index only costs speed: the import then compiles in this thread.
         """
+        if not self._resolved(settle=False):
+            return False  # a driver whose file waits for the tricks' self-check: not compiled yet
         source = self._source()
-        stem = os.path.splitext(os.path.basename(source))[0]
+        stem = os.path.splitext(os.path.basename(source or ""))[0]
         return bool(stem) and bool(cache_files(stem, source, ("nbi",)))
+
+    def _source(self) -> str:
+        """The module's source file ("" if it cannot be found)."""
+        if self.file is not None:
+            return self.file
+        spec = importlib.util.find_spec(self.name)
+        return spec.origin if spec is not None and spec.origin else ""
 
     def _compile_in_child(self) -> None:
         """Compile in a child process, which leaves the machine code in numba's disk cache.
@@ -194,36 +204,25 @@ class Compiled:
         stretches: the main thread, learning with the reference meanwhile, was
         measured 40x slower. A child that fails leaves no cache; the import in
         the thread then compiles after all.
-
-        The child is isolated (``-I``: neither the working directory nor
-        ``PYTHONPATH`` nor user site-packages on its path) and runs in the
-        folder that holds the package; it is given this process's absolute
-        ``sys.path`` entries, so it imports the same numba and novelty that
-        this process will, and never a module that happens to lie in the
-        working directory.
         """
-        import subprocess  # a local import: 3 ms of `import novelty` for a cold cache only
-
-        if not sys.executable:
+        self.child = children.spawn([self])
+        if self.child is None:
             return
-        root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-        path = [root] + [p for p in sys.path if p and os.path.isabs(p) and p != root]
-        env = dict(os.environ)
-        if env.get("NUMBA_CACHE_DIR"):  # the child runs elsewhere: a relative folder would move
-            env["NUMBA_CACHE_DIR"] = os.path.abspath(env["NUMBA_CACHE_DIR"])
-        self.child = subprocess.Popen(
-            [sys.executable, "-I", "-c", _CHILD, self.name, self.file or "", *path], cwd=root,
-            env=env, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-            stderr=subprocess.DEVNULL)
         try:
             self.child.wait()
         finally:
             self.child = None
 
     def wait(self, timeout: float | None = None):
+        """The module, compiled (or loaded) now if need be: one still queued for the background
+        compiler is taken from the queue and compiled in this thread's own child; None when
+        kernels are unavailable, or not ready within ``timeout`` seconds."""
         self.get()
-        if self.thread is not None:
-            self.thread.join(timeout)
+        if self.module is None and not self.failed and self.started:
+            if _take(self):
+                self._compile()
+            else:
+                self.done.wait(timeout)
         return self.get()
 
     @property
@@ -235,44 +234,67 @@ class Compiled:
         return self.module is not None or self.get() is not None
 
 
-def lock_path(source: str) -> str:
-    """The lock file of compiling ``source``: in ``NUMBA_CACHE_DIR`` when that is set (named by a
-    hash of the source's path), else in the ``__pycache__`` beside the source, where numba caches it."""
-    stem = os.path.splitext(os.path.basename(source))[0]
-    cache_dir = os.environ.get("NUMBA_CACHE_DIR")
-    if cache_dir:
-        digest = hashlib.sha256(os.path.abspath(source).encode()).hexdigest()[:16]
-        return os.path.join(os.path.abspath(cache_dir), f"{stem}-{digest}.compiling")
-    return os.path.join(os.path.dirname(os.path.abspath(source)), "__pycache__", f"{stem}.compiling")
+def _enqueue(compiled: Compiled) -> None:
+    """Queue ``compiled`` for the background compiler, starting its thread if none runs."""
+    global _worker
+    with _queue_lock:
+        _queue.append(compiled)
+        if _worker is None:
+            # a daemon: a process that ends does not wait for it (see the module docstring)
+            _worker = threading.Thread(target=_work, name="novelty-compiler", daemon=True)
+            _worker.start()
 
 
-@contextlib.contextmanager
-def _one_compiler(source: str):
-    """Hold the lock of compiling ``source`` (waiting for a process that holds it) while the body
-    runs; without a lock when none can be made (Windows, a folder that cannot be written).
+def _work() -> None:
+    """The background compiler: the queued modules, one at a time, until none is left."""
+    global _worker
+    while True:
+        with _queue_lock:
+            if not _queue:
+                _worker = None
+                return
+            compiled = _queue.pop(0)
+        compiled._compile()
 
-    The lock is the operating system's (``flock``): a process that dies lets it go.
-    """
-    try:
-        if fcntl is None or not source:
-            raise OSError("no lock")
-        path = lock_path(source)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        handle = open(path, "a")
-    except OSError:
-        yield
-        return
-    with handle:
-        fcntl.flock(handle, fcntl.LOCK_EX)
-        yield
+
+def _take(compiled: Compiled) -> bool:
+    """Take ``compiled`` from the queue (True) unless the background compiler has it already."""
+    with _queue_lock:
+        if compiled in _queue:
+            _queue.remove(compiled)
+            return True
+        return False
+
+
+def _hand_over_at_exit() -> None:
+    """At exit: the modules still queued go to one last child, which compiles them into numba's
+    cache after this process is gone (a child compiling already finishes by itself)."""
+    global _handed_over_at_exit
+    with _queue_lock:
+        pending = list(_queue)
+        _queue.clear()
+    if pending and not _handed_over_at_exit:
+        _handed_over_at_exit = True
+        try:
+            children.spawn(pending)
+        except OSError:  # no process to be had: a later process compiles them
+            pass
+
+
+atexit.register(_hand_over_at_exit)
 
 
 def _after_fork_in_child() -> None:
-    # A compiler thread does not survive fork(); a child forked while one was
-    # running would wait for it forever, so it starts its own when it needs one.
+    # The compiler thread does not survive fork(): a child forked while it ran would wait for
+    # it forever, so it starts its own queue when it needs one.
+    global _worker, _queue_lock
+    _queue.clear()
+    _worker = None
+    _queue_lock = threading.Lock()
     for compiled in _all:
         if compiled.module is None and compiled.error is None:
-            compiled.started, compiled.thread = False, None
+            compiled.started = compiled.background = False
+            compiled.done = threading.Event()
 
 
 if hasattr(os, "register_at_fork"):

@@ -6,7 +6,6 @@ No timing is asserted (``benchmarks/perf.py`` measures speed).
 from __future__ import annotations
 
 import os
-import signal
 import subprocess
 import sys
 import threading
@@ -18,7 +17,7 @@ import pytest
 
 import novelty
 from novelty import _kernels
-from novelty._kernels import compiling, drivers, handover
+from novelty._kernels import children, compiling, drivers, handover
 from novelty.filter import learn_stream
 
 from .kernel_helpers import assert_same_filter, corridor, reference_only
@@ -90,14 +89,14 @@ def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
             "cached = compiled._cached()\n"
             "assert compiled.wait(timeout=600) is not None, compiled.error\n"
             "stats = compiled.module.drive.stats\n"
-            "print(compiled.file, cached, compiled.thread is None, len(stats.cache_misses),\n"
+            "print(compiled.file, cached, compiled.background, len(stats.cache_misses),\n"
             "      sum(stats.cache_hits.values()))\n")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     runs = [subprocess.run([sys.executable, "-c", code], env=env, check=True, timeout=900,
                            capture_output=True, text=True).stdout.split() for _ in range(2)]
     assert runs[0][0] == runs[1][0] and runs[0][0].startswith(str(tmp_path / "cache"))
-    assert runs[0][1:3] == ["False", "False"]  # cold: compiled by a child, in the background
-    assert runs[1][1:3] == ["True", "True"]  # warm: loaded at once
+    assert runs[0][1:3] == ["False", "True"]  # cold: compiled by a child, queued for the background
+    assert runs[1][1:3] == ["True", "False"]  # warm: loaded at once
     # and this process compiled nothing: the machine code, parameter records and all, came from
     # numba's cache (the child's in the first run)
     assert runs[0][3:] == runs[1][3:] == ["0", "1"]
@@ -107,12 +106,14 @@ def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
 def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
     monkeypatch.setattr(_kernels, "_NEAREST", compiling.Compiled("novelty._kernels._nearest"))
     blocker = threading.Event()
-    _kernels._NEAREST.started = True  # "compiling" in the parent
-    _kernels._NEAREST.thread = threading.Thread(target=blocker.wait)
-    _kernels._NEAREST.thread.start()
+    busy = threading.Thread(target=blocker.wait)  # a background compiler busy with another module
+    busy.start()
+    monkeypatch.setattr(compiling, "_worker", busy)
+    monkeypatch.setattr(compiling, "_queue", [_kernels._NEAREST])  # queued behind it
+    _kernels._NEAREST.started = _kernels._NEAREST.background = True
     try:
         pid = os.fork()
-        if pid == 0:  # the child: its compiler thread is gone; it must start one and get the kernel
+        if pid == 0:  # the child: no compiler thread, no queue; it must compile for itself
             ok = _kernels._NEAREST.wait(timeout=60) is not None
             os._exit(0 if ok else 1)
         _, status = os.waitpid(pid, 0)
@@ -128,10 +129,10 @@ def test_a_module_another_process_is_compiling_is_waited_for_not_compiled_again(
     source = tmp_path / "novelty_driver_waited.py"
     source.write_text("VALUE = 42\n")
     compiled = compiling.Compiled("novelty_driver_waited", str(source))
-    children = []
-    monkeypatch.setattr(compiled, "_compile_in_child", lambda: children.append("compiled"))
+    compiles = []
+    monkeypatch.setattr(compiled, "_compile_in_child", lambda: compiles.append("compiled"))
     monkeypatch.delitem(sys.modules, "novelty_driver_waited", raising=False)
-    with compiling._one_compiler(str(source)):  # "the other process", compiling
+    with children.one_compiler(str(source)):  # "the other process", compiling
         compiled.thread = threading.Thread(target=compiled._compile)
         compiled.thread.start()
         compiled.thread.join(0.5)
@@ -140,8 +141,8 @@ def test_a_module_another_process_is_compiling_is_waited_for_not_compiled_again(
         index.parent.mkdir(parents=True)
         index.touch()  # what the other process's compiler leaves in numba's cache
     compiled.thread.join(60)
-    assert children == [] and compiled.module.VALUE == 42
-    assert compiling.lock_path(str(source)).startswith(str(tmp_path / "cache"))
+    assert compiles == [] and compiled.module.VALUE == 42
+    assert children.lock_path(str(source)).startswith(str(tmp_path / "cache"))
     sys.modules.pop("novelty_driver_waited", None)
 
 
@@ -200,26 +201,55 @@ def test_the_background_compiler_ignores_the_working_directory(tmp_path):
     assert not mark.exists()
 
 
-def test_ctrl_c_while_waiting_at_exit_for_the_compiler_exits_130_quietly(tmp_path):
-    script = _script(tmp_path, "import sys\n"
-                               "from novelty import _kernels\n"
-                               "assert _kernels.compiling.Compiled('novelty._kernels._nearest').get() is None\n"
-                               "print('compiling', flush=True)\n")  # then exit: waits for the compiler
+#: a module of one small kernel, compiled when imported, that takes a while to import
+SLOW_KERNEL = """
+import time
+from numba import njit
+time.sleep({sleep})
+@njit("float64(float64)", cache=True)
+def plus_one(x):
+    return x + 1.0
+"""
+
+
+def test_a_process_ends_without_waiting_for_its_compilers_which_finish_and_cache(tmp_path):
+    """One compiler at a time: the first module compiles while the second waits in the queue;
+    the process ends at once, the first child finishes by itself and the second is handed to a
+    last child; the next process loads both from numba's cache."""
+    for name, sleep in (("first_kernels", 3.0), ("second_kernels", 0.0)):
+        (tmp_path / f"{name}.py").write_text(SLOW_KERNEL.format(sleep=sleep))
+    script = _script(tmp_path, "import sys, time\n"
+                               "from novelty._kernels import compiling\n"
+                               f"first = compiling.Compiled('first_kernels', {str(tmp_path / 'first_kernels.py')!r})\n"
+                               f"second = compiling.Compiled('second_kernels', {str(tmp_path / 'second_kernels.py')!r})\n"
+                               "assert first.get() is None and second.get() is None\n"
+                               "while first.child is None:\n"
+                               "    time.sleep(0.01)\n"
+                               "assert compiling._queue == [second]  # one compiler at a time\n"
+                               "print(first.child.pid, flush=True)\n")
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cold-cache"))
-    proc = subprocess.Popen([sys.executable, str(script)], env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True,
-                            # a run in the background ignores SIGINT, and children inherit that
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    try:
-        assert proc.stdout.readline() == "compiling\n"
-        time.sleep(1.0)  # at exit, in the wait; a cold compile takes several seconds
-        os.killpg(proc.pid, signal.SIGINT)  # Ctrl-C reaches the whole foreground group
-        _, err = proc.communicate(timeout=60)
-    finally:
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGKILL)
-    assert proc.returncode == 130
-    assert "Traceback" not in err and "Exception ignored" not in err
+    done = subprocess.run([sys.executable, str(script)], env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    pid = int(done.stdout)
+    os.kill(pid, 0)  # still compiling (it sleeps 3 s first): the process did not wait for it
+    check = ("from novelty._kernels import compiling\n"
+             f"modules = [compiling.Compiled(n, {str(tmp_path)!r} + '/' + n + '.py') for n in "
+             "('first_kernels', 'second_kernels')]\n"
+             "print(all(m._cached() for m in modules))\n")
+    deadline = time.monotonic() + 300
+    while True:
+        cached = subprocess.run([sys.executable, "-c", check], env=env, capture_output=True,
+                                text=True, check=True).stdout.strip()
+        if cached == "True" or time.monotonic() > deadline:
+            break
+        time.sleep(1.0)
+    assert cached == "True"
+    loaded = subprocess.run([sys.executable, "-c", check.replace(
+        "print(all(m._cached() for m in modules))",
+        "print(all(m.get() is not None and not m.background and m.module.plus_one(1.0) == 2.0 "
+        "for m in modules))")], env=env, capture_output=True, text=True, check=True)
+    assert loaded.stdout.strip() == "True"  # loaded at once, from the cache
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")

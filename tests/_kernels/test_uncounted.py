@@ -15,13 +15,13 @@ def loop():
     """A loop on uncounted aliases of a local array and of an argument, as a driver's."""
     from numba import njit
 
-    from novelty._kernels._uncounted import held, uncounted
+    from novelty._kernels._uncounted import held, uncounted_aliases
 
     @njit
     def run(x, n):
         out = np.zeros(x.shape[0])
         owners = (out, x)
-        local, y, k = uncounted((out, x, 3))  # the int passes as it is
+        local, y, k = uncounted_aliases((out, x, 3))  # the int passes as it is
         for i in range(n):
             row = y[i % y.shape[0]:]  # a view of an alias: uncounted too
             local[i % local.shape[0]] += row[0] * k
