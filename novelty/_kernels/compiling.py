@@ -17,8 +17,10 @@ they were compiling for. A process that ends while a child compiles does not
 wait for it: the child is a process of its own and finishes writing numba's
 cache; the modules still queued are handed to one last child, which compiles
 them one by one after the process is gone, and the next process loads them
-(``novelty bench --quick`` with an empty cache took 4x its warm time, most
-of it waiting at exit for compilers whose kernels the run no longer needed).
+(``novelty bench --quick`` with an empty cache took 6.3x its warm time when
+five compilers ran at once and the command waited for them at exit, 1.8x
+now: medians of three on a shared two-core machine; it needs none of its
+kernels to be fast, its cells are short).
 The children stay in the caller's process group, so Ctrl-C stops them too
 (nothing is cached then; a later process compiles again).
 :meth:`Compiled.wait` compiles a module that is still queued at once, in a
@@ -49,6 +51,7 @@ import warnings
 from typing import Callable
 
 from . import children
+from .environment import disabled
 
 __all__ = ["Compiled", "cache_files", "disabled", "load"]
 
@@ -59,20 +62,6 @@ _queue: list["Compiled"] = []
 _worker: threading.Thread | None = None
 _queue_lock = threading.Lock()
 _handed_over_at_exit = False
-
-
-#: the environment's own mapping and the variable's key in it: read on every learning call,
-#: where ``os.environ.get`` of a missing variable raises and catches a KeyError (about 1 us)
-_ENVIRON = getattr(os.environ, "_data", None)
-_KEY = os.environ.encodekey("NOVELTY_NO_KERNELS") if _ENVIRON is not None else None
-
-
-def disabled() -> bool:
-    """Whether ``NOVELTY_NO_KERNELS`` asks for the reference loops."""
-    if _ENVIRON is not None:
-        value = _ENVIRON.get(_KEY)
-        return value is not None and os.environ.decodevalue(value) not in ("", "0")
-    return os.environ.get("NOVELTY_NO_KERNELS", "") not in ("", "0")
 
 
 def load(name: str, file: str | None):
@@ -156,14 +145,14 @@ class Compiled:
         return None
 
     def _resolved(self, settle: bool) -> bool:
-        """Whether the module's name and file are known (a generated driver's, once written)."""
-        if self.resolve is None:
+        """Whether the module's name and file are known (a generated driver's: written again if
+        another process pruned it meanwhile)."""
+        if self.resolve is None or (self.file is not None and os.path.exists(self.file)):
             return True
         where = self.resolve(settle)
         if where is None:
             return False
         self.name, self.file = where
-        self.resolve = None
         return True
 
     def _compile(self) -> None:
@@ -268,17 +257,21 @@ def _take(compiled: Compiled) -> bool:
 
 def _hand_over_at_exit() -> None:
     """At exit: the modules still queued go to one last child, which compiles them into numba's
-    cache after this process is gone (a child compiling already finishes by itself)."""
+    cache after this process is gone (a child compiling already finishes by itself). A driver
+    whose file still waits for the tricks' self-check is left to a later process."""
     global _handed_over_at_exit
     with _queue_lock:
         pending = list(_queue)
         _queue.clear()
-    if pending and not _handed_over_at_exit:
-        _handed_over_at_exit = True
-        try:
-            children.spawn(pending)
-        except OSError:  # no process to be had: a later process compiles them
-            pass
+    if _handed_over_at_exit:
+        return
+    _handed_over_at_exit = True
+    try:
+        ready = [compiled for compiled in pending if compiled._resolved(settle=False)]
+        if ready:
+            children.spawn(ready)
+    except (OSError, ImportError, ValueError):  # no folder, no module, no process: a later
+        pass  # process compiles them
 
 
 atexit.register(_hand_over_at_exit)

@@ -308,9 +308,9 @@ def _tricks_decided(settle: bool) -> bool:
 
 #: the name of every generated driver starts so; a hash of what it compiles ends it
 PREFIX = "novelty_driver_"
-#: drivers kept per pair (the sources of an older release or checkout, in use elsewhere
+#: drivers kept per pair (the sources of other releases or checkouts, in use elsewhere
 #: perhaps), and in all: the least recently used beyond are deleted with numba's cache of them
-KEEP_PER_PAIR = 2
+KEEP_PER_PAIR = 4
 KEEP = 64
 
 
