@@ -26,9 +26,7 @@ The children stay in the caller's process group, so Ctrl-C stops them too
 :meth:`Compiled.wait` compiles a module that is still queued at once, in a
 child of its own, and blocks until it is ready.
 
-Processes that need one module at once (test workers, benchmark workers)
-compile it once: the first holds a lock file beside the cache while its
-child compiles, the others wait for it and load what it cached
+Processes that need one module at once compile it once
 (:func:`.children.one_compiler`).
 
 Every child runs isolated (``python -I``, in the package's folder): nothing
@@ -113,6 +111,7 @@ class Compiled:
         self.done = threading.Event()  # set when compiling (or loading) ended, ready or not
         self.error: BaseException | None = None  # raised while compiling, warned about by get()
         self.child = None  # the compiling child process (a subprocess.Popen), while it runs
+        self.owner: threading.Thread | None = None  # the background compiler that took it
         _all.append(self)
 
     def get(self):
@@ -208,8 +207,9 @@ class Compiled:
         kernels are unavailable, or not ready within ``timeout`` seconds."""
         self.get()
         if self.module is None and not self.failed and self.started:
-            if _take(self):
-                self._compile()
+            owner = self.owner
+            if _take(self) or owner is None or not owner.is_alive():
+                self._compile()  # queued, or lost by a compiler that is gone: compiled here
             else:
                 self.done.wait(timeout)
         return self.get()
@@ -243,6 +243,7 @@ def _work() -> None:
                 _worker = None
                 return
             compiled = _queue.pop(0)
+            compiled.owner = threading.current_thread()
         compiled._compile()
 
 
