@@ -1,4 +1,4 @@
-"""``novelty bench``: run a benchmark suite and print the ranked table."""
+"""``novelty bench``: run a benchmark suite and print what a reader needs first (the rest in summary.md)."""
 
 from __future__ import annotations
 
@@ -13,14 +13,18 @@ DESCRIPTION = """Run detectors x tasks x seeds and rank the detectors.
 
 Each cell streams the task's training scans through the detector (as many
 passes as the task says), sets an alarm threshold from the training novelty,
-then scores the test scans without learning. Results go to --out:
-results.csv and results.jsonl (one row a cell, with provenance), summary.md
-(the ranking; each detector paired with a reference detector task by task,
+then scores the test scans without learning. The terminal shows the
+detectors ranked by ROC AUC with the columns to read first, what each means,
+and a verdict; everything goes to --out: results.csv and results.jsonl (one
+row a cell, with provenance), summary.md (every metric,
+the ranking; each detector paired with a reference detector task by task,
 the seeds of a task averaged first; ranks per task; Friedman, Wilcoxon-Holm
 and Bayesian signed-rank tests over tasks, or why too few tasks allow no
 claim; the command and versions) and plots/ (with a critical-difference
 diagram). --compare-on-task TASK adds a paired bootstrap over that task's
-test scans (on an exploration task, an interval over its seeds' worlds). Name your tasks with name= (--task 'files path=a.csv name=lab-a'). Rerunning the same command
+test scans (on an exploration task, an interval over its seeds' worlds);
+--reference prints the paired comparison too. Name your tasks with name=
+(--task 'files path=a.csv name=lab-a'). Rerunning the same command
 resumes: finished cells are skipped, except those whose detector or task
 resolves to something else now (a preset or task changed since): these are
 recomputed, and the run says how many. A cell that fails -- an error, a worker
@@ -58,8 +62,9 @@ def add_parser(subparsers):
     parser.add_argument("--out", metavar="DIR", default="novelty-bench",
                         help="output folder (default: ./novelty-bench)")
     parser.add_argument("--quick", action="store_true",
-                        help="the embedded default suite: 10 detectors x 2 tasks x 2 seeds; about 40 s "
-                        "of CPU the first time (numba compiles and caches its kernels), 12 s after")
+                        help="the embedded default suite: the recommended detectors, the paper's and "
+                        "baselines, 10 x 2 tasks x 2 seeds; about two minutes of CPU the first time (numba "
+                        "compiles and caches its kernels), 15-20 s after")
     parser.add_argument("--detector", action="append", metavar="'NAME [k=v ...]'",
                         help="a detector with its parameters (repeatable; replaces the suite's)")
     parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",
@@ -132,10 +137,32 @@ def build_suite(args):
     return suite.check()
 
 
+def _print_results(report, paired: bool) -> None:
+    """A hold-out run: the table a reader needs first, what its columns mean, a verdict (and the paired
+    comparison when ``paired``: --reference was given); an exploration run: its table and the tests."""
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
+    from ..bench.reports.statistics import paired_text, statistics_line
+    from ._bench_table import columns_in_words, first_table, verdict
+
+    if report.protocol == "holdout" and report.rows:
+        print(first_table(report.rows))
+        print(f"\n{columns_in_words(report.rows)}")
+        if paired:
+            print("\n" + paired_text(report.rows, report.reference))
+        print("\n" + verdict(report.rows))
+    else:
+        print(report.table)
+        if report.rows:
+            print("\n" + statistics_line(report.rows))
+    if report.comparisons:
+        print("\n".join(report.comparisons))
+    for note in report.notes:
+        print(note)
+
+
 def run(args) -> int:
     # deferred: the benchmark imports scikit-learn; `novelty --help` does not
     from ..bench.benchmark import run_suite
-    from ..bench.reports.statistics import statistics_line
 
     if args.jobs < 1:
         raise UserError(f"--jobs must be at least 1; got {args.jobs}.")
@@ -157,18 +184,14 @@ def run(args) -> int:
                         plots=not args.no_plots, quiet=args.quiet, compare_on=args.compare_on_task,
                         command=shlex.join(["novelty", *getattr(args, "_argv", ["bench"])]))
     report = results.report
-    print(report.table)
-    if report.rows:
-        print("\n" + statistics_line(report.rows))
-    if report.comparisons:
-        print("\n".join(report.comparisons))
-    for note in report.notes:
-        print(note)
     summary = os.path.join(args.out, "summary.md")
+    _print_results(report, paired=args.reference is not None)
     if report.failed:
         print(f"{report.failed} of {counted(len(report.rows), 'cell')} failed; their errors are in {summary}.")
-    print(f"Results in {args.out}: results.csv, results.jsonl, summary.md"
-          + (", plots/" if any(p.suffix == ".png" for p in report.files) else "") + ".")
+    plots = os.path.join(args.out, "plots", "") if any(p.suffix == ".png" for p in report.files) else None
+    print(f"The rest (every metric, the paired comparison, ranks per task and the tests between detectors) "
+          f"is in {summary}" + (f"; plots in {plots}" if plots else "") + f"; each cell in "
+          f"{os.path.join(args.out, 'results.csv')} (and results.jsonl).")
     if report.interrupted:
         print("Interrupted: rerun the same command to resume.", file=sys.stderr)
         return 130
