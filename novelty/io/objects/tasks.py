@@ -5,7 +5,7 @@ scans as sweeps in the robot's base frame, mounts included), place the
 objects (the user's, or drawn by a seed beside the path:
 :mod:`.placement`), refuse those that cannot stand where they are put, cast
 them into every sweep (:mod:`.raycast`) and label every scan with the object
-it sees (:mod:`.labels`). The rings are the paper's
+it sees (:mod:`novelty.io.objects.labels`). The rings are the paper's
 (:func:`object_rings`: sectors reduced to their nearest echo, thresholded,
 normalised, inverted), at one or several scales at once.
 
