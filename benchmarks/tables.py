@@ -41,6 +41,7 @@ from __future__ import annotations
 import argparse
 import csv
 import difflib
+import importlib.util
 import json
 import os
 import platform
@@ -59,6 +60,8 @@ RESULTS = ROOT / "benchmarks" / "results"
 RESULTS_CSV = "results.csv"
 PROVENANCE = "provenance.json"
 COMMAND = "python benchmarks/tables.py"
+#: the regions of "Which detector?": made from several suites' rows by benchmarks/which_detector.py
+WHICH_DETECTOR = "which-detector"
 
 REGION = re.compile(r"(<!-- generated: (?P<key>[\w.-]+/[\w.-]+) -->\n)(?P<body>.*?)(<!-- end generated -->)",
                     re.S)
@@ -234,13 +237,30 @@ def caption(suite: str, rows: list[dict]) -> str:
 
 
 def region_body(key: str, cache: dict | None = None) -> str:
-    """What the region ``<suite>/<table>`` holds: the caption, a blank line, the table."""
+    """What the region ``<suite>/<table>`` holds: the caption, a blank line, the table; a region
+    ``which-detector/<part>`` is made by ``benchmarks/which_detector.py`` from several suites' rows."""
     suite, name = key.split("/", 1)
     cache = {} if cache is None else cache
-    if suite not in cache:
-        cache[suite] = committed_rows(suite)
-    rows = cache[suite]
+
+    def rows_of(suite: str) -> list[dict]:
+        if suite not in cache:
+            cache[suite] = committed_rows(suite)
+        return cache[suite]
+
+    if suite == WHICH_DETECTOR:
+        return _which_detector().region(name, rows_of)
+    rows = rows_of(suite)
     return f"{caption(suite, rows)}\n\n{table(suite, name, rows)}\n"
+
+
+def _which_detector():
+    """``benchmarks/which_detector.py``, the answers of "Which detector?" (a script's neighbour, not a package)."""
+    if "which_detector" not in sys.modules:
+        spec = importlib.util.spec_from_file_location("which_detector", Path(__file__).with_name("which_detector.py"))
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module  # its dataclasses look their module up
+        spec.loader.exec_module(module)
+    return sys.modules["which_detector"]
 
 
 def regenerate(text: str, cache: dict | None = None) -> str:

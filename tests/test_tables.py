@@ -15,11 +15,13 @@ import importlib.util
 import io
 import math
 import os
+import re
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+import novelty
 from novelty.bench import load_suite, run_cell
 from novelty.bench.results import ResultsStore
 
@@ -136,7 +138,8 @@ def test_every_generated_region_equals_its_committed_results():
 def test_the_documents_generated_regions_name_committed_suites():
     keys = {m.group("key") for path in tables.documents()
             for m in tables.REGION.finditer(path.read_text(encoding="utf-8"))}
-    assert {k.split("/")[0] for k in keys} <= set(COMMITTED)
+    assert {k.split("/")[0] for k in keys} <= set(COMMITTED) | {tables.WHICH_DETECTOR}
+    assert set(_which_detector().SUITES) <= set(COMMITTED)  # which-detector's regions are made of these
 
 
 # ---------------------------------------------------------------- the suites now
@@ -218,3 +221,73 @@ def test_a_caption_gives_a_command_a_reader_can_run():
     assert tables.runnable("NOVELTY_DATA_DIR=/data/uci novelty bench s.toml --jobs 2") == (
         "`novelty bench s.toml --jobs 2`, with `NOVELTY_DATA_DIR` naming your folder of the data sets")
     assert tables.runnable("novelty bench s.toml") == "`novelty bench s.toml`"
+
+
+# ---------------------------------------------------------------- which detector?
+def _which_detector():
+    return tables._which_detector()
+
+
+def _holdout(aucs: dict[str, list[float]], tasks=("t1", "t2")) -> list[dict]:
+    """Hold-out rows: each detector's ROC AUC on each task, seeds 0 and 1 alike."""
+    return [{"cell_id": f"{d}-{t}-{s}", "detector": d, "task": t, "seed": s, "status": "ok", "roc_auc": auc}
+            for d, by_task in aucs.items() for t, auc in zip(tasks, by_task) for s in (0, 1)]
+
+
+def _explored(verdicts: dict[str, dict[str, tuple]]) -> list[dict]:
+    """Exploration rows: ``{detector: {task: (first-encounter AUC, excess 1st, excess 3rd)}}``, seeds 0-1."""
+    return [{"cell_id": f"{d}-{t}-{s}", "detector": d, "task": t, "seed": s, "status": "ok", "policy": "online",
+             "first_encounter_auc": auc, "excess_1": e1, "excess_2": e1, "excess_3": e3, "novelty_range": 1.0,
+             "first_separation": 1.0}
+            for d, by_task in verdicts.items() for t, (auc, e1, e3) in by_task.items() for s in (0, 1)]
+
+
+def test_the_answers_state_what_hand_made_results_give():
+    w = _which_detector()
+    results = {
+        "detection": _holdout({"kmeans-stanley": [0.9, 0.7], "parzen": [0.8, 0.78], "hsom": [0.5, 0.52],
+                               "lof": [0.6, 0.6]}),
+        "objects-inspection": _holdout({"kmeans-stanley": [0.55, 0.5], "parzen": [0.5, 0.5], "hsom": [0.45, 0.5]}),
+        # explore habituates (3rd/1st 0.1) on the simulated door and flags (0.9) nowhere but there
+        "exploration": _explored({"explore": {"exploration-open-door": (0.9, 0.5, 0.05),
+                                              "exploration-radish-aces": (0.4, 0.5, 0.5)},
+                                  "gwr-explore-wang-hsu": {"exploration-open-door": (0.8, 0.5, 0.05),
+                                                           "exploration-radish-aces": (0.7, 0.5, 0.5)},
+                                  "hsom": {"exploration-open-door": (0.6, 0.5, 0.5),
+                                           "exploration-radish-aces": (0.6, 0.5, 0.5)}}),
+        "objects-exploration": _explored({"explore": {"exploration-objects-radish-intel": (0.6, 0.5, 0.5)},
+                                          "hsom": {"exploration-objects-radish-intel": (0.7, 0.5, 0.1)}}),
+    }
+    said = w.facts(results.__getitem__)
+    # kmeans-stanley: (0.9 + 0.7) / 2 = 0.8, first; parzen 0.79; on the objects 0.525 of 0.475-0.525
+    assert said["frozen"] == ("ROC AUC 0.800, 1st of 4 on the detection suite (2 tasks x seeds 0-1; `parzen` "
+                              "0.790, 2nd of 4); with virtual objects in real recordings 0.525, 1st of 3, every "
+                              "detector within 0.47-0.53")
+    assert said["learning"] == ("habituates on 1 of the 2 exploration tasks (open-door) and flags first sight on "
+                                "1 (open-door) (first-encounter AUC 0.90-0.90 on the simulated tasks, 0.40-0.40 on "
+                                "the Radish logs); with virtual objects in real recordings, first-encounter AUC "
+                                "0.600, 2nd of 2, flagging and habituating on none of the 1 logs")
+    assert said["paper"].endswith("ROC AUC 0.510, 4th of 4 on the detection suite")
+    assert said["long-term"] == ("flags and habituates on none of the 2 exploration tasks; 1 of the suite's 3 "
+                                 "detectors does both on any task")
+    # one name a question, and the table names it
+    table = w.answers_table(results.__getitem__).splitlines()[2:]
+    assert [re.findall(r"`([\w-]+)`", row.split("|")[2]) for row in table] == [[a.use] for a in w.ANSWERS]
+
+
+def test_the_readme_and_the_guide_give_one_answer_a_question_from_one_table():
+    readme = (tables.ROOT / "README.md").read_text(encoding="utf-8")
+    guide = (tables.ROOT / "docs" / "guide" / "which-detector.md").read_text(encoding="utf-8")
+    region = "<!-- generated: which-detector/answers -->"
+    assert region in readme and region in guide
+    assert [m.group("body") for m in tables.REGION.finditer(readme) if m.group("key") == "which-detector/answers"] \
+        == [m.group("body") for m in tables.REGION.finditer(guide) if m.group("key") == "which-detector/answers"]
+    for answer in _which_detector().ANSWERS:
+        assert answer.use in novelty.registry.detectors, answer
+
+
+def test_the_count_of_detectors_is_the_packages():
+    count = int(_which_detector().count_text().split()[0])
+    own = [n for n in novelty.registry.detectors.names()
+           if novelty.registry.detectors.get(n).__module__.startswith("novelty.")]
+    assert count == len(own) >= 20

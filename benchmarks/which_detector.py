@@ -1,0 +1,293 @@
+"""The answers of "Which detector?", generated from the committed results of the suites that measure them.
+
+README.md and docs/guide/which-detector.md hold regions ``<!-- generated:
+which-detector/<part> -->``, rewritten by ``python benchmarks/tables.py`` like the
+results tables (and checked by ``tests/test_tables.py``):
+
+- ``answers``: the table, one row a question, the one detector that answers it
+  and what was measured of it;
+- ``count``: how many detectors the package registers;
+- ``frozen``, ``learning``, ``paper``, ``long-term``: each answer's evidence in
+  sentences.
+
+The detector that answers a question is named once, in :data:`ANSWERS`, with the
+rule that chose it; every figure, rank and count is computed here from the rows
+committed in ``benchmarks/results/`` by the package's own report functions, so
+the README, the guide and the site cannot disagree, and a new run of a suite
+changes every sentence it measures.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+#: the suites the answers are measured on, by what they measure
+DETECTION, EXPLORATION = "detection", "exploration"
+OBJECTS_INSPECTION, OBJECTS_EXPLORATION = "objects-inspection", "objects-exploration"
+SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION)
+
+
+@dataclass(frozen=True)
+class Answer:
+    """One question of "Which detector?" and the detector that answers it."""
+
+    key: str            # the region of its evidence: which-detector/<key>
+    want: str           # the question, as the table asks it
+    use: str            # the one detector named
+    chosen: str         # how it was chosen (a sentence)
+    what: str = ""      # what it is, where its name does not say
+
+
+ANSWERS = (
+    Answer("frozen", "to learn a clean area, freeze, then flag what differs", "kmeans-stanley",
+           "its settings were chosen on the detection suite's selection seeds 5-9, which no table reports"),
+    Answer("learning", "a robot that keeps learning: flag a feature at first sight, then let it grow familiar",
+           "explore",
+           "chosen by rules fixed before their runs: on the exploration suite's seeds 5-9 "
+           "([the exploration guide](exploration.md#the-recommended-detector-explore)), and again on the "
+           "objects tasks' seeds 100-104 ([the objects guide](objects.md#choosing-a-habituating-detector-the-rule-and-what-it-found))",
+           "`gwr-explore-staddon-higa`, with synapses that habituate at two time scales, given three scans two "
+           "apart"),
+    Answer("paper", "the paper's exact behaviour", "hsom",
+           "Marsland, Nehmzow & Shapiro (2000) with every constant of the paper"),
+    Answer("long-term", "long-term habituation (a feature that returns settles lower each time)",
+           "gwr-explore-wang-hsu", "the Wang-Hsu synapse with the exploring network"),
+    Answer("baseline", "a baseline to beat", "parzen", "the reference of the detection suite"),
+)
+BY_KEY = {a.key: a for a in ANSWERS}
+
+
+# ------------------------------------------------------------------ measuring
+def _ordinal(n: int) -> str:
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
+
+
+def _ranked(rows: list[dict]) -> dict[str, dict]:
+    from novelty.bench.reports.ranking import rank_detectors
+
+    return {r["detector"]: r for r in rank_detectors(rows)}
+
+
+def _seeds(rows: list[dict]) -> str:
+    seeds = sorted({r["seed"] for r in rows})
+    return f"seeds {seeds[0]}-{seeds[-1]}" if seeds == list(range(seeds[0], seeds[-1] + 1)) else \
+        "seeds " + ", ".join(map(str, seeds))
+
+
+def _tasks(rows: list[dict]) -> list[str]:
+    return sorted({r["task"] for r in rows})
+
+
+def _auc_rank(rows: list[dict], detector: str) -> str:
+    """``0.716, 1st of 18``: the detector's ROC AUC over the suite and its rank."""
+    ranked = _ranked(rows)
+    record = ranked[detector]
+    return f"{record['roc_auc']:.3f}, {_ordinal(record['rank'])} of {len(ranked)}"
+
+
+def _exploration(rows: list[dict]) -> dict[str, dict[str, dict]]:
+    """``{detector: {task: record}}`` of the exploration verdicts."""
+    from novelty.bench.exploration.summary import exploration_records
+
+    out: dict[str, dict[str, dict]] = {}
+    for task, records in exploration_records(rows).items():
+        for record in records:
+            out.setdefault(record["detector"], {})[task] = record
+    return out
+
+
+def _short(task: str) -> str:
+    return task.removeprefix("exploration-").removeprefix("objects-")
+
+
+def _where(found: dict[str, dict], verdict: str) -> list[str]:
+    """The tasks (short names) on which a detector's record has ``verdict`` (flags, habituates, both)."""
+    return [_short(t) for t, r in sorted(found.items()) if r[verdict]]
+
+
+def _on(names: list[str], of: int, what: str) -> str:
+    """``4 of the 9 exploration tasks (irregular, open-door, return, tour)``; ``none of the 3 logs``."""
+    return f"{len(names)} of the {of} {what} ({', '.join(names)})" if names else f"none of the {of} {what}"
+
+
+def _count(names: list[str]) -> str:
+    """``none``, ``1 (open-door)``, ``2 (open-door, return)``."""
+    return f"{len(names)} ({', '.join(names)})" if names else "none"
+
+
+def _plural(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
+
+
+def _mean_auc(found: dict[str, dict]) -> float:
+    return sum(r["auc"] for r in found.values()) / len(found)
+
+
+def _auc_place(by_detector: dict[str, dict[str, dict]], detector: str) -> str:
+    """``0.646, 7th of 21``: the detector's mean first-encounter AUC over the tasks and its rank."""
+    means = sorted(((_mean_auc(f), d) for d, f in by_detector.items()), key=lambda m: (-m[0], m[1]))
+    rank = [d for _, d in means].index(detector) + 1
+    return f"{_mean_auc(by_detector[detector]):.3f}, {_ordinal(rank)} of {len(means)}"
+
+
+def _span(values) -> str:
+    values = sorted(values)
+    return f"{values[0]:.2f}-{values[-1]:.2f}"
+
+
+def _verdicts_on(found: dict[str, dict], what: str) -> str:
+    """``flagging on none and habituating on 1 of the 3 logs (aces)``."""
+    flags, habituates = _where(found, "flags"), _where(found, "habituates")
+    if not flags and not habituates:
+        return f"flagging and habituating on none of the {len(found)} {what}"
+    return (f"flagging on {_on(flags, len(found), what)} and habituating on "
+            f"{_on(habituates, len(found), what)}")
+
+
+def facts(results: Callable[[str], list[dict]]) -> dict[str, str]:
+    """The measured cell of each answer's row, from the committed rows (``results(suite)``)."""
+    detection, exploration = results(DETECTION), _exploration(results(EXPLORATION))
+    inspection, objects = results(OBJECTS_INSPECTION), _exploration(results(OBJECTS_EXPLORATION))
+    tasks_detection = f"{len(_tasks(detection))} tasks x {_seeds(detection)}"
+    aucs = [r["roc_auc"] for r in _ranked(inspection).values()]
+    explore = exploration[BY_KEY["learning"].use]
+    simulated = [r["auc"] for t, r in explore.items() if "radish" not in t]
+    radish = [r["auc"] for t, r in explore.items() if "radish" in t]
+    on_objects = objects[BY_KEY["learning"].use]
+    long_term = exploration[BY_KEY["long-term"].use]
+    both = {d for d, found in exploration.items() for r in found.values() if r["both"]}
+    return {
+        "frozen": (f"ROC AUC {_auc_rank(detection, BY_KEY['frozen'].use)} on the detection suite "
+                   f"({tasks_detection}; `{BY_KEY['baseline'].use}` {_auc_rank(detection, BY_KEY['baseline'].use)}); "
+                   f"with virtual objects in real recordings {_auc_rank(inspection, BY_KEY['frozen'].use)}, "
+                   f"every detector within {_span(aucs)}"),
+        "learning": (f"habituates on {_on(_where(explore, 'habituates'), len(explore), 'exploration tasks')} "
+                     f"and flags first sight on {_count(_where(explore, 'flags'))} (first-encounter AUC "
+                     f"{_span(simulated)} on the simulated tasks, {_span(radish)} on the Radish logs); with virtual "
+                     f"objects in real recordings, first-encounter AUC {_auc_place(objects, BY_KEY['learning'].use)}, "
+                     f"{_verdicts_on(on_objects, 'logs')}"),
+        "paper": (f"the paper's claims the tests check hold on seeds 0-9; frozen it is near chance: ROC AUC "
+                  f"{_auc_rank(detection, BY_KEY['paper'].use)} on the detection suite"),
+        "long-term": (f"flags and habituates on {_on(_where(long_term, 'both'), len(long_term), 'exploration tasks')}; "
+                      f"{len(both)} of the suite's {len(exploration)} detectors {'does' if len(both) == 1 else 'do'} both on any "
+                      "task"),
+        "baseline": f"ROC AUC {_auc_rank(detection, BY_KEY['baseline'].use)} on the detection suite",
+    }
+
+
+def answers_table(results: Callable[[str], list[dict]]) -> str:
+    """The table of the README and the guide: what you want, the one detector, what was measured."""
+    measured = facts(results)
+    lines = ["| you want | use | measured |", "| --- | --- | --- |"]
+    lines += [f"| {a.want} | `{a.use}` | {measured[a.key]} |" for a in ANSWERS]
+    return "\n".join(lines)
+
+
+def count_text() -> str:
+    """How many detectors the package registers (plugins and detectors registered at run time aside)."""
+    from novelty.registry import detectors
+
+    own = [n for n in detectors.names() if getattr(detectors.get(n), "__module__", "").startswith("novelty.")]
+    return f"{len(own)} detectors are registered (`novelty list detectors`)."
+
+
+# ------------------------------------------------------------------ each answer's evidence
+def _paired(rows: list[dict], detector: str, reference: str) -> str:
+    """``+0.002 ± 0.004 over the 8 tasks (4 won, 0 tied, 4 lost)``: per-task differences of ROC AUC."""
+    import numpy as np
+    from novelty.bench.stats.aggregate import task_table
+
+    table = task_table(rows, detectors=[detector, reference]).complete()
+    diff = table.row(detector) - table.row(reference)
+    se = float(np.std(diff, ddof=1) / np.sqrt(diff.size))
+    won, tied = int(np.sum(diff > 0)), int(np.sum(diff == 0))
+    return (f"{float(diff.mean()):+.3f} ± {se:.3f} over the {diff.size} tasks ({won} won, {tied} tied, "
+            f"{diff.size - won - tied} lost)")
+
+
+def frozen_text(results: Callable[[str], list[dict]]) -> str:
+    detection, inspection = results(DETECTION), results(OBJECTS_INSPECTION)
+    use, baseline, paper = BY_KEY["frozen"].use, BY_KEY["baseline"].use, BY_KEY["paper"].use
+    ranked = _ranked(detection)
+    best_other = next(d for d in ranked if d not in (use, baseline))
+    aucs = [r["roc_auc"] for r in _ranked(inspection).values()]
+    return "\n".join([
+        f"- **Use `{use}`**: ROC AUC {_auc_rank(detection, use)} on the detection suite "
+        f"({len(_tasks(detection))} tasks x {_seeds(detection)}), level with `{baseline}` "
+        f"({_auc_rank(detection, baseline)}; paired, {_paired(detection, use, baseline)}) and ahead of "
+        f"`{best_other}` ({_auc_rank(detection, best_other)}); {BY_KEY['frozen'].chosen}.",
+        f"- **With virtual objects in real recordings** ([the objects guide](objects.md); "
+        f"{len(_tasks(inspection))} Radish logs x {_seeds(inspection)}) it scores {_auc_rank(inspection, use)}, "
+        f"and every detector lies within {_span(aucs)}: frozen, no detector finds the objects.",
+        f"- **Not the paper's `{paper}`** for this: frozen, it scores {_auc_rank(detection, paper)}.",
+    ])
+
+
+def learning_text(results: Callable[[str], list[dict]]) -> str:
+    exploration, objects = _exploration(results(EXPLORATION)), _exploration(results(OBJECTS_EXPLORATION))
+    use = BY_KEY["learning"].use
+    found, on_objects = exploration[use], objects[use]
+    most = max(sorted(exploration), key=lambda d: len(_where(exploration[d], "flags")))
+    habituating = [d for d, f in objects.items() if _where(f, "habituates")]
+    flagging = [d for d, f in objects.items() if _where(f, "flags")]
+    return "\n".join([
+        f"- **Use `{use}`** (`novelty.make(\"{use}\")`: {BY_KEY['learning'].what}), "
+        f"{BY_KEY['learning'].chosen}. On seeds 0-4 it habituates on "
+        f"{_on(_where(found, 'habituates'), len(found), 'exploration tasks')} and flags first sight on "
+        f"{_on(_where(found, 'flags'), len(found), 'tasks')}; its mean first-encounter AUC is "
+        f"{_auc_place(exploration, use)}.",
+        f"- **With virtual objects in real recordings** ([the objects guide](objects.md); {len(on_objects)} "
+        f"Radish logs, seeds 0-4) every detector flags first sight weakly: `{use}`'s mean first-encounter AUC "
+        f"is {_auc_place(objects, use)}; of the {len(objects)} detectors, "
+        f"{_plural(len(flagging), 'flags', 'flag')} on any log and "
+        f"{_plural(len(habituating), 'habituates', 'habituate')} on any"
+        + (f" ({', '.join(f'`{d}`' for d in habituating)})." if habituating else "."),
+        f"- **If only first sight matters**: `{most}` flags on the most, "
+        f"{_on(_where(exploration[most], 'flags'), len(exploration[most]), 'exploration tasks')}, and "
+        f"habituates on {_count(_where(exploration[most], 'habituates'))}.",
+    ])
+
+
+def paper_text(results: Callable[[str], list[dict]]) -> str:
+    use = BY_KEY["paper"].use
+    detection, found = results(DETECTION), _exploration(results(EXPLORATION))[BY_KEY["paper"].use]
+    return (f"- **Use `{use}`**: {BY_KEY['paper'].chosen}. Frozen it scores ROC AUC {_auc_rank(detection, use)} on "
+            f"the detection suite; learning as it explores it habituates on "
+            f"{_on(_where(found, 'habituates'), len(found), 'exploration tasks')} and flags first sight on "
+            f"{_count(_where(found, 'flags'))}.")
+
+
+def long_term_text(results: Callable[[str], list[dict]]) -> str:
+    exploration = _exploration(results(EXPLORATION))
+    use, door = BY_KEY["long-term"].use, "exploration-open-door"
+
+    def on_door(detector: str) -> str:
+        r = exploration[detector][door]
+        ratio = "no ratio" if r["ratio"] != r["ratio"] else f"3rd/1st {r['ratio']:.2f}"
+        return f"`{detector}` AUC {r['auc']:.2f}, {ratio}"
+
+    return "\n".join([
+        f"- **Use `{use}`** on a robot, or put the synapse in any filter: "
+        f"`novelty.make(\"habituating\", clusterer=\"gwr\", synapse=\"wang-hsu\")`. It flags and habituates "
+        f"on {_on(_where(exploration[use], 'both'), len(exploration[use]), 'exploration tasks')}.",
+        f"- **The synapse alone does not make a recurring feature familiar**: on `{door}`, "
+        f"{on_door(use)}; {on_door('som-wang-hsu')}; {on_door('gwr-wang-hsu')}.",
+    ])
+
+
+SECTIONS = {"frozen": frozen_text, "learning": learning_text, "paper": paper_text, "long-term": long_term_text}
+
+
+def region(name: str, results: Callable[[str], list[dict]]) -> str:
+    """The text of the region ``which-detector/<name>`` (its caption first)."""
+    caption = ("*Generated by `python benchmarks/tables.py` from `benchmarks/results/` "
+               f"({', '.join(SUITES)}) and the answers named in `benchmarks/which_detector.py`.*")
+    if name == "answers":
+        return f"{caption}\n\n{answers_table(results)}\n"
+    if name == "count":
+        return f"{count_text()}\n"
+    if name in SECTIONS:
+        return f"{caption}\n\n{SECTIONS[name](results)}\n"
+    raise KeyError(f"No region which-detector/{name!r}; regions: answers, count, {', '.join(SECTIONS)}.")
