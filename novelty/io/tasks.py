@@ -212,7 +212,7 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
                    intervals=None, warmup: int = 1, name: str | None = None,
                    threshold: float = PAPER_THRESHOLD, sectors: int = 16, reduce="min", limits=None,
                    front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
-                   sensors=None, max_span: float | None = None, base_frame: str = "base_link",
+                   sensors=None, max_span: float | None = None, base_frame: str | None = None,
                    seed: int = 0) -> Dataset:
     """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
 
