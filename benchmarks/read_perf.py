@@ -18,7 +18,10 @@ folder), in the shapes real robots record:
 - ``two lasers``: front and rear lasers of 541 beams, their mounts on
   ``/tf_static``, merged into one ring (ROS 1);
 - ``fixed (bz2)``: the ``fixed`` bag with bz2 chunks;
-- ``fixed (ROS 2)``: the ``fixed`` scans in a ROS 2 SQLite bag.
+- ``fixed (ROS 2)``: the ``fixed`` scans in a ROS 2 SQLite bag;
+- ``fixed (MCAP, zstd chunks)`` and ``fixed (ROS 2, zstd messages)``: the
+  same stored compressed, every compressed part checked before rosbags
+  inflates it (:mod:`novelty.io.ros2_inflation`), a second inflation.
 
 For each, the time of :func:`novelty.io.recording.read_rings` (opening the
 bag, decoding, assembling, placing, posing, merging, reducing each sweep to
@@ -103,12 +106,12 @@ def _ranges(rng, n):
 def write_bags(folder: Path, scans: int) -> dict:
     """The benchmark's bags: name -> (path, topics rosbags deserializes, options of read_rings)."""
     from rosbags.rosbag1 import Writer as Writer1
-    from rosbags.rosbag2 import StoragePlugin
+    from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
     from rosbags.rosbag2 import Writer as Writer2
 
     rng = np.random.default_rng(0)
 
-    def write(name, messages, ros1=True, compression=None):
+    def write(name, messages, ros1=True, compression=None, storage="sqlite3"):
         ts = _typestore(ros1)
         if ros1:
             path = folder / f"{name}.bag"
@@ -117,8 +120,12 @@ def write_bags(folder: Path, scans: int) -> dict:
                 writer.set_compression(Writer1.CompressionFormat.BZ2)
         else:
             root = folder / name
-            writer, serialize = Writer2(root, version=9, storage_plugin=StoragePlugin.SQLITE3), ts.serialize_cdr
-            path = root / f"{name}.db3"
+            plugin = StoragePlugin.SQLITE3 if storage == "sqlite3" else StoragePlugin.MCAP
+            writer, serialize = Writer2(root, version=9, storage_plugin=plugin), ts.serialize_cdr
+            path = root / f"{name}.{'db3' if storage == 'sqlite3' else 'mcap'}"
+            if compression:   # a ROS 2 bag stored compressed is read from its folder (metadata.yaml says how)
+                writer.set_compression(CompressionMode[compression.upper()], CompressionFormat.ZSTD)
+                path = root
         with writer:
             connections = {}
             for t, topic, msgtype, build in sorted(messages, key=lambda m: m[0]):
@@ -156,6 +163,10 @@ def write_bags(folder: Path, scans: int) -> dict:
         "two lasers": (write("two", two), ["/front", "/rear", "/tf_static"], {"topic": ["/front", "/rear"]}),
         "fixed (bz2)": (write("fixed-bz2", fixed, compression="bz2"), ["/scan"], {}),
         "fixed (ROS 2)": (write("fixed-ros2", fixed, ros1=False), ["/scan"], {}),
+        "fixed (MCAP, zstd chunks)": (write("fixed-mcap-zstd", fixed, ros1=False, compression="storage",
+                                            storage="mcap"), ["/scan"], {}),
+        "fixed (ROS 2, zstd messages)": (write("fixed-ros2-zstd", fixed, ros1=False, compression="message"),
+                                         ["/scan"], {}),
     }
 
 

@@ -6,7 +6,8 @@ stated size is checked first; ROS 2 bags through the optional package
 ``rosbags`` (pure Python, on the package index:
 ``pip install 'novelty-habituation[ros]'``; without it, opening a bag
 raises an ``ImportError`` that says so, and the rest of :mod:`novelty.io`
-works). Every message is decoded from its bytes by :mod:`.decoders`, its
+works), after :mod:`.ros2_inflation` has checked that no compressed part
+(an MCAP chunk, a compressed message or file) inflates beyond its cap. Every message is decoded from its bytes by :mod:`.decoders`, its
 sizes checked against :mod:`.caps` first: an error names the file, the
 topic, the message's number on it and the field.
 
@@ -56,6 +57,7 @@ from .caps import MessageError, Where
 from .decoders import decode, largest, peek
 from .messages import LaserScan, Pose, RangeReading, Transform
 from .quaternions import yaw
+from .ros2_inflation import check_inflation
 from .clouds import cloud_scan
 
 __all__ = ["BagError", "Bag", "bag_topics", "topic_types", "topic_counts", "read_bag", "bag_messages", "converted",
@@ -119,6 +121,8 @@ class Bag:
             raise BagError(f"{self.path} is not a bag: expected a ROS 1 .bag, a ROS 2 .db3 or .mcap file, or a "
                            "ROS 2 bag folder (with metadata.yaml).")
         self.ros1 = self.path.suffix == ".bag"
+        if not self.ros1:
+            check_inflation(self.path)   # rosbags inflates without a limit: every compressed part checked first
         try:
             if self.ros1:
                 self.reader = Bag1(self.path)

@@ -127,10 +127,14 @@ def store(kind: str):
     return ts
 
 
-def write_bag(folder, kind: str):
-    """Write the test bag of ``kind`` ("ros1", "sqlite3", "mcap") under ``folder``; its path."""
+def write_bag(folder, kind: str, compression: str = "none"):
+    """Write the test bag of ``kind`` ("ros1", "sqlite3", "mcap") under ``folder``; its path.
+
+    A ROS 2 bag may be stored compressed with zstd (``compression``: "message", "file", or "storage" for an
+    MCAP's chunks); its path is then the bag's folder.
+    """
     from rosbags.rosbag1 import Writer as Writer1
-    from rosbags.rosbag2 import StoragePlugin
+    from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
     from rosbags.rosbag2 import Writer as Writer2
 
     ts = store(kind)
@@ -143,6 +147,9 @@ def write_bag(folder, kind: str):
         plugin = StoragePlugin.SQLITE3 if kind == "sqlite3" else StoragePlugin.MCAP
         writer, serialize = Writer2(root, version=9, storage_plugin=plugin), ts.serialize_cdr
         path = root / f"run-{kind}.{'db3' if kind == 'sqlite3' else 'mcap'}"
+        if compression != "none":
+            writer.set_compression(CompressionMode[compression.upper()], CompressionFormat.ZSTD)
+            path = root
     with writer:
         connections = {}
         for t, topic, msgtype, msg in _messages(ts):
