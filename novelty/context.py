@@ -58,7 +58,15 @@ from ._validation import Instance, Interval
 from .detector import NoveltyDetector
 from .registry import build
 
-__all__ = ["SequenceContext", "delay_embed", "leaky_integrate"]
+__all__ = ["SequenceContext", "delay_embed", "leaky_integrate", "MAX_DELAY", "MAX_SPAN", "MAX_HISTORY"]
+
+#: the most scans in an embedding (1): the wrapped detector sees ``delay`` times the features
+MAX_DELAY = 1024
+#: the most scans of history an embedding keeps, ``(delay - 1) * lag``: about a day of scans at 10 Hz
+MAX_SPAN = 2**20
+#: the most values of history (scans of history x features: 2**27 float64, 1 GiB), checked
+#: against the first batch's features before the history is made
+MAX_HISTORY = 2**27
 
 
 def delay_embed(X: np.ndarray, past: np.ndarray, delay: int, lag: int, differences: bool) -> np.ndarray:
@@ -107,10 +115,12 @@ class SequenceContext(NoveltyDetector):
     ----------
     detector : str or NoveltyDetector, default="gwr-explore-wang-hsu"
         The detector given context: a registry name or an instance (cloned).
-    delay : int, default=1
+    delay : int in [1, 1024], default=1
         Scans in the embedding (1): 1 is the scan alone.
     lag : int, default=1
-        Scans between the embedded ones.
+        Scans between the embedded ones. The history they make,
+        ``(delay - 1) * lag`` scans, is at most :data:`MAX_SPAN` scans and
+        :data:`MAX_HISTORY` values (refused before anything is allocated).
     differences : bool, default=False
         Embed the changes (1') instead of the earlier scans (1).
     smoothing : float in (0, 1], default=1.0
@@ -148,8 +158,8 @@ class SequenceContext(NoveltyDetector):
 
     _parameter_rules = {
         "detector": Instance((str, NoveltyDetector), "a detector name or a NoveltyDetector instance"),
-        "delay": Interval(numbers.Integral, 1, None),
-        "lag": Interval(numbers.Integral, 1, None),
+        "delay": Interval(numbers.Integral, 1, MAX_DELAY),
+        "lag": Interval(numbers.Integral, 1, MAX_SPAN),
         "differences": Instance((bool, np.bool_), "a bool"),
         "smoothing": Interval(numbers.Real, 0, 1, closed="right"),
         "threshold": Interval(numbers.Real, None, None),
@@ -174,11 +184,22 @@ class SequenceContext(NoveltyDetector):
     def _span(self) -> int:
         return (self.delay - 1) * self.lag
 
+    def _validate_params(self) -> None:
+        super()._validate_params()
+        if self._span() > MAX_SPAN:  # each within its rule, the history they make is not
+            raise ValueError(f"SequenceContext keeps (delay - 1) * lag scans of history, at most {MAX_SPAN}; "
+                             f"delay={self.delay} and lag={self.lag} make {self._span()}. Use a shorter lag "
+                             "or fewer scans in the embedding.")
+
     def _embed(self, X: np.ndarray) -> np.ndarray:
         return delay_embed(X, self.history_, self.delay, self.lag, bool(self.differences))
 
     # ------------------------------------------------------------------- hooks
     def _start(self, X: np.ndarray) -> None:
+        if self._span() * X.shape[1] > MAX_HISTORY:  # before anything is allocated
+            raise ValueError(f"SequenceContext would keep {self._span()} scans of {X.shape[1]} features of "
+                             f"history, more than {MAX_HISTORY} values (1 GiB); use a shorter lag or fewer "
+                             "scans in the embedding.")
         self.detector_ = build("detector", self.detector)
         self.history_ = np.repeat(X[:1], self._span(), axis=0)
         self.level_ = None
@@ -212,7 +233,9 @@ class SequenceContext(NoveltyDetector):
         if not isinstance(getattr(self, "detector_", None), NoveltyDetector):
             raise StateError("SequenceContext.detector_ must be a detector.")
         check_array_state(self, "history_", 2, shape=(self._span(), self.n_features_in_))
-        level = getattr(self, "level_", None)
+        if not hasattr(self, "level_"):
+            raise StateError("SequenceContext state is missing 'level_' (None before anything is learned).")
+        level = self.level_
         if level is not None and not (isinstance(level, numbers.Real) and np.isfinite(level)):
             raise StateError(f"SequenceContext.level_ must be None or a finite number; got {level!r}.")
         if self.detector_.n_features_in_ != self.n_features_in_ * self.delay:

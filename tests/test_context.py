@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import novelty
+from novelty._component import StateError
 from novelty.context import SequenceContext, delay_embed, leaky_integrate
 from novelty.registry import build
 
@@ -94,3 +95,29 @@ def test_a_batch_learner_is_fitted_on_the_embedded_scans():
 def test_bad_parameters_are_refused(params, message):
     with pytest.raises((ValueError, TypeError), match=message):
         SequenceContext(**params).fit(LINE)
+
+
+@pytest.mark.parametrize("params, message", [
+    ({"delay": 1025}, r"The 'delay' parameter of SequenceContext must be an int in \[1, 1024\]"),
+    ({"lag": 2**21}, r"The 'lag' parameter of SequenceContext must be an int in \[1, 2\*\*20\]"),
+    ({"delay": 1000, "lag": 2000}, r"keeps \(delay - 1\) \* lag scans of history, at most 1048576"),
+])
+def test_parameters_that_size_the_history_are_bounded(params, message):
+    with pytest.raises(ValueError, match=message):
+        SequenceContext("nearest-memory", **params).fit(np.zeros((3, 2)))
+
+
+def test_a_history_too_large_for_its_features_is_refused_before_it_is_made():
+    det = SequenceContext("nearest-memory", delay=2, lag=2**20)
+    with pytest.raises(ValueError, match=r"would keep 1048576 scans of 200 features of history"):
+        det.fit(np.zeros((3, 200)))
+
+
+def test_a_state_without_its_level_is_refused():
+    """A model file whose metadata lost ``level_`` loaded and then failed with AttributeError
+    at the first score; it is refused when read, as every damaged state is."""
+    det = SequenceContext("nearest-memory", delay=2).fit(np.random.default_rng(0).random((10, 2)))
+    det._check_state()
+    del det.level_
+    with pytest.raises(StateError, match="missing 'level_'"):
+        det._check_state()

@@ -1,10 +1,9 @@
 """The habituating novelty filter: the paper's constants, the Euler descent of a
 repeated scan, learning on and off, streaming == batch, scikit-learn conventions,
-parameter routing and determinism."""
+the novelty rules and determinism (routing, the parts after fitting, calibrating and the
+range warning: tests/_filter)."""
 
 import copy
-import re
-import warnings
 
 import numpy as np
 import pytest
@@ -12,16 +11,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 from sklearn.base import clone
-from sklearn.metrics import roc_auc_score
-from sklearn.model_selection import GridSearchCV, StratifiedKFold
-from sklearn.pipeline import make_pipeline
-from sklearn.preprocessing import MinMaxScaler
 
 import novelty
 from novelty.clusterers.som import SOM
 from novelty.filter import HabituatingFilter
 from novelty.habituation.stanley import StanleySynapse
-from novelty.registry import InvalidParameterError
 
 TAU, ALPHA = 3.33, 1.05
 REST = 1 - 1 / ALPHA
@@ -264,60 +258,6 @@ def test_fit_predict_and_clone():
     assert repr(twin.get_params(deep=True)) == repr(det.get_params(deep=True))
 
 
-# ---------------------------------------------------------- from_params
-def test_from_params_routes_flat_names():
-    det = novelty.make("hsom", n_rows=5, alpha=1.2, threshold=0.3, method="exact", random_state=4)
-    assert det.clusterer.n_rows == 5 and det.clusterer.n_columns == 10
-    assert det.synapse.alpha == 1.2 and det.synapse.method == "exact"
-    assert det.threshold == 0.3 and det.random_state == 4
-    assert det.synapse.tau_winner == 3.33  # untouched
-
-
-def test_from_params_routes_prefixed_names():
-    det = novelty.make("habituating", clusterer="som", synapse="stanley",
-                       clusterer__radius=2, synapse__tau_winner=5.0)
-    assert det.clusterer.radius == 2 and det.synapse.tau_winner == 5.0
-
-
-class RateSynapse(StanleySynapse):
-    """A synapse that (oddly) also has a learning rate, to make a name ambiguous."""
-
-    def __init__(self, tau_winner=3.33, learning_rate=0.5):
-        super().__init__(tau_winner=tau_winner)
-        self.learning_rate = learning_rate
-
-
-def test_from_params_refuses_an_ambiguous_name_and_accepts_the_prefixed_one():
-    with pytest.raises(InvalidParameterError, match=r"'learning_rate' is taken by both .*clusterer__learning_rate"):
-        HabituatingFilter.from_params(clusterer="som", synapse=RateSynapse(), learning_rate=0.3)
-    det = HabituatingFilter.from_params(clusterer="som", synapse=RateSynapse(), synapse__learning_rate=0.3)
-    assert det.synapse.learning_rate == 0.3 and det.clusterer.learning_rate == 0.25
-
-
-def test_from_params_with_an_instance_clones_it():
-    som = SOM(n_rows=3)
-    det = HabituatingFilter.from_params(clusterer=som, n_columns=2)
-    assert (det.clusterer.n_rows, det.clusterer.n_columns) == (3, 2)
-    assert som.n_columns == 10
-
-
-@pytest.mark.parametrize(
-    "params, expected",
-    [
-        ({"n_row": 5}, [r"'n_row' \(did you mean 'n_rows'\?\)", "n_rows", "tau_winner", "threshold"]),
-        ({"bogus": 1}, [r"Unknown parameter 'bogus'", "learning_rate", "alpha", "n_epochs"]),
-        ({"clusterer__tau_winner": 5}, [r"'tau_winner'", r"clusterer 'som'", "n_rows", "radius"]),
-        ({"synapse__n_rows": 5}, [r"'n_rows'", r"synapse 'stanley'", "tau_winner", "alpha"]),
-    ],
-)
-def test_unknown_names_list_the_valid_ones(params, expected):
-    with pytest.raises(InvalidParameterError) as info:
-        novelty.make("hsom", **params)
-    for pattern in expected:
-        assert re.search(pattern, str(info.value)), (pattern, str(info.value))
-    assert isinstance(info.value, TypeError) and isinstance(info.value, ValueError)
-
-
 # ---------------------------------------------------------- determinism
 def test_same_seed_same_outputs_different_seed_different_weights():
     X = data(50)
@@ -417,50 +357,9 @@ def test_efficacy_rule_is_the_default_and_keeps_no_calibration():
     assert not hasattr(det, "calibration_scans_")
 
 
-def test_match_scale_is_calibrated_on_the_first_scans():
-    from novelty.match_scale import nearest_distinct
-
-    X = data(300)
-    det = mismatch(calibration_scans=50).fit(X)
-    assert det.match_scale_ == np.quantile(nearest_distinct(X[:50]), 0.9)
-    np.testing.assert_array_equal(det.calibration_scans_, X[:50])
-    det.partial_fit(data(20, seed=1))
-    assert det.match_scale_ == np.quantile(nearest_distinct(X[:50]), 0.9)  # fixed once calibrated
-    assert mismatch(match_quantile=0.5, calibration_scans=50).fit(X).match_scale_ < det.match_scale_
-
-
 def test_a_given_match_scale_is_used_as_is():
     det = mismatch(match_scale=0.7).fit(data())
     assert det.match_scale_ == 0.7 and not hasattr(det, "calibration_scans_")
-
-
-@pytest.mark.parametrize("name,params", [
-    ("hsom", {"novelty_rule": "mismatch", "calibration_scans": 30}),
-    ("gwr-novelty", {"novelty_rule": "mismatch", "activity_threshold": "auto",
-                     "firing_condition": False, "new_unit_wins": True, "calibration_scans": 30}),
-    ("gwr-explore", {"calibration_scans": 30}),
-])
-def test_mismatch_streaming_scan_by_scan_equals_batches(name, params):
-    X = data(80)
-    whole = novelty.make(name, **params)
-    out_whole = whole.stream(X)
-    parts = novelty.make(name, **params)
-    out_parts = np.concatenate([parts.stream(X[:7]), parts.stream(X[7:45]), parts.stream(X[45:])])
-    one = novelty.make(name, **params)
-    out_one = np.array([one.score_learn_one(x) for x in X])
-    np.testing.assert_array_equal(out_whole, out_parts)
-    np.testing.assert_array_equal(out_whole, out_one)
-    assert whole.match_scale_ == parts.match_scale_ == one.match_scale_ is not None
-    np.testing.assert_array_equal(whole.novelty(X), one.novelty(X))
-
-
-def test_before_two_distinct_scans_the_novelty_is_the_efficacy():
-    det = mismatch()
-    x = np.full(4, 0.5)
-    out = [det.score_learn_one(x) for _ in range(3)]
-    assert det.match_scale_ is None
-    np.testing.assert_allclose(out, [1.0, euler(1), euler(2)], rtol=0, atol=1e-15)
-    assert det.score_one(np.ones(4)) == det.synapse_.efficacy_[det.clusterer_.match(np.ones(4)).winner]
 
 
 @pytest.mark.parametrize("name,params", [
@@ -491,87 +390,6 @@ def test_mismatch_rule_parameters_are_checked():
             small(**params).fit(data())
 
 
-# ------------------------------------------- set_params: the short names make accepts
-def test_set_params_takes_a_components_short_name_as_make_does():
-    det = novelty.make("hsom", n_rows=2, n_columns=2)
-    assert det.set_params(alpha=1.2, n_rows=3, threshold=0.4) is det
-    assert (det.synapse.alpha, det.clusterer.n_rows, det.threshold) == (1.2, 3, 0.4)
-    params = det.get_params()
-    assert "alpha" not in params and params["synapse__alpha"] == 1.2  # each parameter reported once
-    assert clone(det).get_params()["synapse__alpha"] == 1.2
-    assert repr(clone(det)) == repr(novelty.make("hsom", n_rows=3, n_columns=2, alpha=1.2, threshold=0.4))
-
-
-def test_a_grid_over_a_short_name_searches_the_component():
-    rng = np.random.default_rng(0)
-    X = np.vstack([rng.uniform(0.0, 0.2, (20, 2)), rng.uniform(0.8, 1.0, (4, 2))])
-    y = np.r_[np.zeros(20), np.ones(4)]
-    auc = lambda est, X, y: roc_auc_score(y, -est.score_samples(X))  # noqa: E731
-    search = GridSearchCV(novelty.make("hsom", n_rows=2, n_columns=2), {"alpha": [1.05, 1.2]},
-                          scoring=auc, cv=StratifiedKFold(2), error_score="raise").fit(X, y)
-    assert search.best_estimator_.synapse.alpha in (1.05, 1.2)
-    assert np.isfinite(search.cv_results_["mean_test_score"]).all()
-    pipe = make_pipeline(MinMaxScaler(), novelty.make("hsom", n_rows=2, n_columns=2))
-    assert pipe.set_params(habituatingfilter__tau_winner=5.0)[-1].synapse.tau_winner == 5.0
-
-
-def test_set_params_refuses_an_ambiguous_short_name_as_make_does():
-    det = HabituatingFilter.from_params(clusterer="som", synapse=RateSynapse())
-    with pytest.raises(ValueError, match=r"'learning_rate' is taken by both the clusterer and the synapse; "
-                                         r"write clusterer__learning_rate or synapse__learning_rate"):
-        det.set_params(learning_rate=0.3)
-    assert det.synapse.learning_rate == 0.5 and det.clusterer.learning_rate == 0.25
-
-
-def test_set_params_names_the_full_name_of_an_unknown_one():
-    det = novelty.make("hsom")
-    with pytest.raises(ValueError, match=r"Unknown parameter 'alpah' \(did you mean 'alpha', that is "
-                                         r"'synapse__alpha'\?\) for HabituatingFilter\. Valid parameters: "
-                                         r".*synapse__alpha"):
-        det.set_params(alpah=1.2)
-
-
-def test_set_params_by_short_name_needs_the_component_as_an_instance():
-    det = HabituatingFilter(synapse="stanley")
-    with pytest.raises(ValueError, match=r"'alpha' is a parameter of the synapse 'stanley', given by name; "
-                                         r"set synapse= to an instance"):
-        det.set_params(alpha=1.2)
-    assert det.set_params(synapse=StanleySynapse(), alpha=1.2).synapse.alpha == 1.2
-
-
-# ---------------------------------- scans far outside the range the parameters assume
-def far_outside(n=30, seed=0):
-    """Standardised scans: what StandardScaler in front of the detector gives, far outside [0, 1]."""
-    return np.random.default_rng(seed).normal(0.0, 3.0, (n, 3))
-
-
-def test_scans_far_outside_the_assumed_range_warn_once():
-    det = novelty.make("hsom", n_rows=2, n_columns=2)
-    with pytest.warns(novelty.ScanRangeWarning, match=r"starts its units uniformly in \[0, 1\] \(init='uniform'\).*"
-                                         r"these scans lie far outside it \(from -\d.* to \d.*\).*MinMaxScaler") as seen:
-        det.fit(far_outside())
-        det.partial_fit(far_outside(seed=1))
-        det.learn_one(far_outside(1)[0])
-    assert len([w for w in seen if "far outside" in str(w.message)]) == 1
-
-
-@pytest.mark.parametrize("name, params, X", [
-    ("hsom", {}, np.random.default_rng(0).uniform(-0.5, 1.5, (30, 3))),  # near [0, 1]: not far
-    ("hsom", {"init": "sample"}, far_outside()),  # units on the scans: no range assumed
-    ("hsom", {"init_range": (-10.0, 10.0)}, far_outside()),  # the range given
-    ("kmeans-stanley", {}, far_outside()),  # units placed on the scans
-])
-def test_no_warning_where_the_scans_fit_what_the_parameters_assume(name, params, X):
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        novelty.make(name, **params).fit(X)
-
-
-def test_a_preset_on_units_drawn_in_0_1_warns_too():
-    with pytest.warns(novelty.ScanRangeWarning, match=r"GrowWhenRequired .*init='uniform'.*far outside"):
-        novelty.make("gwr-novelty").fit(far_outside())
-
-
 # ------------------------------------------------------------ the novelty range
 @pytest.mark.parametrize("params", [dict(stimulus=2.0), dict(synapse__alpha=0.5), dict(y0=1e12), dict(y0=1.5)])
 def test_parameters_whose_efficacy_leaves_0_1_are_refused(params):
@@ -590,39 +408,3 @@ def test_at_the_edge_of_the_range_novelty_stays_in_it(params):
     scan = np.full(4, 0.5)
     novelties = np.array([det.score_learn_one(scan) for _ in range(200)])
     assert novelties.min() >= -1e-12 and novelties.max() <= 1.0
-
-
-# --------------------------------------------------- parameters after fitting
-def test_part_parameters_changed_after_fitting_refuse_learning_until_refit(tmp_path):
-    X = data()
-    det = small().fit(X)
-    before = det.synapse_.efficacy_.copy()
-    det.set_params(synapse__alpha=1.5)
-    for learn in (lambda: det.learn_one(X[0]), lambda: det.partial_fit(X[:3]), lambda: det.stream(X[:3])):
-        with pytest.raises(ValueError, match=r"synapse__alpha changed after fitting.*Refit"):
-            learn()
-    np.testing.assert_array_equal(det.synapse_.efficacy_, before)  # nothing learned
-    assert det.novelty(X).shape == (60,)  # scoring reads the fitted state
-    det.save(tmp_path / "m.npz")
-    with pytest.raises(ValueError, match="synapse__alpha changed after fitting"):
-        novelty.load(tmp_path / "m.npz").learn_one(X[0])  # the same after a round trip
-    det.fit(X)  # a refit learns with the new value
-    assert det.synapse_.alpha == 1.5
-    det.learn_one(X[0])
-    det.set_params(clusterer__learning_rate=0.5, synapse__alpha=1.5)
-    with pytest.raises(ValueError, match=r"clusterer__learning_rate changed"):
-        det.learn_one(X[0])
-    det.set_params(clusterer__learning_rate=0.25)  # set back: learning goes on
-    det.learn_one(X[0])
-
-
-def test_a_nan_part_parameter_is_refused_alike_by_every_learning_call():
-    X = data()
-    for learn in (lambda d: d.learn_one(X[0]), lambda d: d.stream(X[:3]), lambda d: d.fit(X)):
-        det = small().fit(X)
-        det.set_params(synapse__alpha=float("nan"))
-        with pytest.raises(ValueError, match="alpha"):
-            learn(det)
-        unfitted = small(synapse__alpha=float("nan"))
-        with pytest.raises(ValueError, match="alpha"):
-            learn(unfitted)

@@ -1,7 +1,7 @@
 """One compiled loop for every clusterer x synapse pair, generated from one template.
 
 The driver presents the rows of ``X`` in order, as
-:func:`novelty.filter.learn_stream` does, and composes the clusterer's step
+:func:`novelty._kernels.reference.learn_stream` does, and composes the clusterer's step
 functions with the synapse's (their modules are named by the components'
 ``_kernel`` declarations, :class:`~novelty._component.KernelSpec`)::
 
@@ -56,6 +56,7 @@ import tempfile
 
 import numpy as np
 
+from .._atomic import write_atomically
 from .._validation.scans import CLEARED
 from . import tricks
 from .children import run_self_check
@@ -378,21 +379,13 @@ def _remove(path: str) -> None:
 
 def _write(path: str, source: str) -> bool:
     """Write the driver unless the file holds exactly that already (a rewrite would make
-    numba's cache of it stale); atomically, so a concurrent reader never sees half. Returns
-    whether it wrote."""
+    numba's cache of it stale); atomically (:func:`novelty._atomic.write_atomically`), so a
+    concurrent reader never sees half. Returns whether it wrote."""
     try:
         with open(path, encoding="utf-8") as f:
             if f.read() == source:
                 return False
     except OSError:
         pass
-    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(source)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    write_atomically(path, lambda f: f.write(source), text=True)
     return True

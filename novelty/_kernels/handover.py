@@ -1,9 +1,10 @@
-"""From the reference to the kernel mid-stream, while the kernel compiles.
+"""From the reference to the compiled loop mid-stream, while the loop compiles.
 
-A kernel gives the same state as the reference, so a stream can switch from
-one to the other between two scans without a trace in the results: the
-stand-in runs the reference block by block and hands over as soon as the
-kernel is ready.
+The compiled engine gives the state the reference gives, so a stream can
+switch from one to the other between two scans without a trace in the
+results: while the pair's driver compiles in the background, the engine's
+``learn`` runs the reference block by block and hands over as soon as the
+driver is ready, taking the state the reference left into its own arrays.
 """
 
 from __future__ import annotations
@@ -12,29 +13,30 @@ from typing import Callable
 
 import numpy as np
 
+from .reference import ReferenceEngine
+
 __all__ = ["handing_over"]
 
 #: scans learned by the reference between two looks at the compiler thread
 BLOCK = 256
 
 
-def handing_over(compiled, kernel: Callable, reference: Callable) -> Callable:
-    """``kernel``'s stand-in while ``compiled`` (a :class:`.compiling.Compiled`) compiles."""
+def handing_over(compiling, engine) -> Callable:
+    """``learn(X, dt, stimulus, distances=None)`` for ``engine`` (a compiled engine) while
+    ``compiling`` (its driver, a :class:`.compiling.Compiled`) compiles."""
 
-    def learn(net, syn, X, dt, stimulus, distances=None, winners=None):
-        if winners is not None:  # only tests ask for winners, and they wait for the kernel
-            raise ValueError("winners are only reported by the compiled kernel")
+    def learn(X, dt, stimulus, distances=None):
         novelty = np.empty(X.shape[0])
         d = np.empty(X.shape[0]) if distances is None else distances
         start = 0
         while start < X.shape[0]:
-            if compiled.module is not None or compiled.get() is not None:
-                novelty[start:] = kernel(net, syn, X[start:], dt[start:], stimulus,
-                                         distances=d[start:])
+            if compiling.module is not None or compiling.get() is not None:
+                engine.start_driving(compiling)
+                novelty[start:] = engine.learn(X[start:], dt[start:], stimulus, d[start:])
                 break
             stop = start + BLOCK
-            novelty[start:stop] = reference(net, syn, X[start:stop], dt[start:stop], stimulus,
-                                            distances=d[start:stop])
+            novelty[start:stop] = ReferenceEngine.learn(engine, X[start:stop], dt[start:stop], stimulus,
+                                                        d[start:stop])
             start = stop
         return novelty
 

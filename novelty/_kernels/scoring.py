@@ -73,12 +73,18 @@ def score(module, W: np.ndarray, y: np.ndarray, X: np.ndarray,
     not C-contiguous) and ``y`` are read, never written. ``winners`` (int64) and ``distances``,
     if given, receive each scan's winning row and its squared distance.
     """
+    if W.ndim != 2 or y.shape != (W.shape[0],) or X.ndim != 2 or X.shape[1] != W.shape[1]:
+        # the kernel indexes by these shapes: refused before it reads past an array
+        raise ValueError(f"Scoring needs weights (units, features), one efficacy per unit and scans "
+                         f"of the weights' features; got {W.shape}, {y.shape} and {X.shape}.")
     n = X.shape[0]
     out = np.empty(n)
     rows = np.empty(n, dtype=np.int64) if winners is None else winners
     dist = np.empty(n) if distances is None else distances
+    if rows.shape != (n,) or rows.dtype != np.int64 or dist.shape != (n,) or dist.dtype != np.float64:
+        raise ValueError("Scoring writes one int64 winner and one float64 distance per scan.")
     kernel = module.nearest
-    W = _contiguous(W)
+    W, y = _contiguous(W), _contiguous(y)
 
     n_chunks = -(-n // CHUNK)
     # one chunk (score_one, a short batch): no threads, and no asking how many (an

@@ -57,7 +57,7 @@ def _bound(value) -> str:
     """A bound as a reader types it: a large power of two as ``2**53``, other numbers short."""
     if isinstance(value, int) and value > 2**20 and (value + 1) & value == 0:
         return f"2**{value.bit_length()} - 1"
-    if isinstance(value, int) and value > 2**20 and value & (value - 1) == 0:
+    if isinstance(value, int) and value >= 2**20 and value & (value - 1) == 0:
         return f"2**{value.bit_length() - 1}"
     return f"{value:g}"
 

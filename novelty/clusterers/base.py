@@ -146,6 +146,11 @@ class Clusterer(Component):
             return float(low), float(high)
         return None
 
+    def _check_units(self, n_units: int) -> None:
+        """Raise :class:`StateError` if the parameters leave no room for ``n_units`` units (a
+        map's grid fixes their number): what the compiled steps index by, checked before they
+        run (:mod:`novelty._kernels.state`) and when a model file is read. None by default."""
+
     def grows_for(self, rows: np.ndarray, distances: np.ndarray) -> np.ndarray | None:
         """Which inputs would be given a new unit of their own if they were learned now.
 

@@ -228,8 +228,10 @@ class SOM(Clusterer):
     def _check_state(self) -> None:
         super()._check_state()
         check_int_state(self, "n_updates_")
-        if self.weights_.shape[0] != self.n_rows * self.n_columns:
-            raise StateError(
-                f"SOM.weights_ has {self.weights_.shape[0]} units; a {self.n_rows} x "
-                f"{self.n_columns} map has {self.n_rows * self.n_columns}."
-            )
+        self._check_units(self.weights_.shape[0])
+
+    def _check_units(self, n_units: int) -> None:
+        # the compiled steps index the grid's neighbourhoods by n_rows and n_columns
+        if n_units != self.n_rows * self.n_columns:
+            raise StateError(f"SOM.weights_ has {n_units} units; a {self.n_rows} x "
+                             f"{self.n_columns} map has {self.n_rows * self.n_columns}.")

@@ -3,7 +3,7 @@
 A component that declares compiled steps (``_kernel``, a
 :class:`~novelty._component.KernelSpec`) promises that the filter's compiled
 loop, composed with any partner that has compiled steps too, learns what the readable loop
-(:func:`novelty.filter.learn_stream`) learns: the same novelty for every
+(:func:`novelty._kernels.reference.learn_stream`) learns: the same novelty for every
 scan and the same learned state, bit for bit, or within a tolerance the
 component declares (``_kernel_tolerance``, a relative difference; 0 when it
 does not declare one). A clusterer that declares ``"nearest-unit"``

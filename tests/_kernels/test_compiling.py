@@ -1,4 +1,4 @@
-"""The kernels' machinery: compiling in a child process, readiness, hand-over, fallbacks.
+"""The kernels' machinery: compiling in a child process, readiness, fallbacks.
 
 No timing is asserted (``benchmarks/perf.py`` measures speed).
 """
@@ -17,10 +17,9 @@ import pytest
 
 import novelty
 from novelty import _kernels
-from novelty._kernels import children, compiling, drivers, handover
-from novelty.filter import learn_stream
+from novelty._kernels import children, choice, compiling, drivers
 
-from .kernel_helpers import assert_same_filter, corridor, reference_only
+from .kernel_helpers import corridor, reference_only
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
 
@@ -28,7 +27,7 @@ pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba ke
 def test_missing_numba_falls_back_with_one_warning(monkeypatch):
     monkeypatch.setattr(compiling, "_all", [])
     monkeypatch.setattr(drivers, "_drivers", {})
-    monkeypatch.setattr(_kernels, "_NEAREST", compiling.Compiled("novelty._kernels._nearest"))
+    monkeypatch.setattr(choice, "NEAREST", compiling.Compiled("novelty._kernels._nearest"))
     for name in [n for n in sys.modules if n.startswith("novelty_driver_")]:
         monkeypatch.delitem(sys.modules, name)
     monkeypatch.delitem(sys.modules, "novelty._kernels._nearest")
@@ -50,42 +49,12 @@ def test_missing_numba_falls_back_with_one_warning(monkeypatch):
     np.testing.assert_array_equal(got, expected)
 
 
-def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
-    """While the kernel compiles, the reference learns; the kernel takes over when ready."""
-    monkeypatch.setattr(handover, "BLOCK", 100)
-    X = corridor(1000)
-    det = novelty.make("hsom").fit(X[:1])
-    compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()
-    module = compiled.wait()
-    calls = []
-
-    def reference_blocks(som, syn, X, dt, stimulus, distances=None):
-        calls.append(len(X))
-        if len(calls) == 3:
-            monkeypatch.setattr(compiled, "module", module)  # "compiled" after 3 blocks
-        return learn_stream(som, syn, X, dt, stimulus, distances=distances)
-
-    monkeypatch.setattr(compiled, "module", None)  # "compiling"
-    monkeypatch.setattr("novelty.filter.learn_stream", reference_blocks)
-    engine = _kernels.engine_for(det.clusterer_, det.synapse_)
-    kernel = engine.learner(reference_blocks)
-    assert kernel is not None and kernel != engine._learn  # the stand-in
-    got = det.stream(X)
-    assert calls == [100, 100, 100]
-    monkeypatch.undo()
-    with reference_only():
-        ref = novelty.make("hsom").fit(X[:1])
-        expected = ref.stream(X)
-    np.testing.assert_array_equal(got, expected)
-    assert_same_filter(det, ref)
-
-
 def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
     """A second process finds the pair's driver file and its machine code: no compiling."""
     code = ("import sys, time, numpy as np, novelty\n"
             "from novelty import _kernels\n"
             "det = novelty.make('hsom', n_rows=3, n_columns=3).fit(np.zeros((2, 5)))\n"
-            "compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()\n"
+            "compiled = _kernels.engine.driver_of(det.clusterer_, det.synapse_)\n"
             "cached = compiled._cached()\n"
             "assert compiled.wait(timeout=600) is not None, compiled.error\n"
             "stats = compiled.module.drive.stats\n"
@@ -105,17 +74,17 @@ def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="needs fork()")
 def test_a_child_forked_while_compiling_compiles_for_itself(monkeypatch):
     monkeypatch.setattr(compiling, "_all", [])  # the stand-in below leaves no trace
-    monkeypatch.setattr(_kernels, "_NEAREST", compiling.Compiled("novelty._kernels._nearest"))
+    monkeypatch.setattr(choice, "NEAREST", compiling.Compiled("novelty._kernels._nearest"))
     blocker = threading.Event()
     busy = threading.Thread(target=blocker.wait)  # a background compiler busy with another module
     busy.start()
     monkeypatch.setattr(compiling, "_worker", busy)
-    monkeypatch.setattr(compiling, "_queue", [_kernels._NEAREST])  # queued behind it
-    _kernels._NEAREST.started = _kernels._NEAREST.background = True
+    monkeypatch.setattr(compiling, "_queue", [choice.NEAREST])  # queued behind it
+    choice.NEAREST.started = choice.NEAREST.background = True
     try:
         pid = os.fork()
         if pid == 0:  # the child: no compiler thread, no queue; it must compile for itself
-            ok = _kernels._NEAREST.wait(timeout=60) is not None
+            ok = choice.NEAREST.wait(timeout=60) is not None
             os._exit(0 if ok else 1)
         _, status = os.waitpid(pid, 0)
         assert os.waitstatus_to_exitcode(status) == 0

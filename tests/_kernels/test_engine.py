@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import contextlib
 import copy
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,8 +20,8 @@ from sklearn.base import clone
 
 import novelty
 from novelty import _kernels, registry
-from novelty.clusterers.gwr import GrowWhenRequired
-from novelty.filter import HabituatingFilter, learn_stream
+from novelty._kernels.choice import engine_of
+from novelty.filter import HabituatingFilter
 
 from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
                             kernel_learn, reference_learn, reference_only, rules, streams,
@@ -289,12 +288,9 @@ def _declares_kernel(registry_, name) -> bool:
 
 
 # Registered components that declare compiled steps (the package's own; a plugin's
-# when it does) must equal the reference; the others (an installed plugin's, such as
-# the example's "leader") must run the reference and say so.
+# when it does) must equal the reference (the others run it: test_choice).
 CLUSTERERS = [n for n in registry.clusterers.names() if _declares_kernel(registry.clusterers, n)]
 SYNAPSES = [n for n in registry.synapses.names() if _declares_kernel(registry.synapses, n)]
-UNDECLARED = [(r, n) for r in (registry.clusterers, registry.synapses) for n in r.names()
-              if not _declares_kernel(r, n)]
 
 
 @pytest.mark.parametrize("synapse_name", SYNAPSES)
@@ -348,43 +344,6 @@ def test_the_package_compiles_every_component_it_registers():
         own = [n for n in registry_.names()
                if registry_.get(n).__module__.startswith("novelty.")]
         assert own and all(_declares_kernel(registry_, n) for n in own), registry_.kind
-
-
-@pytest.mark.parametrize("registry_, name", UNDECLARED or [pytest.param(None, None, marks=pytest.mark.skip(
-    reason="no registered component without compiled steps (the example plugin is not installed)"))])
-def test_a_registered_component_without_compiled_steps_runs_the_reference(registry_, name):
-    X = corridor(30)
-    part = "clusterer" if registry_ is registry.clusterers else "synapse"
-    det = HabituatingFilter(**{part: name}).fit(X)
-    assert det.compiled_.startswith("reference (")
-    assert _kernels.learner(det.clusterer_, det.synapse_, learn_stream) is None
-
-
-def test_path_says_which_loop_runs(monkeypatch):
-    root = Path(__file__).resolve().parents[2]
-    monkeypatch.syspath_prepend(str(root / "examples" / "novelty-plugin-example" / "src"))
-    from novelty_plugin_example import LeaderClusterer  # declares no compiled steps
-
-    class MySOM(novelty.SOM):  # may change the arithmetic: not compiled unless it says so
-        pass
-
-    X = corridor(50)
-    assert novelty.make("hsom").fit(X).compiled_ == "compiled"
-    for clusterer in (MySOM(n_rows=2, n_columns=2), LeaderClusterer()):
-        det = HabituatingFilter(clusterer=clusterer).fit(X)
-        assert det.compiled_.startswith("reference (") and type(clusterer).__name__ in det.compiled_
-        assert _kernels.learner(det.clusterer_, det.synapse_, learn_stream) is None
-    gwr = HabituatingFilter(clusterer=GrowWhenRequired(firing="wang-hsu")).fit(X)
-    assert gwr.compiled_.startswith("reference (")
-    with reference_only():
-        assert novelty.make("hsom").fit(X).compiled_ == "reference (NOVELTY_NO_KERNELS)"
-    hsom = novelty.make("hsom").fit(X)
-    hsom.clusterer_.weights_ = np.asfortranarray(hsom.clusterer_.weights_)
-    got = hsom.stream(X)  # a layout the driver does not take is copied in and out
-    ref = novelty.make("hsom").fit(X)
-    with reference_only():
-        np.testing.assert_array_equal(got, ref.stream(X))
-    assert_same_filter(hsom, ref)
 
 
 @pytest.mark.parametrize("n_features", [1, 3, 7, 8, 9, 16, 24, 64, 127, 128, 129, 200, 300])
@@ -449,6 +408,7 @@ def _activity_threshold(det):
 
 def _removed_unit_ids(det):
     det.clusterer_.unit_ids_ = det.clusterer_.unit_ids_ + 100
+    det.clusterer_.next_unit_id_ += 100
 
 
 CHANGES = [("hsom", {}, change) for change in (
@@ -478,100 +438,6 @@ def test_what_changed_between_two_compiled_calls_is_used(preset, params, change)
         expected = slow.stream(X[60:])
     np.testing.assert_array_equal(got, expected)
     assert_same_filter(fast, slow)
-
-
-# ------------------------------------------------------------------ the filter's engine
-def test_the_filter_owns_its_engine_dropped_by_set_params_and_load(tmp_path):
-    """One engine per fitted filter, kept between calls; set_params drops it, a loaded model
-    and a copy build their own."""
-    X = corridor(60)
-    det = novelty.make("hsom").fit(X[:20])
-    engine = det._engine
-    assert engine is not None and engine.clusterer is det.clusterer_ and engine.synapse is det.synapse_
-    det.stream(X[20:30])
-    assert det._engine is engine
-    det.set_params(threshold=0.4)
-    assert getattr(det, "_engine", None) is None
-    det.score_learn_one(X[30])
-    assert det._engine is not engine and det._engine.clusterer is det.clusterer_
-    assert copy.deepcopy(det)._engine is None
-    det.save(tmp_path / "m.npz")
-    loaded = novelty.load(tmp_path / "m.npz")
-    assert loaded._engine is None
-    np.testing.assert_array_equal(loaded.stream(X[31:]), det.stream(X[31:]))
-    assert loaded._engine.clusterer is loaded.clusterer_
-
-
-# ------------------------------------------------------------------ one scan at a time
-def _counting_single_scans(det, monkeypatch, method="learn_one"):
-    """What the engine's single-scan call (``learn_one`` or ``score_one``) answered, a list that
-    grows: True for a scan it took, False for one it left to the general path."""
-    answers = []
-    engine = det._engine
-    original = getattr(engine, method)
-
-    def counting(*args):
-        done = original(*args)
-        answers.append(done)
-        return done
-
-    monkeypatch.setattr(engine, method, counting)
-    return answers
-
-
-def test_single_scans_learn_and_score_compiled_as_the_reference(monkeypatch):
-    X = corridor(80, n_features=5, seed=4)
-    fast, slow = novelty.make("hsom", n_rows=4, n_columns=4), novelty.make("hsom", n_rows=4, n_columns=4)
-    fast.fit(X[:10])
-    assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None and _kernels.wait() is not None
-    learned = _counting_single_scans(fast, monkeypatch)
-    scored = _counting_single_scans(fast, monkeypatch, "score_one")
-    got = [fast.score_learn_one(x) for x in X[10:40]] + [fast.learn_one(x).score_one(x) for x in X[40:]]
-    with reference_only():
-        slow.fit(X[:10])
-        expected = [slow.score_learn_one(x) for x in X[10:40]] + [slow.learn_one(x).score_one(x) for x in X[40:]]
-    assert learned == [True] * 70 and scored == [True] * 40  # all by the single-scan calls
-    np.testing.assert_array_equal(got, expected)
-    assert_same_filter(fast, slow)
-
-
-NEAR_BOUND = np.full(4, 0.5e100 * (1 - 1e-7))  # within the bound, not within the drivers' margin
-
-
-@pytest.mark.parametrize("method", ["score_learn_one", "score_one"])
-@pytest.mark.parametrize("scan, message", [
-    (np.array([0.5, np.nan, 0.5, 0.5]), r"^Input x for HabituatingFilter contains NaN or infinity\.$"),
-    (np.array([0.5, 0.5, -np.inf, 0.5]), r"^Input x for HabituatingFilter contains NaN or infinity\.$"),
-    (np.full(4, 1e155), r"^Input x for HabituatingFilter has a scan of Euclidean norm above 1e\+100"),
-    (np.full(4, 0.6e100), r"^Input x for HabituatingFilter has a scan of Euclidean norm above 1e\+100"),
-    (np.full(5, 0.5), r"^x has 5 features, but HabituatingFilter is expecting 4 features as input\.$"),
-    (np.full(3, 0.5), r"^x has 3 features, but HabituatingFilter is expecting 4 features as input\.$"),
-    (NEAR_BOUND, None),
-])
-def test_the_single_scan_calls_leave_every_refusal_to_the_general_check(monkeypatch, method, scan, message):
-    """The compiled calls' own check of a scan lets through only what the general check
-    accepts; on anything else nothing is learned and the general path says what is wrong, as
-    before."""
-    X = corridor(20, n_features=4, seed=5)
-    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X)
-    assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
-    slow = copy.deepcopy(det)
-    answers = _counting_single_scans(det, monkeypatch, "learn_one" if method == "score_learn_one" else method)
-    det.score_learn_one(X[0])
-    det.score_one(X[1])
-    with reference_only():
-        slow.score_learn_one(X[0])
-    assert answers == [True]
-    if message is None:
-        got = getattr(det, method)(scan)
-        with reference_only():
-            expected = getattr(slow, method)(scan)
-        assert got == expected
-    else:
-        with pytest.raises(ValueError, match=message):
-            getattr(det, method)(scan)
-    assert answers == [True, False]  # the compiled call refused it (and learned nothing)
-    assert_same_filter(det, slow)
 
 
 def test_the_components_show_the_engines_state():
@@ -650,7 +516,7 @@ def test_a_growing_network_gets_room_to_grow(single):
     det = novelty.make("gng-stanley", insertion_interval=5).fit(X[:2])
     slow = copy.deepcopy(det)
     assert _kernels.wait(det.clusterer_, det.synapse_) is not None
-    moves, capacity = 0, det._kernel_engine().capacity
+    moves, capacity = 0, engine_of(det).capacity
     for block in np.array_split(X[2:], 50):
         if single:
             for x in block:

@@ -9,6 +9,7 @@ import pytest
 import novelty
 from novelty import _kernels
 from novelty._kernels import children, drivers, tricks
+from novelty._kernels.engine import driver_of
 
 from .kernel_helpers import corridor, reference_only
 
@@ -37,7 +38,7 @@ def test_a_self_check_that_crashes_turns_the_tricks_off_with_the_same_results(un
         det = novelty.make("hsom").fit(X[:1])
         assert _kernels.wait(det.clusterer_, det.synapse_) is not None
     assert tricks.known() is False and not tricks.enabled()
-    compiled = _kernels.engine_for(det.clusterer_, det.synapse_).compiled()
+    compiled = driver_of(det.clusterer_, det.synapse_)
     with open(compiled.file, encoding="utf-8") as f:
         assert "tricks on numba's internals: not used (plain)" in f.read()
     assert len(list(unchecked.glob("tricks-*.failed"))) == 1  # kept for later processes

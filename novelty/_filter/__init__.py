@@ -1,0 +1,1 @@
+"""What leaves the habituating filter for a home of its own: routing, the parts after fitting, calibrating, single scans."""

@@ -1,0 +1,141 @@
+"""The engine interface: what a habituating filter asks of the arithmetic of its fitted pair.
+
+A filter (:class:`novelty.filter.HabituatingFilter`) holds one engine for its
+fitted clusterer and synapse bank and never asks which kind it is. Two kinds
+implement the same methods:
+
+- :class:`~novelty._kernels.reference.ReferenceEngine`, numpy: the readable loop
+  (:func:`~novelty._kernels.reference.learn_stream`), the specification;
+- :class:`~novelty._kernels.engine.CompiledEngine`, numba: the same arithmetic in
+  one generated loop per pair, equal to the reference bit for bit.
+
+Which one a filter gets, and why, is decided in one place,
+:func:`novelty._kernels.choice.engine_of`; what an engine reads is checked in
+one place before it reads it, :func:`novelty._kernels.state.check_state`.
+
+The methods (``X`` a C-contiguous float64 batch the filter checked, ``x`` one scan):
+
+- ``learn(X, dt, stimulus, distances=None) -> novelty``: the rows of ``X`` in
+  order, learning, the network growing and shrinking as it needs; each row's
+  novelty is its winner's efficacy before the row is learned, ``distances``
+  receives each row's squared distance to its winner;
+- ``learn_one(x, stimulus) -> bool``: one scan learned, its novelty and squared
+  distance then in ``novelty1[0]`` and ``distance1[0]``; False, with nothing
+  learned, for a scan outside the checks (as many features as the units, a
+  sum of squares within the norm bound): the filter's general path then says
+  what is wrong with it;
+- ``score(X) -> (rows, distances, efficacy)``: without learning, each scan's
+  nearest unit (row), its squared distance and its efficacy;
+- ``score_one(x) -> bool``: ``score`` of one scan, into ``scored1``
+  (efficacy, squared distance, row); False as ``learn_one``;
+- ``nearest(X) -> (rows, distances)``: the nearest units alone.
+
+**Freshness.** An engine reads the parts when it is made; setting an
+attribute of a part (or of an object it was told to :meth:`Engine.watch`)
+counts a change (:meth:`novelty._component.Component.__setattr__`), so
+:meth:`Engine.holds` compares one count per part with those it saw (and
+:meth:`Engine.fresh` one per object it watches: the owner's too). Its own
+writes (the counters, a grown state's views) it takes as seen.
+"""
+
+from __future__ import annotations
+
+import operator
+
+import numpy as np
+
+from .._component import StateError
+from .compiling import disabled
+from .state import check_finite, parts_of
+
+__all__ = ["Engine", "ONE"]
+
+#: an object's count of changes (:meth:`novelty._component.Component.__setattr__`)
+_CHANGES = operator.attrgetter("_changes")
+
+#: the elapsed time of a scan learned alone, without a timestamp
+ONE = np.ones(1)
+ONE.setflags(write=False)
+
+
+class Engine:
+    """The arithmetic of one fitted (clusterer, synapse) pair (module docstring).
+
+    ``why`` says which engine it is, as the filter's ``compiled_`` reports it:
+    ``"compiled"`` or ``"reference (<why>)"``.
+    """
+
+    why = "reference"
+    #: the kernels (:class:`~novelty._kernels.compiling.Compiled`) still compiling in the
+    #: background when the engine was chosen: once one is ready (or failed), another is chosen
+    pending: tuple = ()
+
+    def __init__(self, clusterer, synapse):
+        self.clusterer, self.synapse = clusterer, synapse
+        self.parts = parts_of(clusterer, synapse)
+        #: the features of a scan: the weights' columns (checked against the filter's scans)
+        self.width = clusterer.weights_.shape[1]
+        self.novelty1, self.distance1 = np.empty(1), np.empty(1)
+        self.scored1 = np.empty(3)
+        self._watched = self.parts
+        self._seen = None  # nothing confirmed by an owner yet (watch): never fresh
+        self._parts_seen = ()
+        self._disabled = disabled()
+
+    # ------------------------------------------------------------ freshness
+    def holds(self) -> bool:
+        """Whether the engine holds the parts as they are: none was set since it read them (or
+        since its own writes), and ``NOVELTY_NO_KERNELS`` says what it said when the engine was
+        chosen, and no kernel it waited for is ready since. Every call asks it first; when it fails, the filter has another engine chosen
+        (:func:`novelty._kernels.choice.engine_of`)."""
+        return (tuple(map(_CHANGES, self.parts)) == self._parts_seen and disabled() == self._disabled
+                and not (self.pending and _settled(self.pending)))
+
+    def fresh(self) -> bool:
+        """:meth:`holds`, and none of the objects given to :meth:`watch` (the owner, its
+        unfitted parts) was set since: one comparison, what a single scan's call asks."""
+        return (tuple(map(_CHANGES, self._watched)) == self._seen and disabled() == self._disabled
+                and not (self.pending and _settled(self.pending)))
+
+    def watch(self, *others) -> None:
+        """Watch ``others`` besides the parts (:meth:`fresh`), all taken as seen now: the owner
+        calls it once its checks passed."""
+        self._watched = others + self.parts
+        self._seen = None
+        self.seen()
+
+    def seen(self) -> None:
+        """Take the parts as they are now as seen (after the engine's own writes); and every
+        watched object, once something is watched."""
+        self._parts_seen = tuple(map(_CHANGES, self.parts))
+        if self._watched is not self.parts:
+            self._seen = tuple(map(_CHANGES, self._watched))
+
+    # ---------------------------------------------------------- the checks
+    def check_scans(self, X: np.ndarray) -> None:
+        """Refuse scans of another width than the units' (``n_features_in_`` set since)."""
+        if X.shape[1] != self.width:
+            raise StateError(f"The scans have {X.shape[1]} features but the clusterer's weights have "
+                             f"{self.width}: n_features_in_ no longer matches the learned state. Refit.")
+
+    def state_arrays(self) -> list:
+        """``(name, array)`` of the float state the engine reads, for :func:`check_finite`."""
+        return [(f"{type(part).__name__}.{name}", value) for part in self.parts
+                for name, value in vars(part).items()
+                if name.endswith("_") and type(value) is np.ndarray and value.dtype.kind == "f"]
+
+    def check_values(self) -> None:
+        """:func:`check_finite` of the state: before every batch call (values written in place)."""
+        check_finite(self.state_arrays())
+
+    def __reduce__(self):
+        # an engine is scratch: a copy or a pickle of its filter makes its own
+        return _dropped, ()
+
+
+def _settled(pending) -> bool:
+    return any(c.module is not None or c.error is not None for c in pending)
+
+
+def _dropped():
+    return None
