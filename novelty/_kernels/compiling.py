@@ -62,22 +62,27 @@ _queue_lock = threading.Lock()
 _handed_over_at_exit = False
 
 
+#: held while a generated driver is loaded: a module is in ``sys.modules`` before its code has run
+_loading = threading.Lock()
+
+
 def load(name: str, file: str | None):
     """Import module ``name`` (from ``file`` when given: a generated driver)."""
-    module = sys.modules.get(name)
-    if module is not None:
-        return module
     if file is None:
-        return importlib.import_module(name)
-    spec = importlib.util.spec_from_file_location(name, file)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[name]
-        raise
-    return module
+        return importlib.import_module(name)  # the import system's own lock per module
+    with _loading:  # another thread's half-run module is never returned as loaded
+        module = sys.modules.get(name)
+        if module is not None:
+            return module
+        spec = importlib.util.spec_from_file_location(name, file)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        try:
+            spec.loader.exec_module(module)
+        except BaseException:
+            del sys.modules[name]
+            raise
+        return module
 
 
 def cache_files(stem: str, source: str, kinds: tuple = ("nbi", "nbc")) -> list[str]:
@@ -281,10 +286,11 @@ atexit.register(_hand_over_at_exit)
 def _after_fork_in_child() -> None:
     # The compiler thread does not survive fork(): a child forked while it ran would wait for
     # it forever, so it starts its own queue when it needs one.
-    global _worker, _queue_lock
+    global _worker, _queue_lock, _loading
     _queue.clear()
     _worker = None
     _queue_lock = threading.Lock()
+    _loading = threading.Lock()  # a thread that held it while loading did not come along
     for compiled in _all:
         if compiled.module is None and compiled.error is None:
             compiled.started = compiled.background = False
