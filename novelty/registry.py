@@ -314,6 +314,7 @@ detectors = Registry(
         "gng-wang-hsu": "novelty.presets:gng_wang_hsu",
         "hsom-mismatch": "novelty.presets:hsom_mismatch",
         "kmeans-stanley": "novelty.presets:kmeans_stanley",
+        "habituating-map": "novelty.maps.habituating_map:HabituatingMap",
         "kohonen-filter": "novelty.baselines.kohonen:KohonenNoveltyFilter",
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from ..sonar.simulate import simulate
 from ..sonar.tasks import make_task
+from .inputs import with_inputs
 
 __all__ = ["paper_a", "paper_a_star", "paper_b", "paper_c", "paper_control",
            "paper_a_to_a_star", "paper_a_to_b", "paper_a_to_c"]
@@ -57,7 +58,7 @@ def paper_control(run: int = 0, seed: int = 0, runs: int = 1):
     return _runs("control", run, seed, runs)
 
 
-def paper_a_to_a_star(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
+def paper_a_to_a_star(seed: int = 0, train_runs: int = 3, test_runs: int = 1, inputs: str = "ring"):
     """Task: learn corridor A, then patrol A* (door opened); scans perceiving the open door are novel.
 
     The paper's experiment 1 (Marsland et al., 2000, section 5.1). Training:
@@ -65,12 +66,12 @@ def paper_a_to_a_star(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     ``y = 1`` where the opened doorway, the office seen through it or its
     leaf shaped a reading (its frame is unchanged and not counted).
     """
-    return make_task("paper-a-to-a-star", "a", "a-star", ["door-r1-open"], seed=seed,
+    return with_inputs(make_task("paper-a-to-a-star", "a", "a-star", ["door-r1-open"], seed=seed,
                      train_runs=train_runs, test_runs=test_runs,
-                     description="Learn corridor A, patrol A* (door on the right at 3 m opened).")
+                     description="Learn corridor A, patrol A* (door on the right at 3 m opened)."), inputs)
 
 
-def paper_a_to_b(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
+def paper_a_to_b(seed: int = 0, train_runs: int = 3, test_runs: int = 1, inputs: str = "ring"):
     """Task: learn corridor A, then patrol B; scans perceiving door G (inset deeper than A's) are novel.
 
     The paper's experiment 2 (section 5.2): in B "the only place where the
@@ -78,12 +79,12 @@ def paper_a_to_b(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     those in the first corridor". Only door G is labelled; the rest of B is
     built like A.
     """
-    return make_task("paper-a-to-b", "a", "b", ["door-g"], seed=seed, train_runs=train_runs,
+    return with_inputs(make_task("paper-a-to-b", "a", "b", ["door-g"], seed=seed, train_runs=train_runs,
                      test_runs=test_runs,
-                     description="Learn corridor A, patrol corridor B (door G inset deeper).")
+                     description="Learn corridor A, patrol corridor B (door G inset deeper)."), inputs)
 
 
-def paper_a_to_c(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
+def paper_a_to_c(seed: int = 0, train_runs: int = 3, test_runs: int = 1, inputs: str = "ring"):
     """Task: learn corridor A, then patrol C; the deep doorway and the display boards are labelled novel.
 
     The paper's experiment 3 (section 5.3) names these as the causes of high
@@ -91,6 +92,6 @@ def paper_a_to_c(seed: int = 0, train_runs: int = 3, test_runs: int = 1):
     so unlabelled scans of C are not all "normal" in the sense of A: read
     scores on this task with that in mind.
     """
-    return make_task("paper-a-to-c", "a", "c", ["door-c1", "board-1", "board-2"], seed=seed,
+    return with_inputs(make_task("paper-a-to-c", "a", "c", ["door-c1", "board-1", "board-2"], seed=seed,
                      train_runs=train_runs, test_runs=test_runs,
-                     description="Learn corridor A, patrol corridor C (deep doorway, boards).")
+                     description="Learn corridor A, patrol corridor C (deep doorway, boards)."), inputs)

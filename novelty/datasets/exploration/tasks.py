@@ -46,6 +46,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...sonar.inspection import DIFFICULTIES, CorridorPlan, generate_corridor
+from ..inputs import with_inputs
 from .runs import FAMILIAR, Leg, exposures, from_runs, simulate_exploration  # noqa: F401  (read from here too)
 
 __all__ = ["Leg", "simulate_exploration", "from_runs", "exposures", "paper_tour", "open_door",
@@ -53,7 +54,8 @@ __all__ = ["Leg", "simulate_exploration", "from_runs", "exposures", "paper_tour"
 
 
 # ------------------------------------------------------------- named tasks
-def paper_tour(seed: int = 0, warmup: int = 3, runs_per_environment: int = 3, control_runs: int = 2):
+def paper_tour(seed: int = 0, warmup: int = 3, runs_per_environment: int = 3, control_runs: int = 2,
+               inputs: str = "ring"):
     """The paper's tour: learn corridor A, then explore A*, B, C and the open control area.
 
     The order of Marsland et al. (2000, sections 5.1-5.3): ``warmup`` runs of
@@ -65,34 +67,37 @@ def paper_tour(seed: int = 0, warmup: int = 3, runs_per_environment: int = 3, co
     prequential protocol scores each scan before learning it). C's brick and
     glass differ from A's walls throughout, so its untracked scans are not
     familiar in the sense of A: read C's scores with that in mind.
+    ``inputs="points"``: the rows of :func:`novelty.datasets.inputs.with_inputs`
+    (each environment's own coordinates, overlapping A's).
     """
     legs = [Leg("a")] * warmup + [Leg("a-star", ("door-r1-open",))] * runs_per_environment
     legs += [Leg("b", ("door-g",))] * runs_per_environment
     legs += [Leg("c", ("door-c1", "board-1", "board-2"))] * runs_per_environment
     legs += [Leg("control", whole=True)] * control_runs
-    return simulate_exploration("exploration-tour", legs, seed=seed, warmup=warmup,
-                                description="Learn corridor A, then A*, B, C and the control "
-                                            "area, in the paper's order.")
+    return with_inputs(simulate_exploration("exploration-tour", legs, seed=seed, warmup=warmup,
+                                            description="Learn corridor A, then A*, B, C and the control "
+                                                        "area, in the paper's order."), inputs)
 
 
-def open_door(seed: int = 0, warmup: int = 3, cycles: int = 5):
+def open_door(seed: int = 0, warmup: int = 3, cycles: int = 5, inputs: str = "ring"):
     """A door that stays open: learn corridor A, then A* (door opened) alternating with A.
 
     ``warmup`` runs of A, then ``cycles`` times [a run of A* with the door on
     the right at 3 m open, a run of A]. The tracked feature is the opened
     doorway (``door-r1-open``: the office seen through it and its leaf; its
-    frame is unchanged); it recurs every other run.
+    frame is unchanged); it recurs every other run. ``inputs``: as
+    :func:`paper_tour`'s.
     """
     if isinstance(cycles, bool) or not isinstance(cycles, (int, np.integer)) or cycles < 1:
         raise ValueError(f"cycles must be a positive int; got {cycles!r}.")
     legs = [Leg("a")] * warmup + [Leg("a-star", ("door-r1-open",)), Leg("a")] * cycles
-    return simulate_exploration("exploration-open-door", legs, seed=seed, warmup=warmup,
-                                description=f"Learn corridor A; then {cycles} cycles of A* (door "
-                                            "opened) and A.")
+    return with_inputs(simulate_exploration("exploration-open-door", legs, seed=seed, warmup=warmup,
+                                            description=f"Learn corridor A; then {cycles} cycles of A* "
+                                                        "(door opened) and A."), inputs)
 
 
 def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: int = 6,
-           change_at: int = 3, length: float = 18.0):
+           change_at: int = 3, length: float = 18.0, inputs: str = "ring"):
     """A new object each patrol: a generated corridor, recurring objects, one new object a run.
 
     ``warmup`` clean runs of a generated corridor
@@ -104,7 +109,8 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
     patrol ``change_at`` on, ``recurring-0`` is replaced by an object of
     another kind at the same place (``recurring-0-changed``): a known place
     that changes again, for the re-detection score. ``recurring-0``'s place is
-    drawn where an object of another kind stands clear too.
+    drawn where an object of another kind stands clear too. ``inputs``: as
+    :func:`paper_tour`'s.
     """
     if difficulty not in DIFFICULTIES:
         raise ValueError(f"Unknown difficulty {difficulty!r}; expected one of {', '.join(DIFFICULTIES)}.")
@@ -127,11 +133,11 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
         env = with_items(clean, here, f"{clean.name}-patrol-{p}").build()
         legs.append(Leg(env, tuple(item.id for _, item in here)))
     changes = {"recurring-0-changed": "recurring-0"} if change_at < patrols else {}
-    return simulate_exploration(
+    return with_inputs(simulate_exploration(
         "exploration-patrol", legs, seed=seed, warmup=warmup, changes=changes,
         description=f"Patrol a generated corridor ({difficulty}): two recurring objects and a new "
                     f"one each patrol; recurring-0 changes at patrol {change_at}.",
-        difficulty=difficulty)
+        difficulty=difficulty), inputs)
 
 
 def place_object(plan: CorridorPlan, makers: dict, rng, id: str, avoid: list, min_separation: float = 3.0,

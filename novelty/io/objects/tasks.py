@@ -44,8 +44,9 @@ from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from ..sweeps import RingMaker, read_sweeps
 from .labels import cast_all, passes, sightings
 from .placement import check_objects, draw_objects, read_objects
+from .points import points_columns, sweep_points
 
-__all__ = ["object_rings", "read_drive", "inspection_task", "exploration_task", "familiar_places",
+__all__ = ["object_rings", "object_inputs", "INPUTS", "read_drive", "inspection_task", "exploration_task", "familiar_places",
            "LABEL_DEFAULTS"]
 
 #: What counts as seeing an object: beams shortened by more than ``margin`` (m), at least ``min_beams``
@@ -85,6 +86,27 @@ def object_rings(sweeps: Sequence, sectors=16, reduce="min", threshold: float = 
     makers = [RingMaker(int(n), reduce) for n in scales]
     return np.array([np.concatenate([preprocess(make(s)[None], threshold)[0] for make in makers])
                      for s in sweeps])
+
+
+#: What a task's rows are: the paper's ring, or the ``points`` input (:mod:`novelty.maps.points`).
+INPUTS = ("ring", "points")
+
+
+def object_inputs(sweeps: Sequence, inputs: str = "ring", sectors=16, reduce="min",
+                  threshold: float = PAPER_THRESHOLD) -> np.ndarray:
+    """The rows of a task: the rings (:func:`object_rings`) or the ``points`` input (pose, ring, end points).
+
+    ``inputs="points"`` takes one number of ``sectors`` and the nearest echo
+    (:func:`novelty.io.objects.points.sweep_points`); its ring columns are
+    :func:`object_rings`'s.
+    """
+    if inputs not in INPUTS:
+        raise ValueError(f"inputs must be one of {', '.join(map(repr, INPUTS))}; got {inputs!r}.")
+    if inputs == "ring":
+        return object_rings(sweeps, sectors, reduce, threshold)
+    if reduce != "min":
+        raise ValueError(f"The points input places each sector's nearest echo (reduce='min'); got reduce={reduce!r}.")
+    return sweep_points(sweeps, sectors, threshold)
 
 
 def familiar_places(poses, known, radius: float = 1.0, max_turn: float = math.pi / 2) -> np.ndarray:
@@ -137,7 +159,11 @@ def _cast(sweeps, objects, threshold: float):
 
 
 def _metadata(objects, sweeps, path, options: dict) -> dict:
-    return {"source": str(path), "objects": [{"kind": type(o).__name__.lower(), **{
+    inputs = options.get("inputs", "ring")
+    layout = {"inputs": inputs}
+    if inputs == "points":
+        layout["columns"] = points_columns(int(options["sectors"]))
+    return {**layout, "source": str(path), "objects": [{"kind": type(o).__name__.lower(), **{
         k: (float(v) if isinstance(v, (int, float)) else v) for k, v in vars(o).items()}} for o in objects],
             "labels": {**LABEL_DEFAULTS, "within_m": options["threshold"]}, "sectors": options["sectors"],
             "reduce": options["reduce"], "threshold_m": float(options["threshold"]),
@@ -145,7 +171,8 @@ def _metadata(objects, sweeps, path, options: dict) -> dict:
 
 
 def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 4, seed: int = 0,
-                    min_passes: int = 1, sectors=16, reduce="min", threshold: float = PAPER_THRESHOLD,
+                    min_passes: int = 1, inputs: str = "ring", sectors=16, reduce="min",
+                    threshold: float = PAPER_THRESHOLD,
                     radius: float = 1.0, max_turn: float = math.pi / 2, topic=None, pose_topic=None,
                     base_frame=None, name: str | None = None) -> Dataset:
     """A hold-out task: learn the recording's first part as it was, then find the objects (module docstring).
@@ -160,6 +187,9 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
         once before they appear and ``min_passes`` times after.
     learn : float, default=0.5
         The share of the scans learned as recorded.
+    inputs : {"ring", "points"}, default="ring"
+        The rows: the paper's ring, or the ``points`` input (the pose, the
+        ring and each sector's end point in the world: :func:`object_inputs`).
     sectors, reduce, threshold
         The rings (:func:`object_rings`).
     radius, max_turn
@@ -175,12 +205,12 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
     later = np.arange(len(sweeps)) >= first
     test = later & (familiar_places(poses, poses[:first], radius, max_turn) | (which >= 0))
     twins = later & (which >= 0)
-    X = object_rings(cast.sweeps, sectors, reduce, threshold)
-    recorded = object_rings(cast.recorded, sectors, reduce, threshold)
+    X = object_inputs(cast.sweeps, inputs, sectors, reduce, threshold)
+    recorded = object_inputs(cast.recorded, inputs, sectors, reduce, threshold)
     take = np.r_[np.flatnonzero(~later), np.flatnonzero(test), np.flatnonzero(twins)]
     n_train, n_test, n_twin = int(first), int(test.sum()), int(twins.sum())
     seen_as = np.array([o.name for o in objects] + [FAMILIAR], dtype=object)[which]
-    meta = _metadata(objects, sweeps, path, dict(sectors=sectors, reduce=reduce, threshold=threshold))
+    meta = _metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce, threshold=threshold))
     meta.update(task=name or f"inspection-objects-{Path(path).name}", train_passes=1,
                 description="A recording learned as it was; virtual objects appear in its later part.",
                 test_parts={"with objects": n_test, "as recorded (the scans that see an object)": n_twin},
@@ -197,16 +227,20 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
 
 
 def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int = 20, n_objects: int = 4,
-                     seed: int = 0, min_passes: int = 3, sectors=16, reduce="min",
-                     threshold: float = PAPER_THRESHOLD, topic=None, pose_topic=None, base_frame=None,
+                     seed: int = 0, min_passes: int = 3, seen_before: int = 0, inputs: str = "ring", sectors=16,
+                     reduce="min", threshold: float = PAPER_THRESHOLD, topic=None, pose_topic=None, base_frame=None,
                      name: str | None = None) -> Dataset:
     """An exploration task: the objects appear after the warm-up and stay; exposures are passes (module docstring).
 
     Parameters
     ----------
-    path, objects, seed, n_objects, sectors, reduce, threshold, topic, pose_topic, base_frame
+    path, objects, seed, n_objects, inputs, sectors, reduce, threshold, topic, pose_topic, base_frame
         As :func:`inspection_task`; drawn objects are passed ``min_passes``
         times after they appear.
+    seen_before : int, default=0
+        Drawn objects stand where the robot looked at least this many times
+        before they appear (0: anywhere beside its later path, a place it may
+        meet for the first time with the object in it).
     warmup : float, default=0.3
         The share of the scans (whole runs) before the objects appear.
     run_scans : int, default=20
@@ -219,7 +253,7 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     if n_runs < 2:
         raise ValueError(f"{path}: {len(sweeps)} scans make {n_runs} run(s) of {run_scans}; use shorter runs.")
     warm = min(max(int(round(warmup * n_runs)), 1), n_runs - 1)
-    objects = _objects(sweeps, objects, warm * run_scans, seed, n_objects, min_passes, 0, threshold)
+    objects = _objects(sweeps, objects, warm * run_scans, seed, n_objects, min_passes, seen_before, threshold)
     cast, seen, which = _cast(sweeps, objects, threshold)
     poses, times = cast.poses, cast.times
     exposure = np.full(len(sweeps), -1, dtype=np.int64)
@@ -229,11 +263,11 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     run = np.minimum(np.arange(len(sweeps)) // run_scans, n_runs - 1)
     cuts = np.flatnonzero(np.diff(run)) + 1
     names = np.array([o.name for o in objects] + [FAMILIAR], dtype=object)[which]
-    X = object_rings(cast.sweeps, sectors, reduce, threshold)
+    X = object_inputs(cast.sweeps, inputs, sectors, reduce, threshold)
     label = name or f"exploration-objects-{Path(path).name}"
     task = from_runs(np.split(X, cuts), np.split(names, cuts), warmup=warm, name=label,
                      environments=[f"{Path(path).name}#{r}" for r in range(n_runs)])
-    meta = dict(task.metadata, **_metadata(objects, sweeps, path, dict(sectors=sectors, reduce=reduce,
+    meta = dict(task.metadata, **_metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce,
                                                                          threshold=threshold)))
     meta.update(task=label, run_scans=int(run_scans),
                 description="A recording driven on; virtual objects appear after the warm-up and stay.")

@@ -1,0 +1,275 @@
+"""A habituating map: the paper's novelty filter with the world's grid cells as its units (ours).
+
+Marsland, Nehmzow & Shapiro (2000) feed a scan to a clusterer, whose winning
+unit's habituating synapse gives the novelty; learning habituates it. Here
+the clusterer is the world itself, cut into square cells of side ``c``
+(``cell_size``), and a scan (the ``points`` input, :mod:`novelty.maps.points`:
+the robot's pose and each sector's end point in the world frame) stimulates
+every cell its echoes fall in. Each cell is a unit with a habituating synapse,
+Stanley's (1976) as in the paper (equation 3 of
+:mod:`novelty.habituation.stanley`, one step a scan, the cells not hit held):
+
+    y_c <- y_c + (dt / tau) (alpha (1 - y_c) - 1)      for every cell c hit     (1)
+
+A wall seen from anywhere falls in the same cells and habituates from every
+pass; an object standing where the robot saw free space falls in cells it
+has not hit before: novel at first sight, familiar after a few passes.
+
+Free-space evidence (ours). A cell never hit may be a wall the robot never
+saw from this side, or space it has seen through. Each cell also counts the
+scans whose rays passed through it (``passes``: from the robot's position
+towards each end point, sampled every ``c / 2``, stopping one cell short of
+an echo; a sector with no echo up to its end point). With
+``evidence="free"`` a hit cell's novelty is its efficacy weighted by that
+evidence,
+
+    v_c = y_c (1 - exp(-f_c / f0))      (f_c the cell's passes, f0 = ``free_scale``)    (2)
+
+so an echo is novel where the robot has seen free space and not yet got used
+to something there (a change), and not where it has seen nothing at all;
+``evidence="hits"`` takes ``v_c = y_c`` (every unseen cell novel, as a new
+place is to the paper's filter).
+
+A scan's novelty is the mean of the ``top`` largest ``v_c`` over the cells it
+hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
+few of the hundreds of cells a laser scan hits; ``top=None`` takes the mean
+over all of them. A scan with no echo scores 0.
+
+Learning a scan applies (1) to the cells it hits and adds one pass to the
+cells its rays crossed (a cell both hit and crossed in one scan counts as
+hit). Cells are made as they are first met; the state is three arrays over
+the cells met (their packed indices, sorted; efficacies; passes), so the
+memory grows with the area seen, not with the scans.
+
+References
+----------
+Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features of
+an environment using habituation. Proc. SAB 2000 (the filter; the synapse,
+equation 1).
+
+Stanley, J. C. (1976). Computer simulation of a model of habituation.
+Nature, 261, 146-148.
+
+Moravec, H. & Elfes, A. (1985). High resolution maps from wide angle sonar.
+Proc. IEEE ICRA (cells of the world marked occupied where echoes fall and
+empty along the rays: the evidence grid behind (2)).
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from .._component import StateError, check_array_state
+from .._validation import Interval, Options
+from ..detector import NoveltyDetector
+from ..habituation.stanley import euler_steps
+from .points import split_points
+
+#: The packed offsets of a cell's eight neighbours.
+_NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
+
+__all__ = ["HabituatingMap", "cell_keys", "MAX_COORDINATE"]
+
+#: Coordinates (m) beyond which a row is refused: the packed cell indices stay exact.
+MAX_COORDINATE = 1e6
+_SHIFT_I, _SHIFT_J = np.int64(1 << 30), np.int64(1 << 31)
+
+
+def cell_keys(points, cell_size: float) -> np.ndarray:
+    """The packed index of cell (i, j) = floor((x, y) / c) of each point: ``(i + 2^30) 2^32 + j + 2^31``.
+
+    Exact for |i| < 2^30 and |j| < 2^31 (coordinates within :data:`MAX_COORDINATE`
+    at cells of 1 mm or more), and increasing with (i, j) in that order.
+
+    >>> cell_keys([[0.1, 0.1], [0.5, -0.1]], 0.4).tolist() == [2**62 + 2**31, (2**30 + 1) * 2**32 + 2**31 - 1]
+    True
+    """
+    ij = np.floor(np.asarray(points, dtype=np.float64).reshape(-1, 2) / cell_size).astype(np.int64)
+    return ((ij[:, 0] + _SHIFT_I) << np.int64(32)) + (ij[:, 1] + _SHIFT_J)
+
+
+class HabituatingMap(NoveltyDetector):
+    """Grid cells of the world as the units of a habituating filter (module docstring; ours).
+
+    Parameters
+    ----------
+    cell_size : float, default=0.4
+        The side of a cell (m).
+    evidence : {"free", "hits"}, default="free"
+        A hit cell's novelty: its efficacy weighted by the free space seen
+        there (2), or its efficacy alone.
+    free_scale : float, default=2.0
+        ``f0`` in (2): the passes at which the weight reaches 1 - 1/e.
+    top : int or None, default=3
+        A scan's novelty is the mean of its ``top`` most novel hit cells;
+        None: of all its hit cells.
+    tau : float, default=3.33
+        The synapses' time constant (the paper's winner's).
+    alpha : float, default=1.05
+        Their recovery rate (the paper's); an efficacy never falls below ``1 - 1/alpha``.
+    threshold : float, default=0.5
+        Novelty above which :meth:`predict` says novel.
+    contamination : "auto" or float in (0, 0.5], default="auto"
+
+    Attributes
+    ----------
+    cells_ : ndarray of int64, shape (n_cells,)
+        The cells met, as :func:`cell_keys`, increasing.
+    efficacy_ : ndarray of shape (n_cells,)
+        Each cell's synapse (1: never hit).
+    passes_ : ndarray of shape (n_cells,)
+        The scans whose rays crossed each cell.
+    n_features_in_ : int
+
+    Examples
+    --------
+    A corridor along x with walls at y = +-2 (two sectors, left and right,
+    T = 4 m), the robot at x = 0.1 and 1.1; then a box at y = 0.5 where the
+    left sector's ray had crossed free space once (weight 1 - 1/e): its one
+    novel cell among the ``top`` three gives 0.632 / 3:
+
+    >>> corridor = lambda x, y_left, near_left: [x, 0.0, 0.0, near_left, 0.5, x, x, y_left, -2.0]
+    >>> det = HabituatingMap(cell_size=0.5, free_scale=1.0).fit([corridor(0.1, 2.0, 0.5), corridor(1.1, 2.0, 0.5)])
+    >>> det.novelty([corridor(1.1, 2.0, 0.5), corridor(1.1, 0.5, 0.875)]).round(3).tolist()
+    [0.0, 0.211]
+    """
+
+    _parameter_rules = {
+        "cell_size": Interval(numbers.Real, 1e-3, 1e3),
+        "evidence": Options(("free", "hits")),
+        "free_scale": Interval(numbers.Real, 0, 1e6, closed="right"),
+        "top": Interval(numbers.Integral, 1, None, allow_none=True),
+        "tau": Interval(numbers.Real, 0, None, closed="neither"),
+        "alpha": Interval(numbers.Real, 0, None, closed="neither"),
+        "tau_neighbour": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
+        "threshold": Interval(numbers.Real, None, None),
+    }
+
+    def __init__(self, cell_size=0.4, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
+                 tau_neighbour=None, threshold=0.5, contamination="auto"):
+        self.tau_neighbour = tau_neighbour
+        self.cell_size = cell_size
+        self.evidence = evidence
+        self.free_scale = free_scale
+        self.top = top
+        self.tau = tau
+        self.alpha = alpha
+        self.threshold = threshold
+        self.contamination = contamination
+
+    def _validate_params(self) -> None:
+        super()._validate_params()
+        if self.tau < self.alpha:
+            raise ValueError(f"The 'tau' parameter of HabituatingMap must be at least alpha ({self.alpha}) for "
+                             f"the Euler step to stay in [1 - 1/alpha, 1]. Got {self.tau} instead.")
+
+    # ------------------------------------------------------------------ the rows
+    def _rows(self, X: np.ndarray):
+        poses, near, ends = split_points(X, type(self).__name__)
+        if np.abs(poses[:, :2]).max() > MAX_COORDINATE or np.abs(ends).max() > MAX_COORDINATE:
+            raise ValueError(f"{type(self).__name__}: a pose or end point lies more than {MAX_COORDINATE:g} m "
+                             "from the world's origin; give poses in metres in a local frame (odom or map).")
+        return poses, near, ends
+
+    def _cells(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
+        """The cells one scan hits, and those its rays cross (not hit), as sorted unique keys."""
+        c = float(self.cell_size)
+        hit = near > 0
+        hits = np.unique(cell_keys(ends[hit], c))
+        d = ends - pose[:2]
+        length = np.hypot(d[:, 0], d[:, 1])
+        reach = np.where(hit, length - c, length)
+        step = c / 2
+        counts = np.maximum(np.floor(reach / step), 0).astype(np.int64)
+        beam = np.repeat(np.arange(len(ends)), counts)
+        along = (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts) + 0.5) * step
+        unit = d / np.where(length > 0, length, 1.0)[:, None]
+        crossed = np.unique(cell_keys(pose[:2] + along[:, None] * unit[beam], c))
+        return hits, np.setdiff1d(crossed, hits, assume_unique=True)
+
+    def _slots(self, keys: np.ndarray) -> np.ndarray:
+        """The slot of each key among the cells met, -1 for a cell not met yet."""
+        at = np.searchsorted(self.cells_, keys)
+        known = at < self.cells_.size
+        known[known] = self.cells_[at[known]] == keys[known]
+        return np.where(known, at, -1)
+
+    # ------------------------------------------------------------------ novelty
+    def _score(self, hits: np.ndarray) -> float:
+        if hits.size == 0:
+            return 0.0
+        slots = self._slots(hits)
+        met = slots >= 0
+        y = np.ones(hits.size)
+        y[met] = self.efficacy_[slots[met]]
+        if self.evidence == "free":
+            passes = np.zeros(hits.size)
+            passes[met] = self.passes_[slots[met]]
+            y = y * -np.expm1(-passes / self.free_scale)
+        if self.top is None:
+            return float(y.mean())
+        k = int(self.top)
+        return float(np.sort(y)[-k:].sum() / k)
+
+    def _novelty(self, X: np.ndarray) -> np.ndarray:
+        poses, near, ends = self._rows(X)
+        return np.array([self._score(self._cells(poses[i], near[i], ends[i])[0]) for i in range(X.shape[0])])
+
+    def _first_novelty(self) -> float:
+        # an empty map: every cell unseen, novel by its efficacy, never seen free
+        return 1.0 if self.evidence == "hits" else 0.0
+
+    def _novelty_bounds(self) -> tuple[float, float]:
+        return 0.0, 1.0
+
+    # ------------------------------------------------------------------ learning
+    def _start(self, X: np.ndarray) -> None:
+        self._rows(X[:1])
+        self.cells_ = np.empty(0, dtype=np.int64)
+        self.efficacy_ = np.empty(0)
+        self.passes_ = np.empty(0)
+
+    def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        poses, near, ends = self._rows(X)
+        out = np.empty(X.shape[0])
+        for i in range(X.shape[0]):
+            hits, crossed = self._cells(poses[i], near[i], ends[i])
+            out[i] = self._score(hits)
+            self._meet(np.union1d(hits, crossed))
+            if self.tau_neighbour is not None:
+                around = np.setdiff1d(np.unique((hits[:, None] + _NEIGHBOURS[None, :]).ravel()), hits)
+                self._meet(around)
+                at = self._slots(around)
+                self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau_neighbour, float(dt[i]),
+                                                 self.alpha, 1.0)
+            self.efficacy_[self._slots(hits)] = euler_steps(self.efficacy_[self._slots(hits)], 1.0, self.tau,
+                                                            float(dt[i]), self.alpha, 1.0)
+            self.passes_[self._slots(crossed)] += 1.0
+        return out
+
+    def _meet(self, keys: np.ndarray) -> None:
+        """Add the cells of ``keys`` not met yet (unhabituated, never crossed), keeping the keys sorted."""
+        new = keys[self._slots(keys) < 0]
+        if new.size == 0:
+            return
+        at = np.searchsorted(self.cells_, new)
+        self.cells_ = np.insert(self.cells_, at, new)
+        self.efficacy_ = np.insert(self.efficacy_, at, 1.0)
+        self.passes_ = np.insert(self.passes_, at, 0.0)
+
+    def _check_state(self) -> None:
+        super()._check_state()
+        cells = check_array_state(self, "cells_", 1, "i")
+        n = cells.size
+        efficacy = check_array_state(self, "efficacy_", 1, shape=(n,))
+        passes = check_array_state(self, "passes_", 1, shape=(n,))
+        if n > 1 and np.any(np.diff(cells) <= 0):
+            raise StateError("HabituatingMap.cells_ must be increasing (each cell once).")
+        floor = 1.0 - 1.0 / self.alpha
+        if n and (efficacy.min() < floor - 1e-9 or efficacy.max() > 1.0 + 1e-9 or passes.min() < 0):
+            raise StateError(f"HabituatingMap.efficacy_ must lie in [{floor:.4g}, 1] and passes_ be >= 0.")
+        if (self.n_features_in_ - 3) % 3 or self.n_features_in_ < 6:
+            raise StateError(f"HabituatingMap.n_features_in_ must be 3 + 3n (the 'points' input); "
+                             f"got {self.n_features_in_}.")

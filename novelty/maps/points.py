@@ -1,0 +1,117 @@
+"""The ``points`` input: a scan as the robot's pose, the paper's ring and each sector's end point in the world.
+
+A memory that knows *where* something was seen needs the robot's pose and
+where each echo lies in the world; the paper's ring alone is what the robot
+sees from its own centre, wherever it stands. The ``points`` input carries
+both, one row a scan, ``3 + 3 n`` columns for a ring of ``n`` sectors::
+
+    x, y, heading                  the robot's pose in the world frame (m, m, rad; REP 103/105)
+    near_0 ... near_{n-1}          the paper's ring: 1 - min(r_k, T) / T (Marsland et al. 2000, 4.1)
+    x_0 ... x_{n-1}                each sector's end point in the world frame (m)
+    y_0 ... y_{n-1}
+
+A sector's end point is where its nearest echo lies; a sector with no echo
+within the threshold ``T`` (``near`` = 0) has its end point ``T`` along its
+direction, as far as its beams saw free space. The ring's columns are the
+ring input itself, so a detector of rings reads the same ring here, with the
+pose and the points beside it. The layout is ours; it holds any sensor whose
+rays start near the robot's centre (a laser's mount, a sonar ring's radius).
+
+Where the rows come from: a recording's sweeps
+(:func:`novelty.io.objects.points.sweep_points`: each sector's nearest
+beam, mounts included) or a ring of sensors at known bearings
+(:func:`ring_points`: the simulated sonar ring). :func:`split_points` reads
+rows back and refuses any that do not have the layout.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["POSE_COLUMNS", "points_columns", "split_points", "check_points", "ring_points"]
+
+#: The pose's columns, first in every row.
+POSE_COLUMNS = ("x", "y", "heading")
+
+
+def points_columns(n_sectors: int) -> list[str]:
+    """The names of the ``3 + 3 n`` columns.
+
+    >>> points_columns(2)
+    ['x', 'y', 'heading', 'near_0', 'near_1', 'x_0', 'x_1', 'y_0', 'y_1']
+    """
+    return [*POSE_COLUMNS, *(f"{part}_{k}" for part in ("near", "x", "y") for k in range(n_sectors))]
+
+
+def check_points(X, who: str = "This detector") -> int:
+    """The number of sectors of rows ``X`` in the ``points`` layout; a ValueError naming it otherwise."""
+    X = np.asarray(X)
+    d = X.shape[-1] if X.ndim else 0
+    if X.ndim != 2 or d < 6 or (d - len(POSE_COLUMNS)) % 3:
+        raise ValueError(
+            f"{who} reads rows of the 'points' input: the robot's pose (x, y, heading), n nearness values "
+            f"in [0, 1], then the n end points' x and y in the world frame (3 + 3n columns, n >= 1); got "
+            f"{d} columns. Give the task inputs='points' (a recording's or a simulated task's option; "
+            "novelty.maps.points).")
+    n = (d - len(POSE_COLUMNS)) // 3
+    near = X[:, 3:3 + n]
+    if np.any(near < 0) or np.any(near > 1):
+        raise ValueError(f"{who} reads rows of the 'points' input, whose columns 3 to {2 + n} are the ring's "
+                         f"nearness in [0, 1]; got values from {near.min():.4g} to {near.max():.4g}. Are these "
+                         "rows a ring without the pose?")
+    return n
+
+
+def split_points(X, who: str = "This detector") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Rows of the ``points`` layout as (poses (m, 3), nearness (m, n), end points (m, n, 2)).
+
+    >>> poses, near, ends = split_points([[0.0, 0.0, 0.0, 0.5, 0.0, 2.0, 4.0, 0.0, 0.0]])
+    >>> near.tolist(), ends.tolist()
+    ([[0.5, 0.0]], [[[2.0, 0.0], [4.0, 0.0]]])
+    """
+    X = np.asarray(X, dtype=np.float64)
+    n = check_points(X, who)
+    return X[:, :3], X[:, 3:3 + n], np.stack([X[:, 3 + n:3 + 2 * n], X[:, 3 + 2 * n:]], axis=-1)
+
+
+def ring_points(X, poses, bearings, threshold: float, offset: float = 0.0) -> np.ndarray:
+    """Rings of sensors at fixed ``bearings`` as ``points`` rows.
+
+    Sensor ``k`` points ``bearings[k]`` (rad, counter-clockwise from the
+    robot's front) and sits ``offset`` m from the robot's centre on that
+    axis (a sonar ring's radius); its reading ``near`` in the paper's
+    encoding is a range ``r = T (1 - near)`` from the sensor, so its end
+    point lies ``offset + r`` from the centre along the axis (``offset + T``
+    where ``near`` = 0: no echo, free that far).
+
+    Parameters
+    ----------
+    X : array-like of shape (m, n)
+        The rings, each value ``1 - min(r, T) / T``.
+    poses : array-like of shape (m, 3)
+        The robot's pose at each ring (x, y, heading).
+    bearings : array-like of shape (n,)
+    threshold : float
+        ``T`` (m).
+    offset : float, default=0.0
+
+    Examples
+    --------
+    >>> row = ring_points([[0.5, 0.0]], [[1.0, 0.0, np.pi / 2]], [0.0, np.pi], 4.0, offset=0.2)
+    >>> row.round(3).tolist()   # ahead (north) 2.2 m, behind (south) 4.2 m
+    [[1.0, 0.0, 1.571, 0.5, 0.0, 1.0, 1.0, 2.2, -4.2]]
+    """
+    X = np.asarray(X, dtype=np.float64)
+    poses = np.asarray(poses, dtype=np.float64)
+    bearings = np.asarray(bearings, dtype=np.float64).reshape(-1)
+    if X.ndim != 2 or X.shape[1] != bearings.size or poses.shape != (X.shape[0], 3):
+        raise ValueError(f"Expected rings (m, n), poses (m, 3) and n bearings; got {X.shape}, {poses.shape} and "
+                         f"{bearings.size} bearings.")
+    if not threshold > 0 or not offset >= 0:
+        raise ValueError(f"threshold must be positive and offset >= 0 (m); got {threshold!r} and {offset!r}.")
+    reach = offset + threshold * (1.0 - np.clip(X, 0.0, 1.0))
+    axis = poses[:, 2:3] + bearings[None, :]
+    ex = poses[:, 0:1] + reach * np.cos(axis)
+    ey = poses[:, 1:2] + reach * np.sin(axis)
+    heading = (poses[:, 2:3] + np.pi) % (2 * np.pi) - np.pi
+    return np.hstack([poses[:, :2], heading, X, ex, ey])
