@@ -67,7 +67,7 @@ _LAZY = {
 
 #: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
 _SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing",
-                "rules")
+                "rules", "maps")
 
 
 def __getattr__(name: str) -> Any:

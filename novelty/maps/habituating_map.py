@@ -80,7 +80,7 @@ _SHIFT_I, _SHIFT_J = np.int64(1 << 30), np.int64(1 << 31)
 def cell_keys(points, cell_size: float) -> np.ndarray:
     """The packed index of cell (i, j) = floor((x, y) / c) of each point: ``(i + 2^30) 2^32 + j + 2^31``.
 
-    Exact for |i| < 2^30 and |j| < 2^31 (coordinates within :data:`MAX_COORDINATE`
+    Exact for ``|i| < 2^30`` and ``|j| < 2^31`` (coordinates within :data:`MAX_COORDINATE`
     at cells of 1 mm or more), and increasing with (i, j) in that order.
 
     >>> cell_keys([[0.1, 0.1], [0.5, -0.1]], 0.4).tolist() == [2**62 + 2**31, (2**30 + 1) * 2**32 + 2**31 - 1]
@@ -136,6 +136,9 @@ class HabituatingMap(NoveltyDetector):
     [0.0, 0.211]
     """
 
+    #: the rows it reads: the ``points`` input (:mod:`novelty.maps.points`), not any rows
+    input_layout = "points"
+
     _parameter_rules = {
         "cell_size": Interval(numbers.Real, 1e-3, 1e3),
         "evidence": Options(("free", "hits")),
@@ -158,6 +161,25 @@ class HabituatingMap(NoveltyDetector):
         self.alpha = alpha
         self.threshold = threshold
         self.contamination = contamination
+
+    @classmethod
+    def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
+        """Rows of the points input for generic checks: a robot driving along a corridor 4 m wide.
+
+        Eight sectors all round; the walls at y = +-2 m, the robot's lateral
+        position and heading wandering by a seeded random walk, no echo beyond 4 m.
+        """
+        rng = np.random.default_rng(seed)
+        x = np.linspace(0.0, 0.1 * n, n)
+        y = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -1.0, 1.0)
+        heading = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -0.5, 0.5)
+        bearings = heading[:, None] + np.arange(8) * (np.pi / 4)
+        s = np.sin(bearings)
+        with np.errstate(divide="ignore"):
+            r = np.where(s > 0, (2.0 - y[:, None]) / s, np.where(s < 0, (-2.0 - y[:, None]) / s, np.inf))
+        r = np.minimum(r, 4.0)
+        X = np.c_[x, y, heading, 1.0 - r / 4.0, x[:, None] + r * np.cos(bearings), y[:, None] + r * s]
+        return X
 
     def _validate_params(self) -> None:
         super()._validate_params()

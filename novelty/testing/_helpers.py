@@ -16,6 +16,18 @@ def _data(seed: int = 0, n: int = 120, n_features: int = N_FEATURES) -> np.ndarr
     return np.clip(0.5 + np.cumsum(steps, axis=0), 0.0, 1.0)
 
 
+def _rows(component, seed: int = 0, n: int = 120) -> np.ndarray:
+    """Rows ``component`` reads: :func:`_data`, or its own example where it reads a layout of its own.
+
+    A detector that reads rows of a stated layout (``input_layout``, e.g. the
+    ``points`` input of :mod:`novelty.maps.points`) gives example rows of it
+    (``_example_rows(seed, n)``) for the checks.
+    """
+    if getattr(component, "input_layout", None) is not None:
+        return np.asarray(type(component)._example_rows(seed, n), dtype=np.float64)
+    return _data(seed, n)
+
+
 def _state_arrays(obj) -> dict[str, np.ndarray]:
     """Every learned array of ``obj`` and of its nested components, by path."""
     arrays, values, children = obj._export_state()

@@ -12,7 +12,7 @@ from sklearn.base import clone
 from ..detector import NoveltyDetector
 from ..persistence import load
 from ..registry import detectors
-from ._helpers import _assert_same_state, _check, _data, _state_arrays
+from ._helpers import _assert_same_state, _check, _rows, _state_arrays
 
 __all__ = ["installed_detectors"]
 
@@ -24,7 +24,7 @@ def installed_detectors() -> list[str]:
 
 @_check
 def check_detector_fit_and_novelty(d: NoveltyDetector) -> None:
-    X = _data()
+    X = _rows(d)
     det = clone(d).fit(X)
     out = det.novelty(X)
     assert out.shape == (X.shape[0],) and np.all(np.isfinite(out))
@@ -37,7 +37,7 @@ def check_detector_fit_and_novelty(d: NoveltyDetector) -> None:
 
 @_check
 def check_detector_novelty_is_pure(d: NoveltyDetector) -> None:
-    X = _data()
+    X = _rows(d)
     det = clone(d).fit(X)
     before = _state_arrays(det)
     first = det.novelty(X)
@@ -52,14 +52,14 @@ def check_detector_novelty_is_pure(d: NoveltyDetector) -> None:
 
 @_check
 def check_detector_deterministic(d: NoveltyDetector) -> None:
-    X = _data()
+    X = _rows(d)
     a, b = clone(d).fit(X), clone(d).fit(X)
     assert np.array_equal(a.novelty(X), b.novelty(X)), "same parameters and data, same novelty"
 
 
 @_check
 def check_detector_rejects_bad_input(d: NoveltyDetector) -> None:
-    X = _data()
+    X = _rows(d)
     det = clone(d).fit(X)
     before = _state_arrays(det)
     methods = ("novelty", "partial_fit", "fit") if det.supports_online else ("novelty", "fit")
@@ -80,7 +80,7 @@ def check_detector_rejects_bad_input(d: NoveltyDetector) -> None:
 def check_detector_online(d: NoveltyDetector) -> None:
     if not d.supports_online:
         return
-    X = _data()
+    X = _rows(d)
     # Start both from the same state: some networks initialise from the first batch.
     a, b = clone(d).fit(X[:20]), clone(d).fit(X[:20])
     streamed = a.stream(X[20:])
@@ -91,7 +91,7 @@ def check_detector_online(d: NoveltyDetector) -> None:
 
 @_check
 def check_detector_save_load(d: NoveltyDetector) -> None:
-    X = _data()
+    X = _rows(d)
     det = clone(d).fit(X[:80])
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "model.npz"

@@ -1,0 +1,182 @@
+"""The habituating map against values computed by hand.
+
+Rows are the ``points`` input (x, y, heading, n nearness values, n end points'
+x, then y). With alpha = 1 and tau = 2, one Euler step of equation (1) a scan
+halves a hit cell's efficacy: y_k = 2^-k exactly (y_inf = 1 - 1/alpha = 0,
+r = 1 - alpha / tau = 1/2). Cells are 1 m, the robot stands at (0.1, 0.1), so
+that an echo at (2.1, 0.1) lies in cell (2, 0) and its ray, sampled every
+0.5 m up to one cell short of it (0.35 and 0.85), crosses cell (0, 0) only.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from novelty.maps.habituating_map import HabituatingMap, cell_keys
+from novelty.persistence import load, save
+
+ROBOT = (0.1, 0.1, 0.0)
+EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1}
+
+
+def scan(*echoes, robot=ROBOT):
+    """One points row: a sector for each echo (x, y) in the world; None is a sector with no echo 4 m ahead."""
+    near, xs, ys = [], [], []
+    for echo in echoes:
+        if echo is None:
+            near.append(0.0)
+            xs.append(robot[0] + 4.0)
+            ys.append(robot[1])
+        else:
+            near.append(1.0 - math.hypot(echo[0] - robot[0], echo[1] - robot[1]) / 4.0)
+            xs.append(echo[0])
+            ys.append(echo[1])
+    return [*robot, *near, *xs, *ys]
+
+
+def cell(i, j, size=1.0):
+    return int(cell_keys([[(i + 0.5) * size, (j + 0.5) * size]], size)[0])
+
+
+def state(det, i, j):
+    """(efficacy, passes) of cell (i, j)."""
+    at = np.flatnonzero(det.cells_ == cell(i, j))
+    assert at.size == 1, f"cell ({i}, {j}) not met"
+    return float(det.efficacy_[at[0]]), float(det.passes_[at[0]])
+
+
+# ------------------------------------------------------------------ equation (1)
+@pytest.mark.parametrize("k", [1, 2, 3, 5])
+def test_a_cell_hit_k_times_has_efficacy_two_to_the_minus_k(k):
+    det = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))] * k)
+    assert state(det, 2, 0) == (0.5 ** k, 0.0)
+    assert state(det, 0, 0) == (1.0, float(k))     # crossed k times, never hit
+    assert det.cells_.tolist() == sorted([cell(0, 0), cell(2, 0)])
+    assert det.novelty([scan((2.1, 0.1))]).tolist() == [0.5 ** k]
+
+
+def test_the_papers_synapse_follows_the_closed_form_of_its_euler_steps():
+    # y_k = y_inf + (1 - y_inf) (1 - alpha / tau)^k, y_inf = 1 - 1/alpha (tests/habituation/test_stanley.py)
+    det = HabituatingMap(cell_size=1.0, evidence="hits", tau=3.33, alpha=1.05).fit([scan((2.1, 0.1))] * 4)
+    y_inf = 1 - 1 / 1.05
+    assert state(det, 2, 0)[0] == pytest.approx(y_inf + (1 - y_inf) * (1 - 1.05 / 3.33) ** 4, rel=1e-12)
+
+
+def test_neighbours_habituate_at_their_own_time_constant():
+    det = HabituatingMap(evidence="hits", tau_neighbour=4.0, **EXACT).fit([scan((2.1, 0.1))] * 2)
+    assert state(det, 2, 0)[0] == 0.25
+    # r = 1 - 1/4: 1 -> 0.75 -> 0.5625, for each of the eight cells around (2, 0)
+    assert state(det, 3, 1)[0] == state(det, 1, -1)[0] == 0.5625
+    assert det.cells_.size == 1 + 8 + 1             # and (0, 0), crossed, not a neighbour: held at 1
+    assert state(det, 0, 0) == (1.0, 2.0)
+
+
+# ------------------------------------------------------------------ free-space evidence (2)
+def test_an_echo_where_the_robot_saw_free_space_is_novel_by_the_passes_through_its_cell():
+    # an echo at (3.1, 0.1), seen twice: its rays cross cells (0, 0) and (1, 0); cell (2, 0) is not reached
+    det = HabituatingMap(evidence="free", free_scale=2.0, **EXACT).fit([scan((3.1, 0.1))] * 2)
+    assert state(det, 1, 0) == (1.0, 2.0)
+    v = det.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))])
+    # (1, 0): y = 1 and 2 passes, 1 - exp(-2/2); (2, 0) never seen: no evidence; (3, 0): passes 0
+    assert v.tolist() == [1 - math.exp(-1.0), 0.0, 0.0]
+    hits = HabituatingMap(evidence="hits", **EXACT).fit([scan((3.1, 0.1))] * 2)
+    assert hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist() == [1.0, 1.0, 0.25]
+
+
+def test_a_cell_hit_and_crossed_in_one_scan_counts_as_hit():
+    # one sector's echo at (2.1, 0.1) in cell (2, 0); another's ray passes through (2, 0) to (3.9, 0.2)
+    det = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1), (3.9, 0.2))])
+    assert state(det, 2, 0) == (0.5, 0.0)
+    assert state(det, 1, 0) == (1.0, 1.0)
+
+
+# ------------------------------------------------------------------ a scan's novelty
+def test_a_scans_novelty_is_the_mean_of_its_top_cells_missing_ones_counted_as_zero():
+    up, right, left = (0.1, 2.1), (2.1, 0.1), (-1.9, 0.1)
+    # efficacies: up 1/2, right 1/4; left never met: 1 (the sectors with no echo only cross cells)
+    rows = [scan(up, None, None), scan(None, right, None), scan(None, right, None)]
+    seen = scan(up, right, left)
+    novelty = {top: HabituatingMap(evidence="hits", **{**EXACT, "top": top}).fit(rows).novelty([seen])[0]
+               for top in (1, 2, 3, 5, None)}
+    assert novelty == {1: 1.0, 2: 0.75, 3: 1.75 / 3, 5: 1.75 / 5, None: 1.75 / 3}
+
+
+def test_a_scan_with_no_echo_scores_zero_and_its_rays_count_as_free_space():
+    det = HabituatingMap(evidence="hits", **EXACT).fit([scan(None)])
+    assert det.novelty([scan(None)]).tolist() == [0.0]
+    # 4 m ahead, sampled every 0.5 m to the end (no echo: no cell short of it): cells 0 to 3 crossed
+    assert det.cells_.tolist() == [cell(i, 0) for i in range(4)]
+    assert det.passes_.tolist() == [1.0] * 4 and det.efficacy_.tolist() == [1.0] * 4
+
+
+def test_learning_returns_each_scans_novelty_before_it_is_learned():
+    det = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))])
+    assert det.partial_fit([scan((2.1, 0.1))] * 2) is det
+    assert state(det, 2, 0)[0] == 0.125
+    fresh = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))])
+    assert fresh.stream([scan((2.1, 0.1))] * 2).tolist() == [0.5, 0.25]
+
+
+# ------------------------------------------------------------------ determinism, persistence, refusals
+def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row():
+    X = HabituatingMap._example_rows(seed=3, n=60)
+    batch = HabituatingMap(tau_neighbour=10.0).fit(X)
+    rows = HabituatingMap(tau_neighbour=10.0).fit(X[:1])
+    for row in X[1:]:
+        rows.partial_fit(row[None, :])
+    for name in ("cells_", "efficacy_", "passes_"):
+        assert np.array_equal(getattr(batch, name), getattr(rows, name)), name
+    assert np.array_equal(batch.novelty(X), HabituatingMap(tau_neighbour=10.0).fit(X).novelty(X))
+
+
+def test_a_saved_map_loads_as_the_same_map_from_a_file_without_pickle(tmp_path):
+    X = HabituatingMap._example_rows(seed=1, n=50)
+    det = HabituatingMap(evidence="hits", top=None, tau=30.0).fit(X[:30])
+    save(det, tmp_path / "map.npz")
+    with np.load(tmp_path / "map.npz", allow_pickle=False) as f:   # refuses any pickled object
+        assert len(f.files) > 0
+    back = load(tmp_path / "map.npz")
+    assert type(back) is HabituatingMap and back.get_params() == det.get_params()
+    assert np.array_equal(back.cells_, det.cells_) and np.array_equal(back.passes_, det.passes_)
+    assert np.array_equal(back.novelty(X[30:]), det.novelty(X[30:]))
+
+
+def test_rows_of_another_width_are_refused_naming_the_points_input():
+    with pytest.raises(ValueError, match="'points' input"):
+        HabituatingMap().fit([[0.0, 0.0, 0.0, 0.5, 1.0, 2.0, 0.0]])
+    det = HabituatingMap(**EXACT).fit([scan((2.1, 0.1))])
+    with pytest.raises(ValueError, match="expecting 6 features"):
+        det.novelty([scan((2.1, 0.1), None)])
+
+
+@pytest.mark.parametrize("row, message", [
+    ([0.0, 0.0, 0.0, 1.5, 2.0, 0.0], "nearness in \\[0, 1\\]"),        # a ring value out of range
+    ([2e6, 0.0, 0.0, 0.5, 2e6, 0.0], "from the world's origin"),       # not metres in a local frame
+])
+def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_the_map_is_unchanged(row, message):
+    det = HabituatingMap(**EXACT).fit([scan((2.1, 0.1))])
+    before = det.cells_.copy(), det.efficacy_.copy(), det.passes_.copy()
+    with pytest.raises(ValueError, match=message):
+        det.partial_fit([row])
+    with pytest.raises(ValueError, match=message):
+        det.novelty([row])
+    assert all(np.array_equal(a, b) for a, b in zip(before, (det.cells_, det.efficacy_, det.passes_)))
+
+
+@pytest.mark.parametrize("params, message", [
+    ({"tau": 1.0}, "at least alpha"),
+    ({"evidence": "both"}, "evidence"),
+    ({"top": 0}, "top"),
+    ({"cell_size": 0.0}, "cell_size"),
+])
+def test_bad_parameters_are_refused_by_name(params, message):
+    with pytest.raises(ValueError, match=message):
+        HabituatingMap(**params).fit([scan((2.1, 0.1))])
+
+
+def test_cell_keys_increase_with_the_cell_in_row_major_order():
+    points = [[-0.1, -0.1], [-0.1, 0.1], [0.1, -0.1], [0.1, 0.1], [0.5, 0.1]]
+    keys = cell_keys(points, 0.2)
+    assert np.all(np.diff(keys) > 0)
+    assert keys[1] - keys[0] == 1 and keys[2] - keys[0] == 2 ** 32
