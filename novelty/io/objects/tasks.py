@@ -159,10 +159,10 @@ def _cast(sweeps, objects, threshold: float):
 
 
 def _metadata(objects, sweeps, path, options: dict) -> dict:
-    inputs = options.get("inputs", "ring")
-    layout = {"inputs": inputs}
-    if inputs == "points":
-        layout["columns"] = points_columns(int(options["sectors"]))
+    # a ring task's metadata as it was before the points input existed: its rows keep their digest
+    layout = {}
+    if options.get("inputs", "ring") == "points":
+        layout = {"inputs": "points", "columns": points_columns(int(options["sectors"]))}
     return {**layout, "source": str(path), "objects": [{"kind": type(o).__name__.lower(), **{
         k: (float(v) if isinstance(v, (int, float)) else v) for k, v in vars(o).items()}} for o in objects],
             "labels": {**LABEL_DEFAULTS, "within_m": options["threshold"]}, "sectors": options["sectors"],
