@@ -41,6 +41,9 @@ SLICES = {
     "detection": [("hsom-mismatch", "paper-a-to-a-star", 0), ("parzen", "paper-a-to-a-star", 0)],
     "objects-inspection": [("nearest-memory", "inspection-objects-radish-aces", 0)],
     "objects-exploration": [("hsom", "exploration-objects-radish-csail", 1)],
+    "maps-inspection": [("habituating-map", "inspection-objects-radish-intel", 0)],
+    "maps-exploration": [("habituating-map", "exploration-open-door", 0)],
+    "maps-detection": [("habituating-map", "paper-a-to-a-star", 5)],
 }
 #: the shared data beside the repository, where the suites' real-data tasks read from
 SHARED = ROOT.parent / "shared" / "datasets"
