@@ -29,7 +29,9 @@ for the same damaged state:
 
 Layout is not refused: an engine takes a strided, Fortran-ordered or read-only
 array as it is and makes its own writable copy where it writes
-(:meth:`~novelty._kernels.interface.Engine.adopt`).
+(:meth:`~novelty._kernels.interface.Engine.adopt`); a memory-mapped array
+(``np.memmap``, as joblib loads a model) is taken as the plain array of the
+same memory first.
 """
 
 from __future__ import annotations
@@ -72,6 +74,8 @@ def check_state(detector) -> None:
     owner = type(detector).__name__
     n_features = check_int_state(detector, "n_features_in_", low=1)
     clusterer, synapse = _part(detector, "clusterer_", "clusterer"), _part(detector, "synapse_", "synapse")
+    for component in parts_of(clusterer, synapse):
+        _unmap(component)
     W = _array(clusterer, "weights_", f"{owner}.clusterer_")
     if W.ndim != 2 or W.shape[1] != n_features or W.shape[0] < 1:
         raise StateError(f"{owner}.clusterer_.weights_ has shape {W.shape}; the filter reads "
@@ -113,8 +117,22 @@ def check_finite(arrays) -> None:
     NaN or infinity: values written into an engine's state in place."""
     for name, a in arrays:
         if a.dtype.kind == "f" and not np.isfinite(a).all():
-            raise StateError(f"{name} holds NaN or infinity (written into it in place?); "
-                             "the learned state is damaged. Refit, or set finite values.")
+            raise StateError(f"{name} holds NaN or infinity, values that are not finite (written "
+                             "into it in place?): the learned state is damaged. Refit, or set finite values.")
+
+
+def _unmap(component) -> None:
+    """Take a memory-mapped state array as the plain array of the same memory.
+
+    ``np.memmap`` is what a model loaded by joblib with ``mmap_mode`` holds (scikit-learn's
+    ``check_estimators_pickle`` loads one so): an ndarray over a file's bytes, read-only where the
+    map is, with no behaviour of its own. Its plain view is taken as any read-only array is
+    (module docstring); other subclasses of ndarray (a matrix, a masked array) change what
+    indexing or arithmetic means, and are refused by the checks.
+    """
+    for name, value in list(vars(component).items()):
+        if name.endswith("_") and type(value) is np.memmap:
+            setattr(component, name, value.view(np.ndarray))
 
 
 def _part(detector, name: str, kind: str):
