@@ -57,7 +57,7 @@ import tempfile
 import numpy as np
 
 from .._atomic import write_atomically
-from .._validation.scans import CLEARED
+from .._validation.scans import CLEARED, MAX_SCAN_NORM
 from . import tricks
 from .children import run_self_check
 from .compiling import Compiled, cache_files
@@ -83,6 +83,7 @@ from novelty.habituation._schedule import fire, stimulate
 C_PARAMS = np.{c_params!r}
 S_PARAMS = np.{s_params!r}
 SIGNATURE = {signature}
+FINITE_SIGNATURE = {finite_signature}
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -98,11 +99,51 @@ def _delete_rows(a, gone, n):
 CLEARED = {cleared!r}
 
 
+#: the largest norm of a unit (novelty._validation.scans.MAX_SCAN_NORM)
+MAX_NORM = {max_norm!r}
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _bounded_columns(a, n):
+    # every |w| <= MAX_NORM / sqrt(features) puts each unit within the norm bound; NaN and
+    # infinity fail it; so may a unit within the bound (the general path then decides)
+    limit = MAX_NORM / np.sqrt(a.shape[0])
+    ok = True
+    for k in range(a.shape[0]):
+        for j in range(n):
+            ok &= abs(a[k, j]) <= limit
+    return ok
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _finite_units(a, n):
+    ok = True
+    for j in range(n):
+        ok &= a[j] - a[j] == 0.0
+    return ok
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _finite_rows(a, n):
+    ok = True
+    for v in a[:n].flat:
+        ok &= v - v == 0.0
+    return ok
+
+
+@njit(FINITE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
+def finite(WT, {c_args}{s_args}n):
+    """Whether the float state of the first n units is finite and the units within the norm
+    bound (values written in place are not counted as changes): the single-scan calls refuse
+    a state that is not, and the caller's general check then says what is wrong."""
+    return _bounded_columns(WT, n){float_checks}
+
+
 @njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def drive(WT, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, novelty, distances,
           check):
     if check:  # the scans' check that only the caller can explain: done = -1 when one fails it
-        if X.shape[1] != WT.shape[0]:
+        if X.shape[1] != WT.shape[0] or not finite(WT, {c_args}{s_args}n):
             return -1, n
         for i in range(X.shape[0]):
             total = 0.0
@@ -174,6 +215,12 @@ def signature(WT, c_arrays, s_arrays) -> str:
             "types.float64[::1], types.boolean)")
 
 
+def finite_signature(WT, c_arrays, s_arrays) -> str:
+    """The signature of the driver module's ``finite``: the state arrays, then ``n``."""
+    return (f"types.boolean({_type(WT)}, {''.join(_type(a) + ', ' for a in c_arrays)}"
+            f"{''.join(_type(a) + ', ' for a in s_arrays)}types.int64)")
+
+
 def folder() -> str:
     """Where the generated drivers live: ``NOVELTY_KERNEL_DIR``, else beside numba's cache
     (``NUMBA_CACHE_DIR``), else the user's cache folder; a private temporary folder when
@@ -231,16 +278,21 @@ def _module_file(name: str) -> str:
     return spec.origin
 
 
-def _source(c_steps: str, s_steps: str, label: str, sig: str, n_clusterer_arrays: int,
-            n_synapse_arrays: int, c_params: np.dtype, s_params: np.dtype) -> str:
+def _source(c_steps: str, s_steps: str, label: str, sig: str, finite_sig: str, c_floats: list[int],
+            s_floats: list[int], c_params: np.dtype, s_params: np.dtype) -> str:
+    """The driver's module; ``c_floats``, ``s_floats``: each state array's rank if it holds
+    floats (``finite`` checks those), else 0."""
     rows = "".join(f"            _delete_rows(sstate[{i}], gone, n)\n"
-                   for i in range(n_synapse_arrays))
-    c_names = [f"c{i}" for i in range(n_clusterer_arrays)]
-    s_names = [f"s{i}" for i in range(n_synapse_arrays)]
+                   for i in range(len(s_floats)))
+    c_names = [f"c{i}" for i in range(len(c_floats))]
+    s_names = [f"s{i}" for i in range(len(s_floats))]
+    floats = [(name, ndim) for name, ndim in zip(c_names + s_names, c_floats + s_floats) if ndim]
     return TEMPLATE.format(label=label, tricks="used" if tricks.enabled() else "not used (plain)",
-                           c_steps=c_steps, s_steps=s_steps, signature=sig,
+                           c_steps=c_steps, s_steps=s_steps, signature=sig, finite_signature=finite_sig,
+                           float_checks="".join(f" and _finite_{'units' if ndim == 1 else 'rows'}({name}, n)"
+                                                for name, ndim in floats),
                            delete_rows=rows.rstrip("\n"), c_params=c_params, s_params=s_params,
-                           cleared=CLEARED, c_args="".join(name + ", " for name in c_names),
+                           cleared=CLEARED, max_norm=MAX_SCAN_NORM, c_args="".join(name + ", " for name in c_names),
                            s_args="".join(name + ", " for name in s_names),
                            c_tuple="".join(name + ", " for name in c_names).rstrip(" "),
                            s_tuple="".join(name + ", " for name in s_names).rstrip(" "))
@@ -269,8 +321,10 @@ def driver_for(c_steps: str, s_steps: str, c_class: type, s_class: type, W, c_ar
         def resolve(settle: bool):
             if not _tricks_decided(settle):
                 return None
-            source = _source(c_steps, s_steps, label, sig, len(c_arrays), len(s_arrays), c_params,
-                             s_params)
+            source = _source(c_steps, s_steps, label, sig, finite_signature(W, c_arrays, s_arrays),
+                             [a.ndim * (a.dtype.kind == "f") for a in c_arrays],
+                             [a.ndim * (a.dtype.kind == "f") for a in s_arrays],
+                             c_params, s_params)
             digest = hashlib.sha256(source.encode() + _package_digest().encode() + sources)
             stem = f"{PREFIX}{name}_{digest.hexdigest()[:16]}"
             path = os.path.join(folder(), stem + ".py")

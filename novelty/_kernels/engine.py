@@ -103,7 +103,7 @@ class CompiledEngine(ReferenceEngine):
 
     def start_driving(self, driver) -> None:
         """Learn by ``driver`` (loaded) from now on, on the state as the parts hold it now."""
-        self._drive = driver.module.drive
+        self._drive, self._finite = driver.module.drive, driver.module.finite
         self.hold()
         self.learn, self.learn_one = self._learn, self._learn_one
 
@@ -127,6 +127,7 @@ class CompiledEngine(ReferenceEngine):
         self.c_record, self.s_record = pack(c), pack(s)
         self._head = (self._WT, *self._c_arrays, self._counters, self.c_record.view(np.uint8),
                       *self._s_arrays, self.s_record.view(np.uint8))
+        self._arrays = (self._WT, *self._c_arrays, *self._s_arrays)
         self._show(n)
 
     def _show(self, n: int) -> None:
@@ -152,6 +153,7 @@ class CompiledEngine(ReferenceEngine):
         head = self._head
         k = len(self._c_arrays)
         self._head = (self._WT, *self._c_arrays, *head[1 + k:3 + k], *self._s_arrays, head[-1])
+        self._arrays = (self._WT, *self._c_arrays, *self._s_arrays)
 
     def _finish(self, n: int) -> None:
         """After the driver: the parts see the units and counters it left."""
@@ -191,7 +193,9 @@ class CompiledEngine(ReferenceEngine):
         """One scan by the driver, which checks it first: as many features as the units have,
         and a sum of squares within the norm bound with a margin
         (``novelty._validation.scans.CLEARED``, far wider than rounding), so that NaN, infinity
-        and too large values all fail it (False, nothing learned)."""
+        and too large values all fail it (False, nothing learned); and the state's values, which
+        may have been written in place since the last call (False when one is not finite: the
+        general path's :meth:`check_values` then names it, as the reference's does)."""
         X = x[None, :]
         while True:
             done, n = self._drive(*self._head, X, *self._one, stimulus, self.n, *self._out1, True)
@@ -222,8 +226,10 @@ class CompiledEngine(ReferenceEngine):
 
     def _score_held(self, x) -> bool:
         """One scan against the weights as learning holds them (``WT``), checked first as
-        :meth:`_learn_one` checks it, by the kernel."""
-        return self._kernels.nearest_one(self._WT, self._s_arrays[0], self.n, x, self.scored1) == 0
+        :meth:`_learn_one` checks it: the state's values by the driver's ``finite``, the scan
+        by the kernel."""
+        return (self._finite(*self._arrays, self.n)
+                and self._kernels.nearest_one(self._WT, self._s_arrays[0], self.n, x, self.scored1) == 0)
 
 
 def _c(a: np.ndarray) -> np.ndarray:

@@ -125,8 +125,12 @@ class Engine:
                 if name.endswith("_") and type(value) is np.ndarray and value.dtype.kind == "f"]
 
     def check_values(self) -> None:
-        """:func:`check_finite` of the state: before every batch call (values written in place)."""
+        """:func:`check_finite` of the state, and the units within the norm bound
+        (``Clusterer._check_norm``): before every call, for values written in place (the
+        compiled single-scan calls check them in the driver, and leave a state that fails to
+        the general path, which calls this)."""
         check_finite(self.state_arrays())
+        self.clusterer._check_norm()
 
     def __reduce__(self):
         # an engine is scratch: a copy or a pickle of its filter makes its own

@@ -91,6 +91,7 @@ class ReferenceEngine(Engine):
     def learn_one(self, x, stimulus) -> bool:
         if not self._takes(x):
             return False
+        self.check_values()  # written in place since the last call: as every call checks them
         self.novelty1[0] = learn_stream(self.clusterer, self.synapse, x[None, :], ONE, stimulus,
                                         self.distance1)[0]
         self.seen()

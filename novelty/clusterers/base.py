@@ -240,6 +240,16 @@ class Clusterer(Component):
         _, dist = self.winners(X)
         return float(np.mean(np.sqrt(dist)))
 
+    def _check_norm(self) -> None:
+        """Raise :class:`StateError` if a unit lies beyond the norm bound (its distances would
+        overflow, and the engines' winners could part ways): learning moves units towards
+        scans (convex steps) and initialises them from scans or from init_range, so no unit
+        lies beyond the bound scans are held to. Checked with the state, and before every call
+        (values written into ``weights_`` in place)."""
+        if _largest_norm(self.weights_) > MAX_SCAN_NORM * (1 + 1e-9):
+            raise StateError(f"{type(self).__name__}.weights_ reach a norm of {_largest_norm(self.weights_):.3g}, "
+                             f"beyond the bound {MAX_SCAN_NORM:g} that learning keeps to.")
+
     def _new_unit_ids(self, n: int) -> np.ndarray:
         ids = np.arange(self.next_unit_id_, self.next_unit_id_ + n, dtype=np.int64)
         self.next_unit_id_ += n
@@ -247,11 +257,7 @@ class Clusterer(Component):
 
     def _check_state(self) -> None:
         W = check_array_state(self, "weights_", 2)
-        if _largest_norm(W) > MAX_SCAN_NORM * (1 + 1e-9):
-            # learning moves units towards scans (convex steps) and initialises them from scans or
-            # from init_range, so no unit lies beyond the norm bound scans are held to
-            raise StateError(f"{type(self).__name__}.weights_ reach a norm of {_largest_norm(W):.3g}, beyond "
-                             f"the bound {MAX_SCAN_NORM:g} that learning keeps to.")
+        self._check_norm()
         check_array_state(self, "unit_ids_", 1, "iu", shape=(W.shape[0],))
         nxt = check_int_state(self, "next_unit_id_")
         if W.shape[0] == 0:

@@ -130,3 +130,26 @@ def test_values_written_in_place_are_checked_before_every_batch_call(reference):
         with pytest.raises(StateError, match=r"SOM\.weights_ holds NaN or infinity"):
             det.novelty(X[10:20])
 
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("value, message", [(np.nan, r"SOM\.weights_ holds NaN or infinity"),
+                                            (1e300, r"SOM\.weights_ reach a norm of 1e\+300, beyond the bound")])
+def test_values_written_in_place_are_checked_before_a_single_scan(reference, value, message):
+    """A value written into the weights in place after a single scan confirmed the engine: the
+    next single scan refuses it as a batch call does (before: the compiled winner search
+    skipped the NaN unit where the reference's argmin took it, and a unit at 1e300, whose
+    distances overflow, gave the two engines other graphs)."""
+    X = corridor(60, n_features=5)
+    det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X)
+    if not reference:
+        assert _kernels.wait(det.clusterer_, det.synapse_) is not None
+        _kernels.wait()
+    with reference_only() if reference else contextlib.nullcontext():
+        det.score_learn_one(X[0].copy())  # the single-scan protocol's engine confirmed
+        det.clusterer_.weights_[4, 2] = value
+        for call in (det.score_learn_one, det.score_one):
+            with pytest.raises(StateError, match=message):
+                call(X[1].copy())
+        with pytest.raises(StateError, match=message):
+            det.stream(X[1:3])
