@@ -144,6 +144,7 @@ def output_problems(block: dict, done: subprocess.CompletedProcess) -> list[str]
     return problems
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("block", RUN, ids=block_id)
 def test_block_runs_as_written_and_prints_what_it_says(block, folder):
     where, env = folder
@@ -153,6 +154,7 @@ def test_block_runs_as_written_and_prints_what_it_says(block, folder):
     assert not problems, f"{block_id(block)}:\n" + "\n".join(problems)
 
 
+@pytest.mark.slow
 def test_a_comment_that_misstates_the_output_fails(folder):
     # The first block of the streaming guide, its comment made wrong as it once was: the test sees it.
     block = next(b for b in RUN if b["page"].name == "streaming.md")

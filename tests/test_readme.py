@@ -97,6 +97,34 @@ def test_ci_runs_the_readme_quickstart_first_as_written():
     assert any("-m venv" in line for line in before)
 
 
+def test_ci_runs_the_tests_the_readme_leaves_out():
+    # The README's pytest leaves out the tests marked slow (pyproject.toml's addopts); CI runs them
+    # next, and the kernel checks (bounds checking, the newest numba) run every kernel test.
+    options = tomllib.loads((README.parent / "pyproject.toml").read_text(encoding="utf-8"))
+    addopts = shlex.split(options["tool"]["pytest"]["ini_options"]["addopts"])
+    assert addopts[addopts.index("-m") + 1] == "not slow"
+    script = (README.parent / ".ci" / "run").read_text(encoding="utf-8").splitlines()
+    end = script.index("# <<< README quickstart")
+    assert "pytest -n auto -m slow" in [line.strip() for line in script[end:]]
+    kernels = [line for line in script[end:] if line.rstrip().endswith("tests/_kernels")]
+    assert kernels and all('-m ""' in line for line in kernels), kernels
+    assert "pytest -n auto -m slow" in README.read_text(encoding="utf-8")
+
+
+def test_the_site_opens_with_the_readme_quickstart_and_its_cost():
+    # The site's front door: its first command works from a checkout (the README's two, as CI
+    # runs them), says what each costs in time, and names the published install as future.
+    index = (README.parent / "docs" / "index.md").read_text(encoding="utf-8")
+    first = re.search(r"```bash\n(.*?)```", index, flags=re.S)
+    commands = [line.strip() for line in first.group(1).splitlines() if line.strip()]
+    assert commands == quickstart_commands(README.read_text(encoding="utf-8"))
+    after = index[first.end():].split("\n\n", 2)
+    cost = " ".join(after[:2])
+    assert re.search(r"\d+ (s|min)", cost) and "first time" in cost and "test suite" in cost, cost
+    published = index[:first.start()]
+    assert "novelty-habituation[all]" in published and "once it is" in published
+
+
 def test_the_readme_stays_a_front_page():
     # Studies, tables and long explanations belong in the guide (docs/guide/), linked from the README.
     lines = README.read_text(encoding="utf-8").splitlines()

@@ -163,6 +163,7 @@ def _committed_text(suite: str) -> dict[tuple, dict[str, str]]:
 
 @pytest.mark.parametrize("suite, detector, task, seed",
                          [(s, *cell) for s in COMMITTED for cell in SLICES.get(s, [])])
+@pytest.mark.slow
 def test_a_slice_of_the_suite_gives_the_committed_rows(suite, detector, task, seed, monkeypatch):
     if "-radish-" in task and not os.environ.get("NOVELTY_DATA_DIR"):
         if not (SHARED / "radish-carmen-logs").is_dir():

@@ -49,6 +49,7 @@ def test_missing_numba_falls_back_with_one_warning(monkeypatch):
     np.testing.assert_array_equal(got, expected)
 
 
+@pytest.mark.slow
 def test_a_driver_is_generated_once_and_loaded_from_numbas_cache(tmp_path):
     """A second process finds the pair's driver file and its machine code: no compiling."""
     code = ("import sys, time, numpy as np, novelty\n"
@@ -154,6 +155,7 @@ def _script(tmp_path, code: str):
     return path
 
 
+@pytest.mark.slow
 def test_the_background_compiler_ignores_the_working_directory(tmp_path):
     cwd, cache = tmp_path / "cwd", tmp_path / "cold-cache"
     cwd.mkdir()
@@ -182,6 +184,7 @@ def plus_one(x):
 """
 
 
+@pytest.mark.slow
 def test_a_process_ends_without_waiting_for_its_compilers_which_finish_and_cache(tmp_path):
     """One compiler at a time: the first module compiles while the second waits in the queue;
     the process ends at once, the first child finishes by itself and the second is handed to a

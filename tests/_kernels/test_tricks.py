@@ -16,6 +16,7 @@ from .kernel_helpers import corridor, reference_only
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
 
 
+@pytest.mark.slow
 def test_the_self_check_passes_with_this_numba():
     assert children.run_self_check() == (True, "")
 
@@ -30,6 +31,7 @@ def unchecked(tmp_path, monkeypatch):
     return tmp_path
 
 
+@pytest.mark.slow
 def test_a_self_check_that_crashes_turns_the_tricks_off_with_the_same_results(unchecked, monkeypatch):
     """As if a numba release made the uncounted aliases a use-after-free: the check's child dies."""
     monkeypatch.setattr(children, "_PROBE", "import os; os.abort()")

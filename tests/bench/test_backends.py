@@ -27,6 +27,7 @@ def by_detector(report):
     return {(r["detector"], r["seed"]): r for r in report.rows}
 
 
+@pytest.mark.slow
 def test_a_worker_that_dies_fails_its_cell_only(tmp_path, faulty_registered):
     suite = toy_suite(faulty_registered, "hsom", faulty.CRASH)
     report = run_bench(suite, tmp_path, backend="joblib", jobs=2, quiet=True, plots=False)
@@ -37,6 +38,7 @@ def test_a_worker_that_dies_fails_its_cell_only(tmp_path, faulty_registered):
     assert "worker process died" in rows[faulty.CRASH, 0]["error"]
 
 
+@pytest.mark.slow
 def test_a_cell_past_its_timeout_fails_and_the_run_goes_on(tmp_path, faulty_registered):
     """Serial cells under a timeout run in a worker process, with the numbers of this one."""
     from test_runner import metric_table
@@ -100,6 +102,7 @@ if __name__ == "__main__":  # spawned children import this file again
 """
 
 
+@pytest.mark.slow
 def test_no_worker_imports_modules_planted_in_the_working_directory(tmp_path):
     # a launcher outside the working directory, as the installed 'novelty' script is
     import subprocess
@@ -122,6 +125,7 @@ def test_no_worker_imports_modules_planted_in_the_working_directory(tmp_path):
     assert sorted(p.name for p in tmp_path.glob("MARKER-*")) == []
 
 
+@pytest.mark.slow
 def test_a_keyboard_interrupt_raised_in_a_worker_is_a_failed_cell_and_rerun_on_resume(tmp_path, faulty_registered):
     suite = toy_suite(faulty_registered, faulty.INTERRUPT, "hsom")
     report = run_bench(suite, tmp_path, backend="joblib", jobs=2, quiet=True, plots=False)

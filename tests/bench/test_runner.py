@@ -151,6 +151,7 @@ def test_results_csv_rows_are_in_canonical_order_whatever_order_cells_finish(tmp
         ("gwr-stanley", 0), ("gwr-stanley", 1), ("hsom-4x4", 0), ("hsom-4x4", 1)]
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_the_serial_numbers(tmp_path, suite):
     distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed")
     serial = run_bench(suite, tmp_path / "serial", quiet=True, plots=False)

@@ -188,6 +188,7 @@ def test_user_errors_are_one_line_and_exit_2(argv, message, scans, tmp_path, cap
     assert message in one_error_line(capsys)
 
 
+@pytest.mark.slow
 def test_the_console_command_in_a_subprocess(tmp_path):
     import os
 

@@ -14,6 +14,7 @@ def protocol(seed: int) -> dict:
     return {(t.experiment, t.trial): t for t in run_protocol(seed=seed)}
 
 
+@pytest.mark.slow
 def test_reproduce_command_writes_table_and_figures(tmp_path, capsys):
     pytest.importorskip("matplotlib")
     import matplotlib.pyplot as plt

@@ -63,6 +63,7 @@ def test_score_takes_the_same_column_options(tmp_path, capsys):
     assert [r[3] for r in table[1:]] == ["0", "1"]
 
 
+@pytest.mark.slow
 def test_stdin_is_scored_a_line_at_a_time_as_the_lines_arrive():
     """Each scan's row comes back before the next line is written: nothing is read ahead."""
     X = np.random.default_rng(0).random((4, 3))
@@ -82,6 +83,7 @@ def test_stdin_is_scored_a_line_at_a_time_as_the_lines_arrive():
     assert [r[0] for r in got] == ["0", "1", "2", "3"] and [r[3] for r in got] == ["0", "0", "0", "1"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("argv", [["list"], ["run", "hsom", "--data", "DATA"]])
 def test_a_closed_output_pipe_ends_the_command_quietly(argv, tmp_path):
     data = tmp_path / "scans.csv"

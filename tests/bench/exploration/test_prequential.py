@@ -120,6 +120,7 @@ def metric_table(rows):
             for r in rows}
 
 
+@pytest.mark.slow
 def test_serial_joblib_and_dask_give_the_same_numbers(tmp_path, toy_exploration):
     distributed = pytest.importorskip("distributed", reason="dask.distributed is not installed")
     suite = Suite([DetectorSpec("gwr-novelty"), DetectorSpec("parzen", label="parzen (refit)", policy="refit")],

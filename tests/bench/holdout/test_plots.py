@@ -41,6 +41,7 @@ def titles(monkeypatch):
     return seen
 
 
+@pytest.mark.slow
 def test_every_plot_of_the_quick_suite_says_which_seeds(quick, tmp_path, titles):
     paths = plots.plot_run(quick.rows, ResultsStore(quick.out).arrays, tmp_path)
     paths += plot_critical_difference(quick.rows, tmp_path)
