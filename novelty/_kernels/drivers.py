@@ -73,6 +73,7 @@ import numpy as np
 from numba import njit, types
 
 from novelty._kernels._distances import distances_cols
+from novelty._kernels._nearest import nearest_one
 from novelty._kernels._uncounted import held, uncounted
 from {c_steps} import adapt as c_adapt, match as c_match, room as c_room
 from {s_steps} import advance as s_advance, fresh as s_fresh
@@ -83,7 +84,8 @@ from novelty.habituation._schedule import fire, stimulate
 C_PARAMS = np.{c_params!r}
 S_PARAMS = np.{s_params!r}
 SIGNATURE = {signature}
-FINITE_SIGNATURE = {finite_signature}
+FINITE_SIGNATURE = types.boolean({finite_signature})
+SCORE_SIGNATURE = types.int64({finite_signature}, types.float64[::1], types.float64[::1])
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -106,29 +108,32 @@ MAX_NORM = {max_norm!r}
 @njit(cache=True, error_model="numpy", inline="always")
 def _bounded_columns(a, n):
     # every |w| <= MAX_NORM / sqrt(features) puts each unit within the norm bound; NaN and
-    # infinity fail it; so may a unit within the bound (the general path then decides)
+    # infinity fail it; so may a unit within the bound (the general path then decides). A
+    # count, not a flag, of the failures: LLVM vectorises it (0.19 us for 100 x 16, 0.28 us
+    # with a flag)
     limit = MAX_NORM / np.sqrt(a.shape[0])
-    ok = True
+    bad = 0
     for k in range(a.shape[0]):
+        row = a[k]
         for j in range(n):
-            ok &= abs(a[k, j]) <= limit
-    return ok
+            bad += not abs(row[j]) <= limit
+    return bad == 0
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _finite_units(a, n):
-    ok = True
+    bad = 0
     for j in range(n):
-        ok &= a[j] - a[j] == 0.0
-    return ok
+        bad += not a[j] - a[j] == 0.0  # NaN and infinity
+    return bad == 0
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _finite_rows(a, n):
-    ok = True
+    bad = 0
     for v in a[:n].flat:
-        ok &= v - v == 0.0
-    return ok
+        bad += not v - v == 0.0
+    return bad == 0
 
 
 @njit(FINITE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
@@ -137,6 +142,15 @@ def finite(WT, {c_args}{s_args}n):
     bound (values written in place are not counted as changes): the single-scan calls refuse
     a state that is not, and the caller's general check then says what is wrong."""
     return _bounded_columns(WT, n){float_checks}
+
+
+@njit(SCORE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
+def score_one(WT, {c_args}{s_args}n, x, out):
+    """``score_one`` against the state as learning holds it: 0, or -1 (nothing written) when
+    the state's values (``finite``) or the scan (``nearest_one``) fail their checks."""
+    if not finite(WT, {c_args}{s_args}n):
+        return -1
+    return nearest_one(WT, s0, n, x, out)
 
 
 @njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
@@ -216,9 +230,10 @@ def signature(WT, c_arrays, s_arrays) -> str:
 
 
 def finite_signature(WT, c_arrays, s_arrays) -> str:
-    """The signature of the driver module's ``finite``: the state arrays, then ``n``."""
-    return (f"types.boolean({_type(WT)}, {''.join(_type(a) + ', ' for a in c_arrays)}"
-            f"{''.join(_type(a) + ', ' for a in s_arrays)}types.int64)")
+    """The state arguments of the driver module's ``finite`` and ``score_one``: the arrays,
+    then ``n``."""
+    return (f"{_type(WT)}, {''.join(_type(a) + ', ' for a in c_arrays)}"
+            f"{''.join(_type(a) + ', ' for a in s_arrays)}types.int64")
 
 
 def folder() -> str:

@@ -103,7 +103,7 @@ class CompiledEngine(ReferenceEngine):
 
     def start_driving(self, driver) -> None:
         """Learn by ``driver`` (loaded) from now on, on the state as the parts hold it now."""
-        self._drive, self._finite = driver.module.drive, driver.module.finite
+        self._drive, self._score_one = driver.module.drive, driver.module.score_one
         self.hold()
         self.learn, self.learn_one = self._learn, self._learn_one
 
@@ -226,10 +226,9 @@ class CompiledEngine(ReferenceEngine):
 
     def _score_held(self, x) -> bool:
         """One scan against the weights as learning holds them (``WT``), checked first as
-        :meth:`_learn_one` checks it: the state's values by the driver's ``finite``, the scan
-        by the kernel."""
-        return (self._finite(*self._arrays, self.n)
-                and self._kernels.nearest_one(self._WT, self._s_arrays[0], self.n, x, self.scored1) == 0)
+        :meth:`_learn_one` checks it, the state's values and the scan, by the driver module's
+        ``score_one`` (one call: the checks cost 0.2 us, a second call from Python 0.5 us)."""
+        return self._score_one(*self._arrays, self.n, x, self.scored1) == 0
 
 
 def _c(a: np.ndarray) -> np.ndarray:

@@ -304,6 +304,8 @@ def digest(det) -> str:
 
 
 def _text(value) -> str:
+    if isinstance(value, (int, np.integer)) and not isinstance(value, (bool, np.bool_)):
+        return str(int(value))  # a counter by its value: the compiled engine writes them back as ints
     if type(value) is np.ndarray and value.dtype != object:
         flat = value.reshape(-1)
         if flat.size > 2**20:  # the hostile (units, 10**7): its ends (copying it whole takes 8 GB)
