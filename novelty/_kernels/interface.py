@@ -36,6 +36,17 @@ counts a change (:meth:`novelty._component.Component.__setattr__`), so
 :meth:`Engine.holds` compares one count per part with those it saw (and
 :meth:`Engine.fresh` one per object it watches: the owner's too). Its own
 writes (the counters, a grown state's views) it takes as seen.
+
+Two predicates, not one, because they answer two questions. ``holds``: may
+this engine go on reading the parts (every call, :func:`~.choice.engine_of`);
+``fresh``: may a single scan also skip the owner's checks (its parameters,
+timestamps, calibration), which only :mod:`novelty._filter.single_scan` asks.
+Folded into one comparison of the watched objects, every write to the owner
+(``last_time_``, at every timestamped call) would make ``engine_of`` check
+the state and build another engine: 1.4 ms for hsom, against 0.34 ms for a
+whole timestamped call of 10 scans (timeit, hsom 100 x 16); folded the other
+way (``holds`` and a separate comparison of the owner's counts), a single
+scan would make two comparisons where it makes one.
 """
 
 from __future__ import annotations
