@@ -30,7 +30,9 @@ from novelty import _kernels
 from . import hostile
 from .kernel_helpers import reference_only
 
-pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
+# slow: a child process of its own (17 s on one core, warm), run by CI's slow set and kernel checks
+pytestmark = [pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable"),
+              pytest.mark.slow]
 
 PAIRS = hostile.pairs()
 #: the longest a case may take in the child (its first cases load or compile the pair's kernels)
