@@ -26,6 +26,10 @@ The check costs one more decompression of a compressed bag (an
 uncompressed one is only walked record by record); a bag without
 compression is not inflated at all.
 
+One module although over 300 lines: the three places a ROS 2 bag can be
+compressed share the one budgeted inflation, and each reader is a few
+dozen lines of the formats' records.
+
 References
 ----------
 Foxglove, "MCAP format specification" (mcap.dev/spec): the magic, the
