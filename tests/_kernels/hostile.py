@@ -25,12 +25,14 @@ scored compiled; examples/novelty-plugin-example: the leader clusterer, the refe
 
 from __future__ import annotations
 
+import atexit
 import copy
 import hashlib
 import importlib
 import json
 import math
 import re
+import shutil
 import sys
 import tempfile
 from functools import lru_cache
@@ -83,6 +85,7 @@ def plugin_folder() -> str:
     name, which would clash with a test that runs the guide's blocks)."""
     blocks = re.findall(r"```python\n(.*?)```", EXTENDING.read_text(encoding="utf-8"), flags=re.S)
     folder = Path(tempfile.mkdtemp(prefix="novelty-hostile-"))
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)  # the child has ended by then
     fading = next(b for b in blocks if b.startswith("# fading.py\n"))
     tiny = next(b for b in blocks if "class TinyKMeans(" in b)
     tiny = "\n".join(line for line in tiny.splitlines()
