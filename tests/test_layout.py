@@ -179,6 +179,7 @@ ACROSS = {
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
     "fuzz/test_files.py": "hostile save targets, suite files and standard input",
+    "_kernels/test_hostile_state.py": "both engines against a hostile state of every pair (choice, state, the drivers)",
 }
 
 
