@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._kernels.choice import engine_of
 from ..match_scale import mismatch_novelty, product_novelty
 
 __all__ = ["learn_calibrating"]
@@ -43,7 +44,7 @@ def learn_calibrating(detector, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         if calibration.add(X[i]):
             detector.match_scale_ = calibration.scale
             if not at_once:
-                detector.clusterer_.calibrate(detector.match_scale_)
+                engine_of(detector).calibrate(detector.match_scale_)
         i += 1
     detector.calibration_scans_ = calibration.scans
     out = np.empty(n)

@@ -130,6 +130,17 @@ class CompiledEngine(ReferenceEngine):
         self._arrays = (self._WT, *self._c_arrays, *self._s_arrays)
         self._show(n)
 
+    def take_parameters(self) -> bool:
+        """The clusterer's record packed again, into the bytes the driver reads (its fields,
+        and so its dtype, are the same unless a value's type changed: then False)."""
+        if not hasattr(self, "c_record"):  # not driving yet: the record is packed when it starts
+            return True
+        record = pack(self.clusterer)
+        if record.dtype != self.c_record.dtype:
+            return False
+        self.c_record[...] = record
+        return True
+
     def _show(self, n: int) -> None:
         """Give the parts views of the first ``n`` units of the engine's arrays (counted as
         changes, which the engine takes as seen)."""

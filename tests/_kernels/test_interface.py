@@ -6,9 +6,11 @@ import contextlib
 import copy
 import pickle
 
+import numpy as np
 import pytest
 
 import novelty
+from novelty._component import StateError
 from novelty._kernels import reference_loops
 from novelty._kernels.choice import engine_of
 
@@ -45,3 +47,44 @@ def test_a_copy_or_a_pickle_makes_its_own_engine():
     engine_of(det)
     assert copy.deepcopy(det)._engine is None
     assert pickle.loads(pickle.dumps(det))._engine is None
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_calibrating_keeps_the_engine_and_learns_as_a_new_engine_would(reference):
+    # GWR's "auto" radius calibrates one scan at a time: the engine takes the fitted threshold
+    # it sets in place, and learns what engines chosen anew after each scan learned
+    X = corridor(260)
+    with reference_loops() if reference else contextlib.nullcontext():
+        kept = novelty.make("gwr-novelty").fit(X[:2])
+        engine = engine_of(kept)
+        kept_novelty = kept.partial_fit(X[2:]).stream(X[:20])
+        assert engine_of(kept) is engine and kept._calibration.full
+        anew = novelty.make("gwr-novelty").fit(X[:2])
+        built = []
+        with pytest.MonkeyPatch.context() as mp:  # every calibrating scan seen as a change
+            mp.setattr(type(engine), "take_parameters", lambda self: built.append(1) or False)
+            anew_novelty = anew.partial_fit(X[2:]).stream(X[:20])
+        assert len(built) > 100
+        np.testing.assert_array_equal(kept_novelty, anew_novelty)
+        assert kept.clusterer_.activity_threshold_ == anew.clusterer_.activity_threshold_
+        np.testing.assert_array_equal(kept.clusterer_.weights_, anew.clusterer_.weights_)
+
+
+def test_a_calibrate_that_sets_more_than_fitted_parameters_has_the_state_checked():
+    det = novelty.make("gwr-novelty").fit(corridor(5))
+    engine = engine_of(det)
+    clusterer = det.clusterer_
+    clusterer.calibrate = lambda scale: setattr(clusterer, "weights_", np.zeros((2, 99)))
+    engine.calibrate(0.5)
+    assert not engine.holds()
+    with pytest.raises(StateError, match=r"weights_ has shape \(2, 99\)"):
+        det.stream(corridor(3))
+
+
+def test_a_calibrated_threshold_that_is_not_a_finite_number_is_not_taken_in_place():
+    det = novelty.make("gwr-novelty").fit(corridor(5))
+    engine = engine_of(det)
+    clusterer = det.clusterer_
+    clusterer.calibrate = lambda scale: setattr(clusterer, "activity_threshold_", float("nan"))
+    engine.calibrate(0.5)
+    assert not engine.holds()  # the next call chooses another engine, after the full check
