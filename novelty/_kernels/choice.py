@@ -33,7 +33,7 @@ from .._component import declares
 from .compiling import Compiled, disabled
 from .engine import CompiledEngine, driver_of
 from .interface import Engine
-from .params import attribute, nested_ready, spec_of
+from .params import attribute, nested_ready, pack, spec_of
 from .reference import ReferenceEngine
 from .state import check_state
 
@@ -81,11 +81,12 @@ def choose(clusterer, synapse) -> Engine:
     """A new engine for the fitted parts (their state checked): the reasons of the module
     docstring, in one place."""
     learning, scoring = why_not_learning(clusterer, synapse), why_not_scoring(clusterer)
-    driver = compiling = module = None
+    driver = compiling = module = records = None
     pending = []
     if learning is None:
         try:
-            found = driver_of(clusterer, synapse)
+            records = (pack(clusterer), pack(synapse))  # packed once: the driver's types, its bytes
+            found = driver_of(clusterer, synapse, records)
         except (OSError, ImportError) as exc:  # no folder to write the driver to; a steps module missing
             learning = f"kernels unavailable: {exc}"
         else:
@@ -97,7 +98,7 @@ def choose(clusterer, synapse) -> Engine:
         pending += [waiting] if waiting is not None else []
     if driver is None and compiling is None and module is None:
         return ReferenceEngine(clusterer, synapse, f"reference ({learning})", tuple(pending))
-    engine = CompiledEngine(clusterer, synapse, driver, compiling, module, tuple(pending))
+    engine = CompiledEngine(clusterer, synapse, driver, compiling, module, tuple(pending), records)
     if learning is not None:
         engine.why = f"reference ({learning})"
     return engine

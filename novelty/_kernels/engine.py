@@ -46,15 +46,17 @@ from .scoring import score as _score_batch
 __all__ = ["CompiledEngine", "driver_of", "whole_vectors", "VECTOR"]
 
 
-def driver_of(clusterer, synapse):
+def driver_of(clusterer, synapse, records=None):
     """The pair's driver (a :class:`.compiling.Compiled`) for the types of its state and
-    parameter records (one per pair and types, per process; not compiled yet, perhaps)."""
+    parameter records (one per pair and types, per process; not compiled yet, perhaps);
+    ``records``: the parts' records (:func:`.params.pack`), if the caller packed them."""
     c_spec, s_spec = spec_of(clusterer), spec_of(synapse)
+    c_record, s_record = records if records is not None else (pack(clusterer), pack(synapse))
     W = clusterer.weights_
     return driver_for(c_spec.steps, s_spec.steps, type(clusterer), type(synapse), W,
                       [attribute(clusterer, name) for name in c_spec.arrays],
                       [attribute(synapse, name) for name in s_spec.arrays],
-                      pack(clusterer).dtype, pack(synapse).dtype)
+                      c_record.dtype, s_record.dtype)
 
 
 class CompiledEngine(ReferenceEngine):
@@ -76,7 +78,8 @@ class CompiledEngine(ReferenceEngine):
 
     why = "compiled"
 
-    def __init__(self, clusterer, synapse, driver=None, compiling=None, scoring=None, pending=()):
+    def __init__(self, clusterer, synapse, driver=None, compiling=None, scoring=None, pending=(),
+                 records=None):
         super().__init__(clusterer, synapse, "compiled", pending)
         self.c_spec, self.s_spec = spec_of(clusterer), spec_of(synapse)
         if driver is not None or compiling is not None:
@@ -92,7 +95,7 @@ class CompiledEngine(ReferenceEngine):
             self._one = (np.ones(1),)  # the driver's arguments for one scan, around stimulus and n
             self._out1 = (self._winner1, self.novelty1, self.distance1)
         if driver is not None:
-            self.start_driving(driver)
+            self.start_driving(driver, records)
         elif compiling is not None:
             self.learn = handing_over(compiling, self)
         if scoring is not None:
@@ -101,14 +104,15 @@ class CompiledEngine(ReferenceEngine):
             if driver is not None:  # against the weights as learning holds them (else: the
                 self.score_one = self._score_held  # reference's, a batch of one by self.score)
 
-    def start_driving(self, driver) -> None:
-        """Learn by ``driver`` (loaded) from now on, on the state as the parts hold it now."""
+    def start_driving(self, driver, records=None) -> None:
+        """Learn by ``driver`` (loaded) from now on, on the state as the parts hold it now
+        (``records``: the parts' records packed just now, by :func:`.choice.choose`)."""
         self._drive, self._score_one = driver.module.drive, driver.module.score_one
-        self.hold()
+        self.hold(records)
         self.learn, self.learn_one = self._learn, self._learn_one
 
     # ------------------------------------------------------------- the state
-    def hold(self) -> None:
+    def hold(self, records=None) -> None:
         """Read the parts' state into the engine's own arrays, with room to a whole number of
         vectors (nobody else holds them, so nobody can make them read-only or strided), and
         give the parts views of them."""
@@ -124,7 +128,7 @@ class CompiledEngine(ReferenceEngine):
         # the parameters as the driver takes them: the bytes of their records (.params.pack),
         # which the driver views as the records again (numba types a plain byte array at once; a
         # structured array by a slower path, 0.1 us a call each)
-        self.c_record, self.s_record = pack(c), pack(s)
+        self.c_record, self.s_record = records if records is not None else (pack(c), pack(s))
         self._head = (self._WT, *self._c_arrays, self._counters, self.c_record.view(np.uint8),
                       *self._s_arrays, self.s_record.view(np.uint8))
         self._arrays = (self._WT, *self._c_arrays, *self._s_arrays)
