@@ -28,6 +28,9 @@ takes as seen; the counters are written back through ``vars``, uncounted.
 **Growth.** The driver stops when an input needs a unit it has no room for;
 :meth:`CompiledEngine._learn` then moves the state into buffers with more rows
 (at least doubling, so few are wasted and few moves happen) and resumes.
+
+One module although just over 300 lines: holding the state, driving it and
+growing it are one job on the same arrays.
 """
 
 from __future__ import annotations
