@@ -57,6 +57,7 @@ import numpy as np
 
 from .._component import StateError
 from .compiling import disabled
+from .params import spec_of
 from .state import check_finite, parts_of
 
 __all__ = ["Engine", "ONE"]
@@ -136,15 +137,17 @@ class Engine:
         """
         clusterer = self.clusterer
         before = dict(vars(clusterer))
+        others = [part for part in self.parts if part is not clusterer]  # the synapse, nested parts
+        counts = tuple(map(_CHANGES, others))
         held = self.holds()
         clusterer.calibrate(scale)
-        if not held:
+        if not held or tuple(map(_CHANGES, others)) != counts:
             return
         after = vars(clusterer)
         changed = {name for name in before.keys() | after.keys()
                    if name != "_changes" and before.get(name, _GONE) is not after.get(name, _GONE)}
-        spec = getattr(type(clusterer), "_kernel", None)
-        fitted = {name for name, _ in getattr(spec, "fitted", ())}
+        spec = spec_of(clusterer)
+        fitted = {name for name, _ in spec.fitted} if spec is not None else set()
         if changed <= fitted and all(_finite_number(after.get(name)) for name in changed) \
                 and self.take_parameters():
             # the parts only: the owner's own change (its match scale) stays for fresh() to see

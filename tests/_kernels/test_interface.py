@@ -74,7 +74,9 @@ def test_a_calibrate_that_sets_more_than_fitted_parameters_has_the_state_checked
     det = novelty.make("gwr-novelty").fit(corridor(5))
     engine = engine_of(det)
     clusterer = det.clusterer_
-    clusterer.calibrate = lambda scale: setattr(clusterer, "weights_", np.zeros((2, 99)))
+    # set in its __dict__: an attribute set as usual would count as a change of its own
+    vars(clusterer)["calibrate"] = lambda scale: setattr(clusterer, "weights_", np.zeros((2, 99)))
+    assert engine.holds()
     engine.calibrate(0.5)
     assert not engine.holds()
     with pytest.raises(StateError, match=r"weights_ has shape \(2, 99\)"):
@@ -85,6 +87,19 @@ def test_a_calibrated_threshold_that_is_not_a_finite_number_is_not_taken_in_plac
     det = novelty.make("gwr-novelty").fit(corridor(5))
     engine = engine_of(det)
     clusterer = det.clusterer_
-    clusterer.calibrate = lambda scale: setattr(clusterer, "activity_threshold_", float("nan"))
+    vars(clusterer)["calibrate"] = lambda scale: setattr(clusterer, "activity_threshold_", float("nan"))
+    assert engine.holds()
     engine.calibrate(0.5)
     assert not engine.holds()  # the next call chooses another engine, after the full check
+
+
+def test_a_calibrate_that_sets_a_nested_part_has_the_state_checked():
+    det = novelty.make("gwr-novelty").fit(corridor(5))
+    engine = engine_of(det)
+    firing = det.clusterer_.firing_
+    vars(det.clusterer_)["calibrate"] = lambda scale: setattr(firing, "efficacy_", firing.efficacy_[:1].copy())
+    assert engine.holds()
+    engine.calibrate(0.5)
+    assert not engine.holds()
+    with pytest.raises(StateError, match="efficacy_ has shape"):
+        det.stream(corridor(3))
