@@ -173,6 +173,7 @@ ACROSS = {
     "test_docs.py": "the documentation pages' examples",
     "test_readme.py": "the README's examples",
     "test_tables.py": "the results tables of the documents against benchmarks/results/ and the suites",
+    "test_maps_diagnosis.py": "benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall",
     "test_layout.py": "this file: the layout of the repository",
     "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",
     "test_plugin.py": "a third-party plugin package, listed and benchmarked",

@@ -35,6 +35,24 @@ hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
 few of the hundreds of cells a laser scan hits; ``top=None`` takes the mean
 over all of them. A scan with no echo scores 0.
 
+Three options read the map more carefully (ours; each off by default,
+keeping the map above):
+
+- ``tolerance = t`` cells: a hit cell's efficacy is read as the least over
+  the ``(2t + 1)^2`` cells around it (itself included), so an echo landing
+  a cell or two off a surface the map knows (a pose error, a grazing ray,
+  range noise) is that surface, not a change;
+- ``min_passes = m``: a cell crossed fewer than ``m`` times gives no
+  novelty (``v_c = 0``): one glimpse through a cell is not evidence that
+  it was free;
+- ``evidence_lag = L`` scans: a scan's free space counts as evidence
+  only once it is ``L`` scans old (the last ``L`` scans are held in
+  ``pending_`` and their passes added when they leave it; their hits are
+  learned at once), so that an echo is novel where the robot saw free
+  space on an earlier pass, not where it saw through a moment ago while
+  approaching (a place met for the first time: its surfaces glimpsed
+  through by grazing rays, then hit).
+
 Learning a scan applies (1) to the cells it hits and adds one pass to the
 cells its rays crossed (a cell both hit and crossed in one scan counts as
 hit). Cells are made as they are first met; the state is three arrays over
@@ -109,6 +127,15 @@ class HabituatingMap(NoveltyDetector):
         The synapses' time constant (the paper's winner's).
     alpha : float, default=1.05
         Their recovery rate (the paper's); an efficacy never falls below ``1 - 1/alpha``.
+    tau_neighbour : float or None, default=None
+        The time constant with which the eight cells around a hit cell
+        habituate too (None: they do not).
+    tolerance : int, default=0
+        Read a hit cell's efficacy as the least within this many cells of it (ours).
+    min_passes : float, default=0
+        Cells crossed fewer times than this give no novelty (ours).
+    evidence_lag : int, default=0
+        A scan's free space counts as evidence this many scans later (ours).
     threshold : float, default=0.5
         Novelty above which :meth:`predict` says novel.
     contamination : "auto" or float in (0, 0.5], default="auto"
@@ -121,6 +148,8 @@ class HabituatingMap(NoveltyDetector):
         Each cell's synapse (1: never hit).
     passes_ : ndarray of shape (n_cells,)
         The scans whose rays crossed each cell.
+    pending_ : ndarray of shape (n_pending, n_features_in_)
+        The last scans learned, their free space not counted yet (at most ``evidence_lag``).
     n_features_in_ : int
 
     Examples
@@ -147,12 +176,18 @@ class HabituatingMap(NoveltyDetector):
         "tau": Interval(numbers.Real, 0, None, closed="neither"),
         "alpha": Interval(numbers.Real, 0, None, closed="neither"),
         "tau_neighbour": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
+        "tolerance": Interval(numbers.Integral, 0, 10),
+        "min_passes": Interval(numbers.Real, 0, None),
+        "evidence_lag": Interval(numbers.Integral, 0, None),
         "threshold": Interval(numbers.Real, None, None),
     }
 
     def __init__(self, cell_size=0.4, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, threshold=0.5, contamination="auto"):
+                 tau_neighbour=None, tolerance=0, min_passes=0, evidence_lag=0, threshold=0.5, contamination="auto"):
         self.tau_neighbour = tau_neighbour
+        self.tolerance = tolerance
+        self.min_passes = min_passes
+        self.evidence_lag = evidence_lag
         self.cell_size = cell_size
         self.evidence = evidence
         self.free_scale = free_scale
@@ -219,17 +254,30 @@ class HabituatingMap(NoveltyDetector):
         return np.where(known, at, -1)
 
     # ------------------------------------------------------------------ novelty
+    def _efficacy(self, keys: np.ndarray) -> np.ndarray:
+        """Each cell's efficacy (1: not met); with ``tolerance`` t, the least over the cells within t of it."""
+        t = int(self.tolerance)
+        span = np.arange(-t, t + 1, dtype=np.int64)
+        block = (span[:, None] * (1 << 32) + span[None, :]).ravel()
+        around = keys[:, None] + block[None, :]
+        slots = self._slots(around.ravel()).reshape(around.shape)
+        y = np.where(slots >= 0, self.efficacy_[np.maximum(slots, 0)] if self.efficacy_.size else 1.0, 1.0)
+        return y.min(axis=1)
+
     def _score(self, hits: np.ndarray) -> float:
         if hits.size == 0:
             return 0.0
         slots = self._slots(hits)
         met = slots >= 0
-        y = np.ones(hits.size)
-        y[met] = self.efficacy_[slots[met]]
+        y = self._efficacy(hits)
         if self.evidence == "free":
             passes = np.zeros(hits.size)
             passes[met] = self.passes_[slots[met]]
             y = y * -np.expm1(-passes / self.free_scale)
+        if self.min_passes > 0:
+            counted = np.zeros(hits.size, dtype=bool)
+            counted[met] = self.passes_[slots[met]] >= self.min_passes
+            y = np.where(counted, y, 0.0)
         if self.top is None:
             return float(y.mean())
         k = int(self.top)
@@ -252,24 +300,37 @@ class HabituatingMap(NoveltyDetector):
         self.cells_ = np.empty(0, dtype=np.int64)
         self.efficacy_ = np.empty(0)
         self.passes_ = np.empty(0)
+        self.pending_ = np.empty((0, X.shape[1]))
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         poses, near, ends = self._rows(X)
         out = np.empty(X.shape[0])
+        lag = int(self.evidence_lag)
         for i in range(X.shape[0]):
             hits, crossed = self._cells(poses[i], near[i], ends[i])
             out[i] = self._score(hits)
-            self._meet(np.union1d(hits, crossed))
-            if self.tau_neighbour is not None:
-                around = np.setdiff1d(np.unique((hits[:, None] + _NEIGHBOURS[None, :]).ravel()), hits)
-                self._meet(around)
-                at = self._slots(around)
-                self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau_neighbour, float(dt[i]),
-                                                 self.alpha, 1.0)
-            self.efficacy_[self._slots(hits)] = euler_steps(self.efficacy_[self._slots(hits)], 1.0, self.tau,
-                                                            float(dt[i]), self.alpha, 1.0)
-            self.passes_[self._slots(crossed)] += 1.0
+            self._apply(hits, crossed, float(dt[i]))
+            if lag == 0 and self.pending_.shape[0] == 0:
+                self.passes_[self._slots(crossed)] += 1.0
+                continue
+            # its free space counts when it is `lag` scans old: evidence from earlier passes only
+            self.pending_ = np.vstack([self.pending_, X[i:i + 1]])
+            while self.pending_.shape[0] > lag:
+                (pose,), (ring,), (points,) = self._rows(self.pending_[:1])
+                self.passes_[self._slots(self._cells(pose, ring, points)[1])] += 1.0
+                self.pending_ = self.pending_[1:]
         return out
+
+    def _apply(self, hits: np.ndarray, crossed: np.ndarray, dt: float) -> None:
+        """Learn one scan's hits: equation (1) on the cells it hits; the cells its rays crossed are met."""
+        self._meet(np.union1d(hits, crossed))
+        if self.tau_neighbour is not None:
+            around = np.setdiff1d(np.unique((hits[:, None] + _NEIGHBOURS[None, :]).ravel()), hits)
+            self._meet(around)
+            at = self._slots(around)
+            self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau_neighbour, dt, self.alpha, 1.0)
+        self.efficacy_[self._slots(hits)] = euler_steps(self.efficacy_[self._slots(hits)], 1.0, self.tau, dt,
+                                                        self.alpha, 1.0)
 
     def _meet(self, keys: np.ndarray) -> None:
         """Add the cells of ``keys`` not met yet (unhabituated, never crossed), keeping the keys sorted."""
@@ -292,6 +353,7 @@ class HabituatingMap(NoveltyDetector):
         floor = 1.0 - 1.0 / self.alpha
         if n and (efficacy.min() < floor - 1e-9 or efficacy.max() > 1.0 + 1e-9 or passes.min() < 0):
             raise StateError(f"HabituatingMap.efficacy_ must lie in [{floor:.4g}, 1] and passes_ be >= 0.")
+        check_array_state(self, "pending_", 2, shape=(None, self.n_features_in_))
         if (self.n_features_in_ - 3) % 3 or self.n_features_in_ < 6:
             raise StateError(f"HabituatingMap.n_features_in_ must be 3 + 3n (the 'points' input); "
                              f"got {self.n_features_in_}.")

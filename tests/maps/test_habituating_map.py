@@ -13,6 +13,7 @@ import math
 import numpy as np
 import pytest
 
+from novelty._component import StateError
 from novelty.maps.habituating_map import HabituatingMap, cell_keys
 from novelty.persistence import load, save
 
@@ -118,16 +119,72 @@ def test_learning_returns_each_scans_novelty_before_it_is_learned():
     assert fresh.stream([scan((2.1, 0.1))] * 2).tolist() == [0.5, 0.25]
 
 
+# ------------------------------------------------------------------ the options read more carefully (ours)
+@pytest.mark.parametrize("tolerance, expected", [(0, [1.0, 1.0]), (1, [0.5, 1.0]), (2, [0.5, 0.5])])
+def test_tolerance_reads_a_cell_as_the_least_efficacy_within_that_many_cells(tolerance, expected):
+    # cell (2, 0) hit once: efficacy 1/2; echoes in cells (3, 0) and (4, 0), never met, one and two cells off
+    det = HabituatingMap(evidence="hits", tolerance=tolerance, **EXACT).fit([scan((2.1, 0.1))])
+    assert det.novelty([scan((3.1, 0.1)), scan((4.1, 0.1))]).tolist() == expected
+    assert state(det, 2, 0)[0] == 0.5                  # reading only: what is learned is unchanged
+
+
+def test_tolerance_looks_along_both_axes_and_the_diagonals():
+    det = HabituatingMap(evidence="hits", tolerance=1, **EXACT).fit([scan((1.1, 1.1))])
+    # cells (2, 2), (1, 2), (2, 1) touch (1, 1); (3, 1) is two cells off
+    assert det.novelty([scan((2.1, 2.1)), scan((1.1, 2.1)), scan((2.1, 1.1)), scan((3.1, 1.1))]).tolist() == \
+        [0.5, 0.5, 0.5, 1.0]
+
+
+@pytest.mark.parametrize("min_passes, expected", [(0, 1 - math.exp(-1.0)), (2, 1 - math.exp(-1.0)), (2.5, 0.0)])
+def test_cells_crossed_fewer_than_min_passes_times_give_no_novelty(min_passes, expected):
+    # two scans with an echo at (3.1, 0.1): cell (1, 0) crossed twice, never hit
+    det = HabituatingMap(free_scale=2.0, min_passes=min_passes, **EXACT).fit([scan((3.1, 0.1))] * 2)
+    assert det.novelty([scan((1.5, 0.1))]).tolist() == [expected]
+
+
+def test_min_passes_also_holds_with_hits_alone():
+    det = HabituatingMap(evidence="hits", min_passes=1, **EXACT).fit([scan((3.1, 0.1))])
+    # (1, 0) crossed once: y = 1 counts; (0, 2) never met: no passes, none
+    assert det.novelty([scan((1.5, 0.1)), scan((0.1, 2.1))]).tolist() == [1.0, 0.0]
+
+
+def test_with_an_evidence_lag_free_space_counts_once_it_is_that_many_scans_old():
+    rows = [scan((3.1, 0.1))] * 2
+    det = HabituatingMap(free_scale=2.0, evidence_lag=1, **EXACT).fit(rows)
+    # the second scan's free space is pending: (1, 0) has one pass; the hits are learned at once
+    assert state(det, 1, 0) == (1.0, 1.0) and state(det, 3, 0) == (0.25, 0.0)
+    assert det.pending_.tolist() == [rows[1]]
+    assert det.novelty([scan((1.5, 0.1))]).tolist() == [1 - math.exp(-0.5)]
+    det.partial_fit([scan((0.6, 0.1))])               # one more scan: the pending one counts now
+    assert state(det, 1, 0) == (1.0, 2.0) and det.pending_.tolist() == [scan((0.6, 0.1))]
+    assert HabituatingMap(evidence_lag=2, **EXACT).fit(rows).novelty([scan((1.5, 0.1))]).tolist() == [0.0]
+
+
+def test_a_scan_is_scored_before_its_own_and_the_pending_free_space_counts():
+    # the robot sees through cell (1, 0) on three scans, then an echo lands there
+    rows = [scan((3.1, 0.1))] * 3 + [scan((1.5, 0.1))]
+    lagged = HabituatingMap(free_scale=1.0, evidence_lag=2, **EXACT).stream(rows)
+    assert lagged.tolist() == [0.0, 0.0, 0.0, 1 - math.exp(-1.0)]
+    assert HabituatingMap(free_scale=1.0, **EXACT).stream(rows).tolist() == [0.0, 0.0, 0.0, 1 - math.exp(-3.0)]
+
+
+def test_an_evidence_lag_of_zero_is_the_map_without_it():
+    X = HabituatingMap._example_rows(seed=2, n=40)
+    lagged, plain = HabituatingMap(evidence_lag=0).fit(X), HabituatingMap().fit(X)
+    assert np.array_equal(lagged.passes_, plain.passes_) and lagged.pending_.shape == (0, X.shape[1])
+
+
 # ------------------------------------------------------------------ determinism, persistence, refusals
-def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row():
+@pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2}])
+def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row(params):
     X = HabituatingMap._example_rows(seed=3, n=60)
-    batch = HabituatingMap(tau_neighbour=10.0).fit(X)
-    rows = HabituatingMap(tau_neighbour=10.0).fit(X[:1])
+    batch = HabituatingMap(**params).fit(X)
+    rows = HabituatingMap(**params).fit(X[:1])
     for row in X[1:]:
         rows.partial_fit(row[None, :])
-    for name in ("cells_", "efficacy_", "passes_"):
+    for name in ("cells_", "efficacy_", "passes_", "pending_"):
         assert np.array_equal(getattr(batch, name), getattr(rows, name)), name
-    assert np.array_equal(batch.novelty(X), HabituatingMap(tau_neighbour=10.0).fit(X).novelty(X))
+    assert np.array_equal(batch.novelty(X), HabituatingMap(**params).fit(X).novelty(X))
 
 
 def test_a_saved_map_loads_as_the_same_map_from_a_file_without_pickle(tmp_path):
@@ -140,6 +197,23 @@ def test_a_saved_map_loads_as_the_same_map_from_a_file_without_pickle(tmp_path):
     assert type(back) is HabituatingMap and back.get_params() == det.get_params()
     assert np.array_equal(back.cells_, det.cells_) and np.array_equal(back.passes_, det.passes_)
     assert np.array_equal(back.novelty(X[30:]), det.novelty(X[30:]))
+
+
+def test_a_saved_map_keeps_its_pending_scans_and_goes_on_as_the_map_it_was(tmp_path):
+    X = HabituatingMap._example_rows(seed=4, n=50)
+    det = HabituatingMap(evidence_lag=5).fit(X[:30])
+    save(det, tmp_path / "map.npz")
+    back = load(tmp_path / "map.npz")
+    assert np.array_equal(back.pending_, X[25:30])
+    assert np.array_equal(back.stream(X[30:]), det.stream(X[30:]))
+    assert np.array_equal(back.passes_, det.passes_)
+
+
+def test_pending_scans_of_another_width_are_refused_as_a_bad_state():
+    det = HabituatingMap(evidence_lag=2).fit(HabituatingMap._example_rows(n=10))
+    det.pending_ = det.pending_[:, :-1]
+    with pytest.raises(StateError, match="pending_"):
+        det._check_state()
 
 
 def test_rows_of_another_width_are_refused_naming_the_points_input():
@@ -169,6 +243,10 @@ def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_t
     ({"evidence": "both"}, "evidence"),
     ({"top": 0}, "top"),
     ({"cell_size": 0.0}, "cell_size"),
+    ({"tolerance": -1}, "tolerance"),
+    ({"tolerance": 1.5}, "tolerance"),
+    ({"min_passes": -1.0}, "min_passes"),
+    ({"evidence_lag": -2}, "evidence_lag"),
 ])
 def test_bad_parameters_are_refused_by_name(params, message):
     with pytest.raises(ValueError, match=message):

@@ -1,0 +1,62 @@
+"""benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall, its cells and its trace."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from novelty.bench.holdout.metrics import roc_auc
+from novelty.io.objects.shapes import Cylinder
+from novelty.maps import HabituatingMap
+from novelty.maps.habituating_map import cell_keys
+
+ROOT = Path(__file__).resolve().parents[1]
+_spec = importlib.util.spec_from_file_location("maps_diagnosis", ROOT / "benchmarks" / "maps_diagnosis.py")
+diagnosis = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(diagnosis)
+
+
+def test_the_pairs_each_familiar_scan_wins_sum_to_the_aucs_shortfall():
+    scores = np.array([0.2, 0.6, 0.1, 0.6, 0.9])
+    first = np.array([True, True, False, False, False])
+    # 0.1 outranks none; 0.6 outranks 0.2 and ties 0.6 (1.5); 0.9 outranks both (2): 3.5 of 6 pairs
+    losses = diagnosis.pair_losses(scores, first, ~first)
+    assert losses.tolist() == [0.0, 1.5, 2.0]
+    assert 1 - losses.sum() / 6 == pytest.approx(roc_auc(scores, first))
+
+
+def test_cell_centres_invert_the_maps_cell_keys():
+    points = np.array([[0.1, 0.1], [-0.3, 2.5], [5.9, -7.1]])
+    centres = diagnosis.cell_centres(cell_keys(points, 0.4), 0.4)
+    assert np.allclose(centres, (np.floor(points / 0.4) + 0.5) * 0.4)
+
+
+def test_a_scan_takes_the_first_class_that_holds():
+    flags = {"top_on_object": [True, False, False, False, False, False],
+             "first_visit": [True, True, False, False, False, False],
+             "top_along": [True, True, True, False, False, False],
+             "top_bordered": [True, True, True, True, False, False],
+             "top_recent": [True, True, True, True, True, False]}
+    trace = {k: np.array(v) for k, v in flags.items()} | {"score": np.zeros(6)}
+    assert diagnosis.classify(trace).tolist() == [0, 1, 2, 3, 4, 5]
+
+
+def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_echo():
+    X = HabituatingMap._example_rows(seed=5, n=60)
+    # a post whose surface passes through scan 45's first echo (behind it, seen from the robot)
+    n = (X.shape[1] - 3) // 3
+    k = int(np.flatnonzero(X[45, 3:3 + n] > 0)[0])
+    end = np.array([X[45, 3 + n + k], X[45, 3 + 2 * n + k]])
+    away = (end - X[45, :2]) / np.hypot(*(end - X[45, :2]))
+    post = Cylinder("post", x=float(end[0] + 0.2 * away[0]), y=float(end[1] + 0.2 * away[1]), radius=0.2,
+                    start=45.0)
+    t = diagnosis.trace(HabituatingMap(), X, [post], np.arange(60.0))
+    np.testing.assert_allclose(t["score"], HabituatingMap().stream(X), rtol=0, atol=1e-12)
+    assert t["object_cells"][45] >= 1
+    assert t["object_cells"][:45].sum() == 0          # not standing yet
+
+
+def test_the_reported_seeds_are_refused():
+    with pytest.raises(SystemExit):
+        diagnosis.main(["--seeds", "100", "3"])
