@@ -51,6 +51,7 @@ from collections import defaultdict
 
 import numpy as np
 
+from novelty.bench.holdout.metrics import roc_auc
 from novelty.data import FAMILIAR
 from novelty.io.objects import cast_all
 from novelty.io.objects.placement import object_from_fields
@@ -197,6 +198,12 @@ def diagnose(log: str, seed: int, params: dict, path=None) -> dict:
            "first_known": float(np.mean(t["object_known"][first])),
            "first_median": float(np.median(scores[first])), "familiar_median": float(np.median(scores[familiar])),
            "below_label_above": int((below_label & above).sum()), "below_label": int(below_label.sum())}
+    # first sights of a place seen through before the object appeared, and of a place first seen with it
+    known = t["object_known"]
+    for part, mine in (("known", first & known), ("new", first & ~known)):
+        keep = mine | familiar
+        row[f"auc_{part}"] = float(roc_auc(scores[keep], mine[keep])) if mine.any() else float("nan")
+        row[f"n_{part}"] = int(mine.sum())
     # the first scan of each object's first pass against the later scans of that pass
     objects_seen = task.columns["object"].astype(str)
     leading = np.zeros(len(scores), dtype=bool)
@@ -248,6 +255,14 @@ def report(rows: list[dict]) -> str:
         cells = [f"{tot('flag_above:' + f) / max(tot('n_above'), 1):.0%} / {tot('flag_all:' + f) / tot('n_familiar'):.0%}"
                  for f in FLAGS]
         lines.append(f"| {log} | " + " | ".join(cells) + f" | {tot('below_label_above')} / {tot('below_label')} |")
+    lines += ["", "First sights where the robot had seen free space before the object appeared, and the others, each "
+              "against the same familiar scans (first-encounter AUC, mean over the seeds that have them; scans):", "",
+              "| log | place seen before | place first seen with the object |", "|---|---|---|"]
+    for log in dict.fromkeys(r["log"] for r in rows):
+        mine = [r for r in rows if r["log"] == log]
+        cells = [f"{np.nanmean([r['auc_' + p] for r in mine]):.3f} ({sum(r['n_' + p] for r in mine)})"
+                 for p in ("known", "new")]
+        lines.append(f"| {log} | " + " | ".join(cells) + " |")
     lines += ["", "First sights (mean over seeds):", "",
               "| log | first sights | scans a first pass | median score: first scan of the pass / later ones / familiar "
               "| scored 0 | object cells never seen through | object cells already habituated "
