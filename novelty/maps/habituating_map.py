@@ -35,8 +35,9 @@ hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
 few of the hundreds of cells a laser scan hits; ``top=None`` takes the mean
 over all of them. A scan with no echo scores 0.
 
-Three options read the map more carefully (ours; each off by default,
-keeping the map above):
+Three options read the map more carefully (ours). ``tolerance = 1`` is a
+default (chosen by a selection on development seeds:
+benchmarks/selection/maps-round3.md); the other two are off by default:
 
 - ``tolerance = t`` cells: a hit cell's efficacy is read as the least over
   the ``(2t + 1)^2`` cells around it (itself included), so an echo landing
@@ -130,8 +131,9 @@ class HabituatingMap(NoveltyDetector):
     tau_neighbour : float or None, default=None
         The time constant with which the eight cells around a hit cell
         habituate too (None: they do not).
-    tolerance : int, default=0
-        Read a hit cell's efficacy as the least within this many cells of it (ours).
+    tolerance : int, default=1
+        Read a hit cell's efficacy as the least within this many cells of it
+        (ours; 0: the cell's own).
     min_passes : float, default=0
         Cells crossed fewer times than this give no novelty (ours).
     evidence_lag : int, default=0
@@ -183,7 +185,7 @@ class HabituatingMap(NoveltyDetector):
     }
 
     def __init__(self, cell_size=0.4, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=0, min_passes=0, evidence_lag=0, threshold=0.5, contamination="auto"):
+                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, threshold=0.5, contamination="auto"):
         self.tau_neighbour = tau_neighbour
         self.tolerance = tolerance
         self.min_passes = min_passes

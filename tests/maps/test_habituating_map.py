@@ -18,7 +18,7 @@ from novelty.maps.habituating_map import HabituatingMap, cell_keys
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
-EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1}
+EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0}
 
 
 def scan(*echoes, robot=ROBOT):
@@ -123,13 +123,21 @@ def test_learning_returns_each_scans_novelty_before_it_is_learned():
 @pytest.mark.parametrize("tolerance, expected", [(0, [1.0, 1.0]), (1, [0.5, 1.0]), (2, [0.5, 0.5])])
 def test_tolerance_reads_a_cell_as_the_least_efficacy_within_that_many_cells(tolerance, expected):
     # cell (2, 0) hit once: efficacy 1/2; echoes in cells (3, 0) and (4, 0), never met, one and two cells off
-    det = HabituatingMap(evidence="hits", tolerance=tolerance, **EXACT).fit([scan((2.1, 0.1))])
+    det = HabituatingMap(evidence="hits", **{**EXACT, "tolerance": tolerance}).fit([scan((2.1, 0.1))])
     assert det.novelty([scan((3.1, 0.1)), scan((4.1, 0.1))]).tolist() == expected
     assert state(det, 2, 0)[0] == 0.5                  # reading only: what is learned is unchanged
 
 
+def test_an_echo_one_cell_off_a_known_surface_is_that_surface_by_default():
+    # chosen by benchmarks/selection/maps-round3.md; the cells of a hit are read with their neighbours
+    assert HabituatingMap().tolerance == 1
+    exact = {k: v for k, v in EXACT.items() if k != "tolerance"}
+    det = HabituatingMap(evidence="hits", **exact).fit([scan((2.1, 0.1))])
+    assert det.novelty([scan((3.1, 0.1)), scan((4.1, 0.1))]).tolist() == [0.5, 1.0]
+
+
 def test_tolerance_looks_along_both_axes_and_the_diagonals():
-    det = HabituatingMap(evidence="hits", tolerance=1, **EXACT).fit([scan((1.1, 1.1))])
+    det = HabituatingMap(evidence="hits", **{**EXACT, "tolerance": 1}).fit([scan((1.1, 1.1))])
     # cells (2, 2), (1, 2), (2, 1) touch (1, 1); (3, 1) is two cells off
     assert det.novelty([scan((2.1, 2.1)), scan((1.1, 2.1)), scan((2.1, 1.1)), scan((3.1, 1.1))]).tolist() == \
         [0.5, 0.5, 0.5, 1.0]
