@@ -1,11 +1,13 @@
 """Why a habituating map, learning as it drives, does not flag first sight: which familiar scans outrank it.
 
     NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --seeds 100 101 102 103 104
+    NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --param tolerance=0   # as in the guide
 
 On the exploration tasks with objects (``exploration-objects-radish-*``, the ``points`` input with 180
 sectors), every scan is scored by ``habituating-map`` (its defaults, or ``--param name=value``) before it
 is learned, as the exploration protocol does, and each score is traced to the cells that make it: the
-``top`` hit cells with the largest novelty ``v = y (1 - exp(-f / f0))`` (novelty/maps/habituating_map.py).
+``top`` hit cells with the largest novelty ``v = y (1 - exp(-f / f0))`` (novelty/maps/habituating_map.py;
+``y`` read with the map's ``tolerance``, ``v`` = 0 below its ``min_passes``).
 
 The first-encounter ROC AUC compares the first sights (scans at an object's first pass) with the familiar
 scans of the same runs. Its shortfall ``1 - AUC`` is the share of (first sight, familiar scan) pairs in
@@ -97,10 +99,13 @@ def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
         fitted = hasattr(det, "cells_")
         slots = det._slots(hits) if fitted else np.full(hits.size, -1)
         met = slots >= 0
-        y, f = np.ones(hits.size), np.zeros(hits.size)
+        own, f = np.ones(hits.size), np.zeros(hits.size)
         if fitted:
-            y[met], f[met] = det.efficacy_[slots[met]], det.passes_[slots[met]]
+            own[met], f[met] = det.efficacy_[slots[met]], det.passes_[slots[met]]
+        # the efficacy as the map reads it (with its tolerance), the evidence as it weighs it
+        y = det._efficacy(hits) if fitted else own
         v = y * -np.expm1(-f / det.free_scale) if det.evidence == "free" else y
+        v = np.where(f >= det.min_passes, v, 0.0) if det.min_passes > 0 else v
         order = np.argsort(v, kind="stable")[::-1][: (k or hits.size)]
         top = order[v[order] > 0]
         keys = hits[top]
@@ -139,7 +144,7 @@ def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
         out["top_few"].append(bool(keys.size) and bool((f[top] <= FEW).any()))
         out["object_cells"].append(int(on_object.sum()))
         out["object_unseen"].append(bool(on_object.any()) and bool((f[on_object] == 0).all()))
-        out["object_habituated"].append(bool(on_object.any()) and bool((y[on_object] < 0.9).any()))
+        out["object_habituated"].append(bool(on_object.any()) and bool((own[on_object] < 0.9).any()))
         out["object_known"].append(bool(on_object.any()) and any(
             first_crossed.get(int(q), len(X)) < appeared for q in hits[on_object]))
         for q in crossed.tolist():

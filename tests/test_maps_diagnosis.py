@@ -57,6 +57,14 @@ def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_
     assert t["object_cells"][:45].sum() == 0          # not standing yet
 
 
+@pytest.mark.parametrize("params", [{"tolerance": 0}, {"tolerance": 2, "min_passes": 3}, {"evidence": "hits"},
+                                    {"evidence_lag": 10}])
+def test_the_trace_reads_the_map_as_its_options_say(params):
+    X = HabituatingMap._example_rows(seed=6, n=60)
+    t = diagnosis.trace(HabituatingMap(**params), X, [], np.arange(60.0))
+    np.testing.assert_allclose(t["score"], HabituatingMap(**params).stream(X), rtol=0, atol=1e-12)
+
+
 def test_the_reported_seeds_are_refused():
     with pytest.raises(SystemExit):
         diagnosis.main(["--seeds", "100", "3"])
