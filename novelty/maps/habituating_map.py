@@ -54,6 +54,15 @@ benchmarks/selection/maps-round3.md); the other two are off by default:
   approaching (a place met for the first time: its surfaces glimpsed
   through by grazing rays, then hit).
 
+A sonar's echo comes from anywhere in its cone, not from its axis. With
+``arc = a`` (rad, ours; 0 by default: a laser's beam) each sector is read
+as a cone of width ``a`` centred on the direction of its end point: its
+echo is spread over the arc at its range from the robot, and its free
+space over the cone inside that range (Moravec & Elfes 1985), sampled by
+``1 + ceil(a r_max / (c / 2))`` rays evenly across it (``r_max`` the
+longest sector of the scan), so that a wall seen from elsewhere falls in
+the cells of the arc that holds it.
+
 Learning a scan applies (1) to the cells it hits and adds one pass to the
 cells its rays crossed (a cell both hit and crossed in one scan counts as
 hit). Cells are made as they are first met; the state is three arrays over
@@ -138,6 +147,8 @@ class HabituatingMap(NoveltyDetector):
         Cells crossed fewer times than this give no novelty (ours).
     evidence_lag : int, default=0
         A scan's free space counts as evidence this many scans later (ours).
+    arc : float, default=0.0
+        Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis.
     threshold : float, default=0.5
         Novelty above which :meth:`predict` says novel.
     contamination : "auto" or float in (0, 0.5], default="auto"
@@ -181,12 +192,15 @@ class HabituatingMap(NoveltyDetector):
         "tolerance": Interval(numbers.Integral, 0, 10),
         "min_passes": Interval(numbers.Real, 0, None),
         "evidence_lag": Interval(numbers.Integral, 0, None),
+        "arc": Interval(numbers.Real, 0, np.pi),
         "threshold": Interval(numbers.Real, None, None),
     }
 
     def __init__(self, cell_size=0.4, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, threshold=0.5, contamination="auto"):
+                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc=0.0, threshold=0.5,
+                 contamination="auto"):
         self.tau_neighbour = tau_neighbour
+        self.arc = arc
         self.tolerance = tolerance
         self.min_passes = min_passes
         self.evidence_lag = evidence_lag
@@ -232,9 +246,21 @@ class HabituatingMap(NoveltyDetector):
                              "from the world's origin; give poses in metres in a local frame (odom or map).")
         return poses, near, ends
 
+    def _cones(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
+        """Each sector as rays evenly across its cone of width ``arc``, each as long as the sector."""
+        d = ends - pose[:2]
+        length = np.hypot(d[:, 0], d[:, 1])
+        rays = 1 + int(np.ceil(float(self.arc) * length.max() / (float(self.cell_size) / 2))) if length.size else 1
+        spread = np.linspace(-self.arc / 2, self.arc / 2, rays)
+        bearing = np.arctan2(d[:, 1], d[:, 0])[:, None] + spread[None, :]
+        out = pose[:2] + length[:, None, None] * np.stack([np.cos(bearing), np.sin(bearing)], axis=-1)
+        return np.repeat(near, rays), out.reshape(-1, 2)
+
     def _cells(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
         """The cells one scan hits, and those its rays cross (not hit), as sorted unique keys."""
         c = float(self.cell_size)
+        if self.arc > 0:
+            near, ends = self._cones(pose, near, ends)
         hit = near > 0
         hits = np.unique(cell_keys(ends[hit], c))
         d = ends - pose[:2]

@@ -182,6 +182,25 @@ def test_an_evidence_lag_of_zero_is_the_map_without_it():
     assert np.array_equal(lagged.passes_, plain.passes_) and lagged.pending_.shape == (0, X.shape[1])
 
 
+def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
+    # arc 0.4 rad, range 2 m, cells 1 m: 1 + ceil(0.4 * 2 / 0.5) = 3 rays at -0.2, 0, 0.2 rad; their ends
+    # (2.060, -0.297), (2.1, 0.1), (2.060, 0.497) lie in cells (2, -1) and (2, 0); sampled at 0.25 and
+    # 0.75 m (up to one cell short of the echo) they cross (0, 0) and, at (0.835, -0.049), (0, -1)
+    det = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([scan((2.1, 0.1))])
+    assert det.cells_.tolist() == sorted([cell(0, -1), cell(0, 0), cell(2, -1), cell(2, 0)])
+    assert state(det, 2, -1) == (0.5, 0.0) and state(det, 2, 0) == (0.5, 0.0)
+    assert state(det, 0, -1) == (1.0, 1.0) and state(det, 0, 0) == (1.0, 1.0)
+    axis = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))])
+    assert cell(2, -1) not in axis.cells_ and cell(0, -1) not in axis.cells_
+
+
+def test_with_an_arc_a_sector_without_echo_sees_its_whole_cone_free():
+    # 4 m and 0.4 rad: five rays; the one at -0.2 rad passes (3.53, -0.595), in cell (3, -1)
+    det = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([scan(None)])
+    assert state(det, 3, -1) == (1.0, 1.0)
+    assert cell(3, -1) not in HabituatingMap(evidence="hits", **EXACT).fit([scan(None)]).cells_
+
+
 # ------------------------------------------------------------------ determinism, persistence, refusals
 @pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2}])
 def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row(params):
@@ -255,6 +274,8 @@ def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_t
     ({"tolerance": 1.5}, "tolerance"),
     ({"min_passes": -1.0}, "min_passes"),
     ({"evidence_lag": -2}, "evidence_lag"),
+    ({"arc": -0.1}, "arc"),
+    ({"arc": 4.0}, "arc"),
 ])
 def test_bad_parameters_are_refused_by_name(params, message):
     with pytest.raises(ValueError, match=message):
