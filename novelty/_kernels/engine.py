@@ -148,6 +148,16 @@ class CompiledEngine(ReferenceEngine):
         self.c_record[...] = record
         return True
 
+    def value_arrays(self) -> list:
+        """The arrays :meth:`check_values` sums: the engine's own buffers in place of the parts'
+        views of them (contiguous, one dot each: the transposed ``weights_`` view took einsum
+        3.4 us, its buffer's dot 1.1 us, 100 units of 16 features), and any other float state
+        as the parts hold it. The room past the units is zero or a unit the driver moved (a
+        value that passed): it adds nothing a check would refuse."""
+        buffers = {id(b): b for b in getattr(self, "_arrays", ())}
+        arrays = [buffers.pop(id(a.base), a) if a.base is not None else a for _, a in self.state_arrays()]
+        return [a.reshape(-1) if a.flags.c_contiguous else a for a in arrays]
+
     def _show(self, n: int) -> None:
         """Give the parts views of the first ``n`` units of the engine's arrays (counted as
         changes, which the engine takes as seen)."""

@@ -30,6 +30,7 @@ option_code(SOM, "decay", "linear")`` in its module (:func:`novelty.rules.option
 
 from __future__ import annotations
 
+import functools
 import numbers
 import operator
 from typing import Callable
@@ -120,15 +121,14 @@ def _fields(component, name: str, value) -> list[tuple[str, object, object]]:
     """The record fields ``(field, type, value)`` of one parameter (the module docstring's
     table)."""
     cls = type(component)
-    if isinstance(value, Component):
+    if type(value) not in _SCALARS and isinstance(value, Component):
         if spec_of(value) is None:
             raise TypeError(f"{type(value).__name__} declares no kernel")
         packed = pack(value)
         return [(name, packed.dtype, packed[0])]
-    fitted = dict(spec_of(component).fitted)
-    if name in fitted:
-        return [(name, _NUMPY[fitted[name]], _convert(cls, name, fitted[name], value))]
-    number, strings, flag, none = field_kind(cls, name)
+    fitted, number, strings, flag, none = _kind(cls, name)
+    if fitted is not None:
+        return [(name, _NUMPY[fitted], _convert(cls, name, fitted, value))]
     if isinstance(value, str) and value not in strings:
         raise ValueError(f"{cls.__name__}.{name} = {value!r} is not among its options")
     given = value is not None
@@ -145,13 +145,25 @@ def _fields(component, name: str, value) -> list[tuple[str, object, object]]:
     return out
 
 
+@functools.lru_cache(maxsize=1024)
+def _kind(cls: type, name: str) -> tuple:
+    """``(fitted type or None, *field_kind)`` of a parameter of ``cls``, read once: a class's
+    rules and kernel declaration are its own, set in its body (reading them afresh took
+    15-30 us of every engine made, which packs its parts' records)."""
+    fitted = dict(cls.__dict__["_kernel"].fitted).get(name)
+    return (fitted, None, (), False, False) if fitted is not None else (None, *field_kind(cls, name))
+
+
+#: the types of the values a record field takes as they are (a nested component is none)
+_SCALARS = frozenset({int, float, str, bool, type(None), np.float64, np.int64, np.bool_})
+
 _NUMPY = {float: np.float64, int: np.int64, bool: np.bool_}
 
 
 def _convert(cls: type, name: str, kind: type, value):
     try:
         converted = kind(value)
-        if kind is int and not _INT64.min <= converted <= _INT64.max:
+        if kind is int and not _INT64_MIN <= converted <= _INT64_MAX:
             raise OverflowError
         return converted
     except (TypeError, ValueError, OverflowError):
@@ -159,7 +171,7 @@ def _convert(cls: type, name: str, kind: type, value):
                          "steps can hold") from None
 
 
-_INT64 = np.iinfo(np.int64)
+_INT64_MIN, _INT64_MAX = int(np.iinfo(np.int64).min), int(np.iinfo(np.int64).max)
 _WHAT = {float: "a float", int: "an int64", bool: "a truth value"}
 
 
@@ -170,9 +182,17 @@ def pack(component) -> np.ndarray:
     names = param_names(component)
     fields = [f for name, value in zip(names, getter(names)(component))
               for f in _fields(component, name, value)]
-    record = np.zeros(1, dtype=np.dtype([(name, kind) for name, kind, _ in fields], align=True))
-    record[0] = tuple(value for _, _, value in fields)
+    record = np.zeros(1, dtype=_record_type(tuple([(name, kind) for name, kind, _ in fields])))
+    record[0] = tuple([value for _, _, value in fields])
     return record
+
+
+@functools.lru_cache(maxsize=256)
+def _record_type(fields: tuple) -> np.dtype:
+    """The record's dtype of ``(field, type)`` pairs, made once for each (10 us a dtype)."""
+    return np.dtype(list(fields), align=True)
+
+
 
 
 def arrays_of(component, spec: KernelSpec, n_units: int) -> list | None:

@@ -118,6 +118,24 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
         raise ValueError(_too_large("X", owner, f" (first in row {bad})"))
 
 
+def cleared(a: np.ndarray) -> bool:
+    """Whether the sum of the squares of ``a`` is within ``CLEARED``: then every value is finite
+    and every row's norm within the bound (as :func:`_check_norms` clears a batch); NaN,
+    infinity and too large values fail (call it under ``np.errstate(over="ignore",
+    invalid="ignore")``: overflow is an answer here). einsum's loop over a strided matrix (the
+    compiled engine's ``weights_``, a transposed view, is not copied); else over one row of
+    the values, by BLAS's dot where it is short (a long one by einsum, as below). Only a float
+    array is cleared (integer squares wrap around): any other answers False."""
+    if a.dtype.kind != "f":
+        return False
+    if a.ndim == 2 and not a.flags.c_contiguous:
+        return np.einsum("ij,ij->", a, a) <= CLEARED
+    flat = a.reshape(-1)  # a view where the memory is contiguous
+    if flat.shape[0] <= 4096:
+        return np.dot(flat, flat) <= CLEARED
+    return np.einsum("i,i->", flat, flat) <= CLEARED
+
+
 def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | None = None) -> np.ndarray:
     """Validate one scan cheaply (the robot's hot path): a finite 1-D vector.
 

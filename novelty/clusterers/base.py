@@ -21,6 +21,7 @@ import numpy as np
 
 from .._component import Component, StateError, check_array_state, check_int_state
 from .._validation import MAX_SCAN_NORM
+from .._validation.scans import cleared
 from ..distances import squared_distances
 
 __all__ = ["Clusterer", "Match", "Growth", "NO_UNITS", "move_towards"]
@@ -245,7 +246,11 @@ class Clusterer(Component):
         overflow, and the engines' winners could part ways): learning moves units towards
         scans (convex steps) and initialises them from scans or from init_range, so no unit
         lies beyond the bound scans are held to. Checked with the state, and before every call
-        (values written into ``weights_`` in place)."""
+        (values written into ``weights_`` in place). A state whose sum of squares is within the
+        bound (``cleared``) is within it row by row, without the exact pass."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            if type(self.weights_) is np.ndarray and cleared(self.weights_):
+                return
         if _largest_norm(self.weights_) > MAX_SCAN_NORM * (1 + 1e-9):
             raise StateError(f"{type(self).__name__}.weights_ reach a norm of {_largest_norm(self.weights_):.3g}, "
                              f"beyond the bound {MAX_SCAN_NORM:g} that learning keeps to.")
