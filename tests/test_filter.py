@@ -401,6 +401,36 @@ def test_parameters_whose_efficacy_leaves_0_1_are_refused(params):
         det.fit(data())
 
 
+def test_a_named_synapse_is_checked_again_under_another_stimulus_or_factory():
+    """The range of a synapse given by its registered name is checked once per name, factory
+    and stimulus (building it at every call cost a third of a one-scan stream): a stimulus
+    set after a call that passed is refused as before, and so is a name registered anew."""
+    from novelty import registry
+    from novelty.habituation import StanleySynapse
+
+    det = novelty.HabituatingFilter(clusterer="som", synapse="stanley").fit(data())
+    det.stream(data()[:3])
+    det.stimulus = 2.0
+    with pytest.raises(ValueError, match=r"efficacy is the novelty, on \[0, 1\]"):
+        det.stream(data()[:3])
+    det.stimulus = 1.0
+    det.stream(data()[:3])
+
+    class Unbounded(StanleySynapse):  # its efficacy rises past 1 (y0 = 2)
+        def __init__(self, **params):
+            super().__init__(**{"y0": 2.0, **params})
+
+    registry.synapses.register("test-renamed-synapse", StanleySynapse)
+    try:
+        det = novelty.HabituatingFilter(clusterer="som", synapse="test-renamed-synapse").fit(data())
+        det.stream(data()[:3])
+        registry.synapses.register("test-renamed-synapse", Unbounded, replace=True)
+        with pytest.raises(ValueError, match=r"efficacy is the novelty, on \[0, 1\]"):
+            det._validate_params()
+    finally:
+        registry.synapses.unregister("test-renamed-synapse")
+
+
 @pytest.mark.parametrize("params", [dict(stimulus=1.05), dict(y0=0.5, alpha=2.0), dict(stimulus=0.0)])
 def test_at_the_edge_of_the_range_novelty_stays_in_it(params):
     # Stanley's fixed point y0 - S/alpha >= 0: S = alpha y0 settles at exactly 0, never below

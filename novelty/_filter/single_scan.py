@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from .._kernels.choice import engine_of
+from .._kernels.interface import Engine
 from ..clusterers.base import Clusterer
 from ..detector import _lock_of
 from .parts import templates
@@ -92,8 +93,8 @@ def score_one(detector, x: np.ndarray) -> float | None:
 def _candidate(detector, x: np.ndarray):
     """The detector's engine if ``x`` is a scan the protocol takes as it is (step 1), else None."""
     engine = vars(detector).get("_engine")
-    if engine is None or x.ndim != 1 or x.dtype is not _FLOAT64:
-        return None
+    if not isinstance(engine, Engine) or x.ndim != 1 or x.dtype is not _FLOAT64:
+        return None  # no engine yet (or a deep copy's CheckedCopy): the general path makes one
     flags = x.flags
     return engine if flags.c_contiguous and flags.writeable else None
 

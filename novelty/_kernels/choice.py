@@ -5,7 +5,10 @@ A filter holds one engine (:mod:`.interface`) for its fitted parts and asks
 they are (:meth:`~.interface.Engine.holds`: nothing set on them since it read
 them, ``NOVELTY_NO_KERNELS`` as it was, no kernel it waited for ready since),
 it is the one; otherwise the state is checked (:func:`.state.check_state`,
-which refuses what no engine may read) and :func:`choose` makes another.
+which refuses what no engine may read) and :func:`choose` makes another. A
+deep copy of a filter holds, instead of an engine, a
+:class:`~.interface.CheckedCopy`: its parts are a copy of a checked state, so
+while nothing was set on them since, its first engine is made without the check.
 
 The reasons to use the reference (:class:`~.reference.ReferenceEngine`), all here:
 
@@ -32,7 +35,7 @@ import numpy as np
 from .._component import declares
 from .compiling import Compiled, disabled
 from .engine import CompiledEngine, driver_of
-from .interface import Engine
+from .interface import CheckedCopy, Engine
 from .params import attribute, nested_ready, pack, spec_of
 from .reference import ReferenceEngine
 from .state import check_state
@@ -46,10 +49,12 @@ NEAREST = Compiled("novelty._kernels._nearest")
 def engine_of(detector) -> Engine:
     """The engine of a fitted filter's parts as they are now (module docstring)."""
     engine = vars(detector).get("_engine")
-    if (engine is not None and engine.clusterer is detector.clusterer_
-            and engine.synapse is detector.synapse_ and engine.holds()):
-        return engine
-    check_state(detector)
+    if isinstance(engine, Engine):
+        if engine.clusterer is detector.clusterer_ and engine.synapse is detector.synapse_ and engine.holds():
+            return engine
+        check_state(detector)
+    elif not (isinstance(engine, CheckedCopy) and engine.covers(detector)):
+        check_state(detector)
     engine = vars(detector)["_engine"] = choose(detector.clusterer_, detector.synapse_)
     return engine
 

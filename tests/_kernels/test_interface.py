@@ -13,6 +13,7 @@ import novelty
 from novelty._component import StateError
 from novelty._kernels import reference_loops
 from novelty._kernels.choice import engine_of
+from novelty._kernels.interface import CheckedCopy
 
 from .kernel_helpers import corridor
 
@@ -44,9 +45,64 @@ def test_fresh_also_watches_what_the_owner_gave():
 
 def test_a_copy_or_a_pickle_makes_its_own_engine():
     det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
-    engine_of(det)
-    assert copy.deepcopy(det)._engine is None
+    engine = engine_of(det)
+    copied = copy.deepcopy(det)
+    assert isinstance(copied._engine, CheckedCopy) and copied._engine.clusterer is copied.clusterer_
+    assert engine_of(copied) is not engine and engine_of(copied).clusterer is copied.clusterer_
     assert pickle.loads(pickle.dumps(det))._engine is None
+    det.synapse_.alpha = 1.2  # set after the engine read it: a copy's state is not taken as checked
+    assert copy.deepcopy(det)._engine is None
+
+
+def _counting_checks(monkeypatch) -> list:
+    from novelty._kernels import choice
+
+    calls: list = []
+    check = choice.check_state
+    monkeypatch.setattr(choice, "check_state", lambda det: (calls.append(det), check(det))[1])
+    return calls
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_deep_copy_of_a_checked_state_is_not_checked_again_and_learns_alike(monkeypatch, reference):
+    X = corridor(60, n_features=4)
+    with reference_loops() if reference else contextlib.nullcontext():
+        det = novelty.make("gng-stanley").fit(X[:30])
+        det.stream(X[:5])
+        calls = _counting_checks(monkeypatch)
+        copied = copy.deepcopy(det)
+        assert np.array_equal(copied.stream(X[30:]), det.stream(X[30:]))
+        assert calls == []  # the original's engine held, the copy's state is its copy
+        assert np.array_equal(copied.clusterer_.weights_, det.clusterer_.weights_)
+
+
+@pytest.mark.parametrize("change", ["a part's attribute", "a nested part's", "n_features_in_", "the engine"])
+def test_a_deep_copy_changed_before_its_first_call_is_checked(monkeypatch, change):
+    X = corridor(60, n_features=4)
+    det = novelty.HabituatingFilter(clusterer="gwr", synapse="stanley").fit(X[:30])  # GWR: a nested part
+    det.stream(X[:5])
+    calls = _counting_checks(monkeypatch)
+    copied = copy.deepcopy(det)
+    if change == "a part's attribute":
+        copied.clusterer_.weights_ = np.zeros((copied.clusterer_.n_units_, 9))
+        error = "clusterer_.weights_ has shape"
+    elif change == "a nested part's":
+        copied.clusterer_.firing_.efficacy_ = copied.clusterer_.firing_.efficacy_[:-1]
+        error = "firing_.efficacy_ has shape"
+    elif change == "n_features_in_":
+        vars(copied)["n_features_in_"] = 9
+        error = "n_features_in_"
+    else:  # the copy's parts given to another filter
+        other = copy.deepcopy(det)
+        other.clusterer_, other.synapse_ = copied.clusterer_, copied.synapse_
+        copied, error = other, None
+    scans = np.full((2, 9), 0.5) if change == "n_features_in_" else X[30:32]
+    if error is None:
+        copied.stream(scans)
+    else:
+        with pytest.raises(StateError, match=error):
+            copied.stream(scans)
+    assert len(calls) == 1
 
 
 @pytest.mark.parametrize("reference", [False, True])
@@ -103,3 +159,72 @@ def test_a_calibrate_that_sets_a_nested_part_has_the_state_checked():
     assert not engine.holds()
     with pytest.raises(StateError, match="efficacy_ has shape"):
         det.stream(corridor(3))
+
+
+# --------------------------------------------------------------- check_values
+def _exact_verdict(engine) -> str | None:
+    """What the exact checks say of the engine's state: the message, or None."""
+    from novelty._kernels.state import check_finite
+
+    try:
+        check_finite(engine.state_arrays())
+        _exact_norm(engine.clusterer)
+    except StateError as exc:
+        return str(exc)
+    return None
+
+
+def _exact_norm(clusterer) -> None:
+    """``Clusterer._check_norm`` without its fast path: the largest row norm, compared."""
+    from novelty._validation import MAX_SCAN_NORM
+    from novelty.clusterers.base import _largest_norm
+
+    if _largest_norm(clusterer.weights_) > MAX_SCAN_NORM * (1 + 1e-9):
+        raise StateError("beyond the bound")
+
+
+_WRITTEN = [np.nan, np.inf, -np.inf, 1e300, 1e155, 1e150, 1.0000001e100, 1e100, 9.9e99, 1e99, -1e99, 0.5]
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("where", ["weights_", "efficacy_"])
+@pytest.mark.parametrize("value", _WRITTEN)
+def test_check_values_refuses_exactly_what_the_exact_checks_refuse(reference, where, value):
+    """The one-sum-an-array fast path of check_values must not change a verdict: a value
+    written in place (one unit, or every unit, each within the bound but their sum beyond
+    it) is refused iff the exact checks (every value finite, each row's norm within the
+    bound) refuse it."""
+    with reference_loops() if reference else contextlib.nullcontext():
+        for every in (False, True):
+            det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
+            det.stream(corridor(5, n_features=4, seed=1))
+            engine = engine_of(det)
+            part = det.clusterer_ if where == "weights_" else det.synapse_
+            array = getattr(part, where)
+            if every:
+                array[...] = value / (2.0 if where == "weights_" else 1.0)  # each row within 2x
+            else:
+                array.flat[3] = value
+            expected = _exact_verdict(engine)
+            if expected is None:
+                engine.check_values()
+            else:
+                with pytest.raises(StateError):
+                    engine.check_values()
+
+
+def test_check_values_reads_the_arrays_the_parts_hold_after_the_engine_grew():
+    """The arrays check_values sums are listed again when a part was set (the compiled engine
+    gives the parts views of new, larger arrays when the network grows): NaN written into the
+    grown weights is refused."""
+    X = corridor(200, n_features=4)
+    det = novelty.make("gng-stanley").fit(X[:2])
+    det.stream(X[:3])
+    engine = engine_of(det)
+    engine.check_values()
+    units = det.clusterer_.n_units_
+    det.stream(X[3:])  # grows, past the room the engine had
+    assert det.clusterer_.n_units_ > units and engine_of(det) is engine
+    det.clusterer_.weights_[-1, 0] = np.nan
+    with pytest.raises(StateError, match="NaN or infinity"):
+        det.stream(X[:2])

@@ -17,8 +17,9 @@ def fitted():
 
 
 #: not state: how many times attributes were set (novelty._component.Component.__setattr__), the
-#: counts the filter last checked its parts at, and the detector's lock (a deep copy makes a new one)
-BOOKKEEPING = ("_changes", "_parts_seen", "_lock")
+#: counts the filter last checked its parts at, the detector's lock (a deep copy makes a new one)
+#: and its engine (scratch: a deep copy holds what its own is made from)
+BOOKKEEPING = ("_changes", "_parts_seen", "_lock", "_engine")
 
 
 def snapshot(det):

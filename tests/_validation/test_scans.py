@@ -255,3 +255,36 @@ def test_checking_norms_warns_of_nothing():
             check_batch(huge, det, N_FEATURES)
         with pytest.raises(ValueError, match=r"norm above 1e\+100"):
             det.score_one(np.full(N_FEATURES, 1e200))
+
+
+# ------------------------------------------------------------------ cleared
+_VALUES = st.one_of(st.floats(allow_nan=True, allow_infinity=True, width=64),
+                    st.sampled_from([0.0, 1e99, 1e100, 1.0000001e100, 7e99, 1e150, 1e154, 1e155, 1e300]))
+
+
+@given(st.lists(st.lists(_VALUES, min_size=3, max_size=3), min_size=1, max_size=6), st.booleans())
+@settings(max_examples=300, deadline=None)
+def test_an_array_cleared_is_finite_and_within_the_norm_bound_row_by_row(rows, transposed):
+    """``cleared`` is the fast half of the state's value checks: what it clears, the exact
+    checks (finite, each row's norm within MAX_SCAN_NORM) would pass; a strided view is
+    summed as its values are."""
+    from novelty._validation.scans import cleared
+
+    a = np.array(rows, dtype=np.float64)
+    view = np.ascontiguousarray(a.T).T if transposed else a  # the compiled engine's weights_ layout
+    with np.errstate(over="ignore", invalid="ignore"):
+        verdict = bool(cleared(view))
+        norms = np.sqrt(np.einsum("ij,ij->i", a.astype(np.longdouble), a.astype(np.longdouble)))
+    if verdict:
+        assert np.isfinite(a).all() and norms.max() <= MAX_SCAN_NORM
+    if np.isfinite(a).all() and np.abs(a).max() <= 1e90:  # far inside: always cleared
+        assert verdict
+
+
+def test_only_float_arrays_are_cleared():
+    from novelty._validation.scans import cleared
+
+    wrapping = np.full(4, 2**32, dtype=np.int64)  # its squares wrap around to 0 in int64
+    assert np.dot(wrapping, wrapping) == 0
+    assert not cleared(wrapping) and not cleared(np.zeros(3, dtype=bool))
+    assert cleared(np.zeros(3)) and cleared(np.ones((2, 2, 2)))
