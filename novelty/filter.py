@@ -12,10 +12,11 @@ distance make the novelty (``novelty_rule``). The arithmetic is its engine's
 (:mod:`novelty._kernels`: the reference loop :func:`learn_stream` in numpy, or
 the same compiled); routing short parameter names (:mod:`novelty._filter.routing`),
 the parts' parameters after fitting (:mod:`novelty._filter.parts`), calibrating
-the match scale (:mod:`novelty._filter.calibration`) and the single-scan
-protocol (:mod:`novelty._filter.single_scan`) have modules of their own.
+the match scale (:mod:`novelty._filter.calibration`), the synapse's range of
+efficacy (:mod:`novelty._filter.efficacy_range`) and the single-scan protocol
+(:mod:`novelty._filter.single_scan`) have modules of their own.
 
-One module although over 300 lines: the class is about 330 of them, the
+One module although over 300 lines: the class is about 310 of them, the
 estimator's one job (parameters, fit, learn and score, the novelty rules),
 which a split would only scatter across files a reader must hold together.
 """
@@ -27,7 +28,7 @@ import numbers
 import numpy as np
 
 from ._component import StateError, check_array_state
-from ._filter import calibration, parts, routing, scan_range, single_scan
+from ._filter import calibration, efficacy_range, parts, routing, scan_range, single_scan
 from ._filter.scan_range import ScanRangeWarning
 from ._kernels.choice import engine_of
 from ._kernels.reference import learn_stream
@@ -37,18 +38,9 @@ from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
 from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
-from .registry import build, of_kind
+from .registry import build
 
 __all__ = ["HabituatingFilter", "ScanRangeWarning", "learn_stream", "hsom"]
-
-#: roundings (of a double's epsilon, on the unit interval) by which a synapse's range of
-#: efficacy may leave [0, 1] and still be taken to stay in it: ``y0 - S / alpha`` with
-#: ``S = fl(alpha * y0)`` is within two of 0 (a rounding in the product, one in the quotient)
-_ROUNDINGS = 4
-
-#: (name, registered factory, stimulus) of the named synapses whose range passed
-_NAMED_SYNAPSES_PASSED: set = set()
-
 
 class HabituatingFilter(NoveltyDetector):
     """A novelty filter made of any clusterer and any habituating synapse.
@@ -176,42 +168,7 @@ class HabituatingFilter(NoveltyDetector):
     # ------------------------------------------------------------- parameters
     def _validate_params(self) -> None:
         super()._validate_params()
-        if isinstance(self.synapse, Synapse):
-            self.synapse._validate_params()
-            self._check_efficacy_range(self.synapse)
-            return
-        # A registered name's synapse, with its defaults, is one value per factory: its range
-        # under a stimulus is checked once (building it at every call was 40 us of a 90 us
-        # stream of one scan, hsom)
-        key = (self.synapse, of_kind("synapse").get(self.synapse), float(self.stimulus)) \
-            if isinstance(self.synapse, str) else None
-        try:
-            if key in _NAMED_SYNAPSES_PASSED:
-                return
-        except TypeError:  # a factory that cannot be hashed: checked every time
-            key = None
-        synapse = build("synapse", self.synapse)
-        synapse._validate_params()
-        self._check_efficacy_range(synapse)
-        if key is not None:
-            if len(_NAMED_SYNAPSES_PASSED) > 256:  # stimuli made afresh for each call: bounded
-                _NAMED_SYNAPSES_PASSED.clear()
-            _NAMED_SYNAPSES_PASSED.add(key)
-
-    def _check_efficacy_range(self, synapse: Synapse) -> None:
-        low, high = synapse.efficacy_range(float(self.stimulus))
-        # a bound that leaves [0, 1] by roundings only is kept: S written as alpha * y0 rounds
-        # to either side of Stanley's fixed point (y0 - S / alpha = -1.1e-16 for alpha = 1.72,
-        # y0 = 0.956: about 6 % of pairs), and an efficacy a few roundings below 0 is what the
-        # model reaches at S = alpha * y0 anyway (and loads: the checks of a model file allow it)
-        slack = _ROUNDINGS * np.finfo(np.float64).eps
-        if (np.isfinite(low) and low < -slack) or (np.isfinite(high) and high > 1 + slack):
-            raise ValueError(
-                f"The synapse's efficacy is the novelty, on [0, 1]; {synapse!r} under the stimulus "
-                f"S = {self.stimulus} ranges over [{low:.6g}, {high:.6g}], which leaves it. Keep y0 <= 1 and "
-                f"S <= alpha * y0 (Stanley's fixed point y0 - S / alpha >= 0): a smaller stimulus, a larger "
-                "alpha, or a smaller y0."
-            )
+        efficacy_range.check_template(self)
 
     @classmethod
     def from_params(cls, clusterer="som", synapse="stanley", **params):

@@ -18,6 +18,7 @@ counting as a change of the filter.
 from __future__ import annotations
 
 from ..registry import build
+from . import efficacy_range
 
 __all__ = ["check_online", "note", "record"]
 
@@ -45,7 +46,7 @@ def check_online(detector) -> None:
         if seen is None or counts[2:] != seen[2:]:
             detector.clusterer_._validate_params()
             detector.synapse_._validate_params()
-            detector._check_efficacy_range(detector.synapse_)
+            efficacy_range.check(detector.synapse_, detector.stimulus)
         if seen is None or counts[:2] != seen[:2]:
             vars(detector)["_parts_changed"] = changed(detector)
     names = vars(detector).get("_parts_changed")
