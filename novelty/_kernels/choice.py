@@ -8,7 +8,9 @@ it is the one; otherwise the state is checked (:func:`.state.check_state`,
 which refuses what no engine may read) and :func:`choose` makes another. A
 deep copy of a filter holds, instead of an engine, a
 :class:`~.interface.CheckedCopy`: its parts are a copy of a checked state, so
-while nothing was set on them since, its first engine is made without the check.
+while nothing was set on them since, its first engine is made after the layout
+alone is checked (:func:`.state.check_layout`: a copy made while a thread
+learned may be torn).
 
 The reasons to use the reference (:class:`~.reference.ReferenceEngine`), all here:
 
@@ -38,7 +40,7 @@ from .engine import CompiledEngine, driver_of
 from .interface import CheckedCopy, Engine
 from .params import attribute, nested_ready, pack, spec_of
 from .reference import ReferenceEngine
-from .state import check_state
+from .state import check_layout, check_state
 
 __all__ = ["engine_of", "choose", "why_not_learning", "why_not_scoring", "NEAREST"]
 
@@ -53,7 +55,9 @@ def engine_of(detector) -> Engine:
         if engine.clusterer is detector.clusterer_ and engine.synapse is detector.synapse_ and engine.holds():
             return engine
         check_state(detector)
-    elif not (isinstance(engine, CheckedCopy) and engine.covers(detector)):
+    elif isinstance(engine, CheckedCopy) and engine.covers(detector):
+        check_layout(detector)  # a copy of a checked state: torn by a thread, though?
+    else:
         check_state(detector)
     engine = vars(detector)["_engine"] = choose(detector.clusterer_, detector.synapse_)
     return engine

@@ -221,10 +221,11 @@ class CheckedCopy:
     """In a deep copy of a filter, in place of the engine: the copied parts, a copy of a state
     that passed :func:`~.state.check_state` (the engine held them when they were copied),
     with their counts of changes at that time. While nothing was set on them since
-    (:meth:`covers`), the copy's first call takes its engine without checking the state
-    again (80-170 us, of a call that learns 1000 scans in 300-600 us), as the original
-    goes on with its engine: values written into an array in place are checked before
-    every call by both (:meth:`Engine.check_values`)."""
+    (:meth:`covers`), the copy's first call takes its engine after the layout alone
+    (:func:`~.state.check_layout`: types and shapes, which a copy made while a thread
+    learned may tear) instead of the whole check (80-170 us, of a call that learns 1000
+    scans in 300-600 us), as the original goes on with its engine: values written into an
+    array in place are checked before every call by both (:meth:`Engine.check_values`)."""
 
     def __init__(self, clusterer, synapse, width: int):
         self.clusterer, self.synapse, self.width = clusterer, synapse, width

@@ -76,6 +76,21 @@ def test_a_deep_copy_of_a_checked_state_is_not_checked_again_and_learns_alike(mo
         assert np.array_equal(copied.clusterer_.weights_, det.clusterer_.weights_)
 
 
+def test_a_deep_copy_torn_by_a_learning_thread_is_refused_not_read(monkeypatch):
+    """A copy made while another thread grew the network may hold arrays copied before and
+    after the growth, with no change counted on it since: its layout is still checked."""
+    X = corridor(60, n_features=4)
+    det = novelty.make("gng-stanley").fit(X[:30])
+    det.stream(X[:5])
+    copied = copy.deepcopy(det)
+    efficacy = copied.synapse_.efficacy_
+    vars(copied.synapse_)["efficacy_"] = np.concatenate([efficacy, efficacy[:1]])  # torn: uncounted
+    with pytest.raises(StateError, match=r"synapse_\.efficacy_ has shape"):
+        copied.stream(X[30:32])
+    with pytest.raises(StateError, match=r"synapse_\.efficacy_ has shape"):
+        copied.score_samples(X[30:32])
+
+
 @pytest.mark.parametrize("change", ["a part's attribute", "a nested part's", "n_features_in_", "the engine"])
 def test_a_deep_copy_changed_before_its_first_call_is_checked(monkeypatch, change):
     X = corridor(60, n_features=4)
