@@ -161,7 +161,7 @@ class HabituatingMap(NoveltyDetector):
         Each cell's synapse (1: never hit).
     passes_ : ndarray of shape (n_cells,)
         The scans whose rays crossed each cell.
-    pending_ : ndarray of shape (n_pending, n_features_in_)
+    pending_ : ndarray of shape (n_pending, n_features)
         The last scans learned, their free space not counted yet (at most ``evidence_lag``).
     n_features_in_ : int
 
