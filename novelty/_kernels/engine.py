@@ -42,6 +42,7 @@ import numpy as np
 
 from .drivers import driver_for
 from .handover import handing_over
+from .interface import flat
 from .params import attribute, getter, pack, spec_of
 from .reference import ReferenceEngine
 from .scoring import score as _score_batch
@@ -156,7 +157,7 @@ class CompiledEngine(ReferenceEngine):
         value that passed): it adds nothing a check would refuse."""
         buffers = {id(b): b for b in getattr(self, "_arrays", ())}
         arrays = [buffers.pop(id(a.base), a) if a.base is not None else a for _, a in self.state_arrays()]
-        return [a.reshape(-1) if a.flags.c_contiguous else a for a in arrays]
+        return [flat(a) for a in arrays]
 
     def _show(self, n: int) -> None:
         """Give the parts views of the first ``n`` units of the engine's arrays (counted as

@@ -200,7 +200,7 @@ class Engine:
     def value_arrays(self) -> list:
         """The arrays :meth:`check_values` sums (:meth:`state_arrays`' arrays, each flat where
         its memory is contiguous)."""
-        return [_flat(a) for _, a in self.state_arrays()]
+        return [flat(a) for _, a in self.state_arrays()]
 
     def __reduce__(self):
         # an engine is scratch: a copy or a pickle of its filter makes its own
@@ -251,7 +251,7 @@ def _finite_number(value) -> bool:
         and bool(np.isfinite(value))
 
 
-def _flat(a: np.ndarray) -> np.ndarray:
+def flat(a: np.ndarray) -> np.ndarray:
     """``a`` as one row of its values where its memory is contiguous (a view), else as it is."""
     return a.reshape(-1) if a.flags.c_contiguous else a
 
