@@ -57,7 +57,7 @@ import tempfile
 import numpy as np
 
 from .._atomic import write_atomically
-from .._validation.scans import CLEARED, MAX_SCAN_NORM
+from .._validation.scans import CLEARED
 from . import tricks
 from .children import run_self_check
 from .compiling import Compiled, cache_files
@@ -73,7 +73,7 @@ import numpy as np
 from numba import njit, types
 
 from novelty._kernels._distances import distances_cols
-from novelty._kernels._nearest import nearest_one
+from novelty._kernels._nearest import nearest_one, units_cleared
 from novelty._kernels._uncounted import held, uncounted
 from {c_steps} import adapt as c_adapt, match as c_match, room as c_room
 from {s_steps} import advance as s_advance, fresh as s_fresh
@@ -101,25 +101,6 @@ def _delete_rows(a, gone, n):
 CLEARED = {cleared!r}
 
 
-#: the largest norm of a unit (novelty._validation.scans.MAX_SCAN_NORM)
-MAX_NORM = {max_norm!r}
-
-
-@njit(cache=True, error_model="numpy", inline="always")
-def _bounded_columns(a, n):
-    # every |w| <= MAX_NORM / sqrt(features) puts each unit within the norm bound; NaN and
-    # infinity fail it; so may a unit within the bound (the general path then decides). A
-    # count, not a flag, of the failures: LLVM vectorises it (0.19 us for 100 x 16, 0.28 us
-    # with a flag)
-    limit = MAX_NORM / np.sqrt(a.shape[0])
-    bad = 0
-    for k in range(a.shape[0]):
-        row = a[k]
-        for j in range(n):
-            bad += not abs(row[j]) <= limit
-    return bad == 0
-
-
 @njit(cache=True, error_model="numpy", inline="always")
 def _finite_units(a, n):
     bad = 0
@@ -138,16 +119,18 @@ def _finite_rows(a, n):
 
 @njit(FINITE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def finite(WT, {c_args}{s_args}n):
-    """Whether the float state of the first n units is finite and the units within the norm
-    bound (values written in place are not counted as changes): the single-scan calls refuse
-    a state that is not, and the caller's general check then says what is wrong."""
-    return _bounded_columns(WT, n){float_checks}
+    """Whether the float state of the first n units besides the weights is finite (values
+    written in place are not counted as changes): the single-scan calls refuse a state that
+    is not, and the caller's general check then says what is wrong. The weights are checked
+    by the scan's distances to them (``units_cleared``)."""
+    return True{float_checks}
 
 
 @njit(SCORE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def score_one(WT, {c_args}{s_args}n, x, out):
     """``score_one`` against the state as learning holds it: 0, or -1 (nothing written) when
-    the state's values (``finite``) or the scan (``nearest_one``) fail their checks."""
+    the state's values (``finite``; the weights in ``nearest_one``) or the scan fail their
+    checks."""
     if not finite(WT, {c_args}{s_args}n):
         return -1
     return nearest_one(WT, s0, n, x, out)
@@ -156,15 +139,14 @@ def score_one(WT, {c_args}{s_args}n, x, out):
 @njit(SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def drive(WT, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, novelty, distances,
           check):
-    if check:  # the scans' check that only the caller can explain: done = -1 when one fails it
-        if X.shape[1] != WT.shape[0] or not finite(WT, {c_args}{s_args}n):
+    total = 0.0
+    if check:  # one scan's checks that only the caller can explain: done = -1 when one fails
+        if X.shape[0] != 1 or X.shape[1] != WT.shape[0] or not finite(WT, {c_args}{s_args}n):
             return -1, n
-        for i in range(X.shape[0]):
-            total = 0.0
-            for k in range(X.shape[1]):
-                total += X[i, k] * X[i, k]
-            if not total <= CLEARED:
-                return -1, n
+        for k in range(X.shape[1]):
+            total += X[0, k] * X[0, k]
+        if not total <= CLEARED:
+            return -1, n
     cstate = ({c_tuple})
     sstate = ({s_tuple})
     c = cp.view(C_PARAMS)[0]  # the clusterer's parameters, a record: c.learning_rate
@@ -186,6 +168,9 @@ def drive(WT, {c_args}counters, cp, {s_args}sp, X, dt, stimulus, n, winners, nov
     for i in range(X.shape[0]):
         x = X[i]
         distances_cols(WT, x, acc, d, n)
+        if check and not units_cleared(d, n, total):
+            done = -1  # a unit beyond the norm bound, NaN or infinite: nothing learned
+            break
         winner, runner_up, k = c_match(d, n, cstate, counters, c, nb)
         if n + c_room(d, winner, n, cstate, counters, c) > cap:
             break  # no room for the unit this input adds: the caller makes some
@@ -307,7 +292,7 @@ def _source(c_steps: str, s_steps: str, label: str, sig: str, finite_sig: str, c
                            float_checks="".join(f" and _finite_{'units' if ndim == 1 else 'rows'}({name}, n)"
                                                 for name, ndim in floats),
                            delete_rows=rows.rstrip("\n"), c_params=c_params, s_params=s_params,
-                           cleared=CLEARED, max_norm=MAX_SCAN_NORM, c_args="".join(name + ", " for name in c_names),
+                           cleared=CLEARED, c_args="".join(name + ", " for name in c_names),
                            s_args="".join(name + ", " for name in s_names),
                            c_tuple="".join(name + ", " for name in c_names).rstrip(" "),
                            s_tuple="".join(name + ", " for name in s_names).rstrip(" "))

@@ -12,7 +12,9 @@ import pytest
 import novelty
 from novelty._component import StateError
 from novelty._kernels import reference_loops
+from novelty import _kernels
 from novelty._kernels.choice import engine_of
+from novelty._kernels.engine import CompiledEngine
 from novelty._kernels.interface import CheckedCopy
 
 from .kernel_helpers import corridor
@@ -226,6 +228,41 @@ def test_check_values_refuses_exactly_what_the_exact_checks_refuse(reference, wh
             else:
                 with pytest.raises(StateError):
                     engine.check_values()
+
+
+@pytest.mark.parametrize("call", ["score_learn_one", "score_one"])
+@pytest.mark.parametrize("where", ["weights_", "efficacy_"])
+@pytest.mark.parametrize("value", _WRITTEN)
+def test_single_scan_calls_refuse_exactly_what_the_exact_checks_refuse(call, where, value):
+    """The compiled single-scan calls check the weights by the scan's distances to them
+    (``units_cleared``), not value by value: a value written in place is refused iff the
+    exact checks refuse it, and a state they accept gives the reference engine's novelty, bit
+    for bit (also for units within the bound whose distances fail the cheap check, which the
+    general path takes)."""
+    x = corridor(8, n_features=4, seed=2)[5].copy()
+    for every in (False, True):
+        det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
+        assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
+        det.stream(corridor(5, n_features=4, seed=1))
+        det.score_learn_one(x)  # the engine confirmed: the next call takes the compiled path
+        engine = engine_of(det)
+        assert type(engine) is CompiledEngine and engine.fresh()
+        part = det.clusterer_ if where == "weights_" else det.synapse_
+        array = getattr(part, where)
+        if every:
+            array[...] = value / (2.0 if where == "weights_" else 1.0)  # each row within 2x
+        else:
+            array.flat[3] = value
+        expected = _exact_verdict(engine)
+        if expected is not None:
+            with pytest.raises(StateError):
+                getattr(det, call)(x)
+            continue
+        with reference_loops():
+            twin = copy.deepcopy(det)
+            want = getattr(twin, call)(x)
+        got = getattr(det, call)(x)
+        assert got == want or (np.isnan(got) and np.isnan(want))
 
 
 def test_check_values_reads_the_arrays_the_parts_hold_after_the_engine_grew():
