@@ -6,8 +6,8 @@
 On the exploration tasks with objects (``exploration-objects-radish-*``, the ``points`` input with 180
 sectors), every scan is scored by ``habituating-map`` (its defaults, or ``--param name=value``) before it
 is learned, as the exploration protocol does, and each score is traced to the cells that make it: the
-``top`` hit cells with the largest novelty ``v = y (1 - exp(-f / f0))`` (novelty/maps/habituating_map.py;
-``y`` read with the map's ``tolerance``, ``v`` = 0 below its ``min_passes``).
+``top`` hit cells with the largest novelty ``v = y (u + (1 - u) (1 - exp(-f / f0)))`` (novelty/maps/habituating_map.py;
+``y`` read with the map's ``tolerance``, ``u`` its ``unseen``, ``v`` = 0 below its ``min_passes``).
 
 The first-encounter ROC AUC compares the first sights (scans at an object's first pass) with the familiar
 scans of the same runs. Its shortfall ``1 - AUC`` is the share of (first sight, familiar scan) pairs in
@@ -104,7 +104,8 @@ def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
             own[met], f[met] = det.efficacy_[slots[met]], det.passes_[slots[met]]
         # the efficacy as the map reads it (with its tolerance), the evidence as it weighs it
         y = det._efficacy(hits) if fitted else own
-        v = y * -np.expm1(-f / det.free_scale) if det.evidence == "free" else y
+        u = float(det.unseen)
+        v = y * (u + (1 - u) * -np.expm1(-f / det.free_scale)) if det.evidence == "free" else y
         v = np.where(f >= det.min_passes, v, 0.0) if det.min_passes > 0 else v
         order = np.argsort(v, kind="stable")[::-1][: (k or hits.size)]
         top = order[v[order] > 0]

@@ -58,7 +58,7 @@ def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_
 
 
 @pytest.mark.parametrize("params", [{"tolerance": 0}, {"tolerance": 2, "min_passes": 3}, {"evidence": "hits"},
-                                    {"evidence_lag": 10}])
+                                    {"evidence_lag": 10}, {"unseen": 0.4, "tolerance": 0}])
 def test_the_trace_reads_the_map_as_its_options_say(params):
     X = HabituatingMap._example_rows(seed=6, n=60)
     t = diagnosis.trace(HabituatingMap(**params), X, [], np.arange(60.0))

@@ -28,7 +28,14 @@ evidence,
 so an echo is novel where the robot has seen free space and not yet got used
 to something there (a change), and not where it has seen nothing at all;
 ``evidence="hits"`` takes ``v_c = y_c`` (every unseen cell novel, as a new
-place is to the paper's filter).
+place is to the paper's filter). Between the two (ours, off by default),
+``unseen = u`` in [0, 1] gives a cell never seen through the weight ``u``,
+
+    v_c = y_c (u + (1 - u) (1 - exp(-f_c / f0)))                                  (2')
+
+so that a surface receding into space the map never saw (a door opened onto
+a room, a recess deeper than the map's wall) is not scored 0 by design, as
+it is with (2): ``u = 0`` is (2), ``u = 1`` is ``evidence="hits"``.
 
 A scan's novelty is the mean of the ``top`` largest ``v_c`` over the cells it
 hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
@@ -130,6 +137,9 @@ class HabituatingMap(NoveltyDetector):
         there (2), or its efficacy alone.
     free_scale : float, default=2.0
         ``f0`` in (2): the passes at which the weight reaches 1 - 1/e.
+    unseen : float in [0, 1], default=0.0
+        ``u`` in (2'): the weight of a cell never seen through (ours; 0: none,
+        as (2); no effect with ``evidence="hits"``).
     top : int or None, default=3
         A scan's novelty is the mean of its ``top`` most novel hit cells;
         None: of all its hit cells.
@@ -185,6 +195,7 @@ class HabituatingMap(NoveltyDetector):
         "cell_size": Interval(numbers.Real, 1e-3, 1e3),
         "evidence": Options(("free", "hits")),
         "free_scale": Interval(numbers.Real, 0, 1e6, closed="right"),
+        "unseen": Interval(numbers.Real, 0, 1),
         "top": Interval(numbers.Integral, 1, None, allow_none=True),
         "tau": Interval(numbers.Real, 0, None, closed="neither"),
         "alpha": Interval(numbers.Real, 0, None, closed="neither"),
@@ -197,8 +208,9 @@ class HabituatingMap(NoveltyDetector):
     }
 
     def __init__(self, cell_size=0.4, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc=0.0, threshold=0.5,
+                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc=0.0, unseen=0.0, threshold=0.5,
                  contamination="auto"):
+        self.unseen = unseen
         self.tau_neighbour = tau_neighbour
         self.arc = arc
         self.tolerance = tolerance
@@ -301,7 +313,8 @@ class HabituatingMap(NoveltyDetector):
         if self.evidence == "free":
             passes = np.zeros(hits.size)
             passes[met] = self.passes_[slots[met]]
-            y = y * -np.expm1(-passes / self.free_scale)
+            u = float(self.unseen)
+            y = y * (u + (1.0 - u) * -np.expm1(-passes / self.free_scale))
         if self.min_passes > 0:
             counted = np.zeros(hits.size, dtype=bool)
             counted[met] = self.passes_[slots[met]] >= self.min_passes
@@ -316,8 +329,8 @@ class HabituatingMap(NoveltyDetector):
         return np.array([self._score(self._cells(poses[i], near[i], ends[i])[0]) for i in range(X.shape[0])])
 
     def _first_novelty(self) -> float:
-        # an empty map: every cell unseen, novel by its efficacy, never seen free
-        return 1.0 if self.evidence == "hits" else 0.0
+        # an empty map: every cell unseen, novel by its efficacy, never seen free (weight u in (2'))
+        return 1.0 if self.evidence == "hits" else float(self.unseen)
 
     def _novelty_bounds(self) -> tuple[float, float]:
         return 0.0, 1.0

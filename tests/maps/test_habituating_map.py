@@ -85,6 +85,26 @@ def test_an_echo_where_the_robot_saw_free_space_is_novel_by_the_passes_through_i
     assert hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist() == [1.0, 1.0, 0.25]
 
 
+@pytest.mark.parametrize("unseen", [0.0, 0.5, 1.0])
+def test_unseen_gives_a_cell_never_seen_through_that_weight(unseen):
+    # as above: (1, 0) y = 1 and 2 passes; (2, 0) never met (y = 1, f = 0); (3, 0) hit twice (y = 1/4, f = 0)
+    det = HabituatingMap(free_scale=2.0, unseen=unseen, **EXACT).fit([scan((3.1, 0.1))] * 2)
+    v = det.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))])
+    w = 1 - math.exp(-1.0)
+    assert v == pytest.approx([unseen + (1 - unseen) * w, unseen, 0.25 * unseen], rel=1e-12, abs=0)
+    if unseen == 1.0:   # u = 1 is the map with hits alone
+        hits = HabituatingMap(evidence="hits", **EXACT).fit([scan((3.1, 0.1))] * 2)
+        assert v.tolist() == hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist()
+
+
+def test_unseen_is_off_by_default_and_gives_a_first_perception_its_weight():
+    assert HabituatingMap().unseen == 0.0
+    assert HabituatingMap(unseen=0.3).score_one(scan((2.1, 0.1))) == 0.3
+    assert HabituatingMap().score_one(scan((2.1, 0.1))) == 0.0
+    # a scan met by an empty map: its one cell (2, 0) unseen, weight u, among top = 1
+    assert HabituatingMap(unseen=0.3, **EXACT).stream([scan((2.1, 0.1))]).tolist() == [0.3]
+
+
 def test_a_cell_hit_and_crossed_in_one_scan_counts_as_hit():
     # one sector's echo at (2.1, 0.1) in cell (2, 0); another's ray passes through (2, 0) to (3.9, 0.2)
     det = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1), (3.9, 0.2))])
@@ -276,6 +296,8 @@ def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_t
     ({"evidence_lag": -2}, "evidence_lag"),
     ({"arc": -0.1}, "arc"),
     ({"arc": 4.0}, "arc"),
+    ({"unseen": -0.1}, "unseen"),
+    ({"unseen": 1.5}, "unseen"),
 ])
 def test_bad_parameters_are_refused_by_name(params, message):
     with pytest.raises(ValueError, match=message):
