@@ -1,0 +1,87 @@
+"""The scores of the fourth selection of habituating maps (benchmarks/selection/maps-round4.md) from its runs.
+
+    python benchmarks/maps_round4.py --inspection results/maps-round4-inspection \
+        --exploration results/maps-round4-exploration --guard results/maps-round4-detection
+
+Reads the three runs' ``results.jsonl`` and prints, one line a candidate (its label), in the rule's order:
+G (passes the guard: mean ROC AUC > 0.5 on every task of the guard run), F, H and S as maps-round3.md
+defines them (F: first-encounter AUC >= 0.90 with separation >= 0.5 on an ``exploration-objects-radish-*``
+task, as the exploration tables decide it; H: 3rd/1st within +-0.25 with separation >= 0.5 on intel and
+aces; S: the mean of the three inspection ROC AUCs and the three first-encounter AUCs), then the per-task
+figures. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
+reported as such and ranked last.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from collections import defaultdict
+
+import numpy as np
+
+from novelty.bench.exploration.summary import exploration_records
+from novelty.bench.results import read_rows
+
+LOGS = ("intel", "aces", "csail")
+
+
+def task_means(rows, metric: str) -> dict:
+    """``{(detector, task): mean of metric over the seeds}``; NaN where a cell failed."""
+    cells = defaultdict(list)
+    for r in rows:
+        cells[(r["detector"], r["task"])].append(float(r[metric]) if r.get("status") == "ok" else math.nan)
+    return {k: float(np.mean(v)) for k, v in cells.items()}
+
+
+def scores(inspection, exploration, guard) -> list[dict]:
+    """One record per candidate, ordered by the rule: G, then F + H, then S."""
+    insp, gd = task_means(inspection, "roc_auc"), task_means(guard, "roc_auc")
+    expl = {task: {r["detector"]: r for r in recs} for task, recs in exploration_records(exploration).items()}
+    guard_tasks = sorted({t for _, t in gd})
+    out = []
+    for det in sorted({d for d, _ in insp}):
+        rec = {"candidate": det}
+        rec["inspection"] = [insp.get((det, f"inspection-objects-radish-{log}"), math.nan) for log in LOGS]
+        ex = [expl.get(f"exploration-objects-radish-{log}", {}).get(det) for log in LOGS]
+        rec["first"] = [e["auc"] if e else math.nan for e in ex]
+        rec["separation"] = [e["separation"] if e else math.nan for e in ex]
+        rec["ratio"] = [e["ratio"] if e else math.nan for e in ex[:2]]
+        rec["F"] = sum(bool(e and e["flags"]) for e in ex)
+        rec["H"] = sum(bool(e and e["habituates"]) for e in ex[:2])
+        rec["S"] = float(np.mean(rec["inspection"] + rec["first"]))
+        rec["guard"] = {t: gd.get((det, t), math.nan) for t in guard_tasks}
+        rec["G"] = bool(guard_tasks) and all(v > 0.5 for v in rec["guard"].values())
+        out.append(rec)
+    out.sort(key=lambda r: (not r["G"], -(r["F"] + r["H"]), -np.nan_to_num(r["S"], nan=-1.0), r["candidate"]))
+    return out
+
+
+def _f(values, digits=3) -> str:
+    return " / ".join("-" if math.isnan(v) else f"{v:.{digits}f}" for v in values)
+
+
+def table(records) -> str:
+    """The selection's table, as markdown."""
+    head = ("| candidate | guard | F | H | S | inspection intel / aces / csail | first sight intel / aces / csail "
+            "| separation intel / aces / csail | 3rd/1st intel / aces | guard ROC AUC (" +
+            (" / ".join(records[0]["guard"]) if records else "") + ") |")
+    lines = [head, "|" + "---|" * 10]
+    for r in records:
+        lines.append(f"| `{r['candidate']}` | {'pass' if r['G'] else 'fail'} | {r['F']} | {r['H']} | {r['S']:.3f} | "
+                     f"{_f(r['inspection'])} | {_f(r['first'])} | {_f(r['separation'], 2)} | {_f(r['ratio'], 2)} | "
+                     f"{_f(list(r['guard'].values()))} |")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    for name in ("inspection", "exploration", "guard"):
+        parser.add_argument(f"--{name}", required=True, help=f"the {name} run's folder (its results.jsonl)")
+    args = parser.parse_args(argv)
+    rows = {name: read_rows(f"{getattr(args, name)}/results.jsonl") for name in ("inspection", "exploration", "guard")}
+    print(table(scores(rows["inspection"], rows["exploration"], rows["guard"])))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,39 @@
+"""benchmarks/maps_guard_trace.py: its trace of a scan's most novel cell, and its refusal of reported seeds."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from novelty.maps import HabituatingMap
+
+ROOT = Path(__file__).resolve().parents[1]
+_spec = importlib.util.spec_from_file_location("maps_guard_trace", ROOT / "benchmarks" / "maps_guard_trace.py")
+trace = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(trace)
+
+
+@pytest.mark.parametrize("params", [{}, {"tolerance": 0, "unseen": 0.25}, {"evidence": "hits", "cell_size": 0.2}])
+def test_the_most_novel_cell_is_the_maps_own_score_with_top_one(params):
+    X = HabituatingMap._example_rows(seed=1, n=80)
+    det = HabituatingMap(top=1, **params).fit(X[:50])
+    t = trace.top_cells(det, X[50:])
+    np.testing.assert_allclose(t[:, 0], det.novelty(X[50:]), rtol=0, atol=1e-12)
+    # its centre lies in a cell one of the scan's echoes falls in (the corridor's walls at y = +-2)
+    assert np.all(np.abs(np.abs(t[:, 4]) - 2.0) <= det.cell_size)
+
+
+def test_a_cell_centre_is_read_back_from_its_packed_key():
+    det = HabituatingMap(evidence="hits", cell_size=0.5, tolerance=0, top=1)
+    # the robot at the origin, one sector with an echo at (1.2, -0.7): cell (2, -2), centre (1.25, -0.75)
+    row = [0.0, 0.0, 0.0, 0.5, 1.2, -0.7]
+    det.fit([[0.0, 0.0, 0.0, 0.0, 4.0, 0.0]])
+    v, y, f, x, yy, n = trace.top_cells(det, np.array([row]))[0]
+    assert (v, x, yy) == (1.0, 1.25, -0.75)
+
+
+@pytest.mark.parametrize("seeds", [["5"], ["105", "0"]])
+def test_reported_seeds_are_refused(seeds):
+    with pytest.raises(SystemExit, match="reported seeds"):
+        trace.main(["--seeds", *seeds])
