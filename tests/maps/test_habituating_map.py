@@ -18,7 +18,7 @@ from novelty.maps.habituating_map import HabituatingMap, cell_keys
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
-EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0}
+EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0}
 
 
 def scan(*echoes, robot=ROBOT):
@@ -88,7 +88,7 @@ def test_an_echo_where_the_robot_saw_free_space_is_novel_by_the_passes_through_i
 @pytest.mark.parametrize("unseen", [0.0, 0.5, 1.0])
 def test_unseen_gives_a_cell_never_seen_through_that_weight(unseen):
     # as above: (1, 0) y = 1 and 2 passes; (2, 0) never met (y = 1, f = 0); (3, 0) hit twice (y = 1/4, f = 0)
-    det = HabituatingMap(free_scale=2.0, unseen=unseen, **EXACT).fit([scan((3.1, 0.1))] * 2)
+    det = HabituatingMap(free_scale=2.0, **{**EXACT, "unseen": unseen}).fit([scan((3.1, 0.1))] * 2)
     v = det.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))])
     w = 1 - math.exp(-1.0)
     assert v == pytest.approx([unseen + (1 - unseen) * w, unseen, 0.25 * unseen], rel=1e-12, abs=0)
@@ -97,12 +97,11 @@ def test_unseen_gives_a_cell_never_seen_through_that_weight(unseen):
         assert v.tolist() == hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist()
 
 
-def test_unseen_is_off_by_default_and_gives_a_first_perception_its_weight():
-    assert HabituatingMap().unseen == 0.0
+def test_a_first_perception_scores_the_unseen_weight():
     assert HabituatingMap(unseen=0.3).score_one(scan((2.1, 0.1))) == 0.3
-    assert HabituatingMap().score_one(scan((2.1, 0.1))) == 0.0
+    assert HabituatingMap(unseen=0.0).score_one(scan((2.1, 0.1))) == 0.0
     # a scan met by an empty map: its one cell (2, 0) unseen, weight u, among top = 1
-    assert HabituatingMap(unseen=0.3, **EXACT).stream([scan((2.1, 0.1))]).tolist() == [0.3]
+    assert HabituatingMap(**{**EXACT, "unseen": 0.3}).stream([scan((2.1, 0.1))]).tolist() == [0.3]
 
 
 def test_a_cell_hit_and_crossed_in_one_scan_counts_as_hit():
@@ -148,12 +147,20 @@ def test_tolerance_reads_a_cell_as_the_least_efficacy_within_that_many_cells(tol
     assert state(det, 2, 0)[0] == 0.5                  # reading only: what is learned is unchanged
 
 
-def test_an_echo_one_cell_off_a_known_surface_is_that_surface_by_default():
-    # chosen by benchmarks/selection/maps-round3.md; the cells of a hit are read with their neighbours
-    assert HabituatingMap().tolerance == 1
-    exact = {k: v for k, v in EXACT.items() if k != "tolerance"}
-    det = HabituatingMap(evidence="hits", **exact).fit([scan((2.1, 0.1))])
-    assert det.novelty([scan((3.1, 0.1)), scan((4.1, 0.1))]).tolist() == [0.5, 1.0]
+def test_the_defaults_are_the_fourth_selections_cells_of_0_2_m_no_tolerance_and_unseen_one_half():
+    # chosen by benchmarks/selection/maps-round4.md (the guard first): cells of 0.2 m, each read alone,
+    # a cell never seen through weighing 1/2
+    det = HabituatingMap()
+    assert (det.cell_size, det.tolerance, det.unseen, det.evidence) == (0.2, 0, 0.5, "free")
+    # two scans with an echo at (0.9, 0.1): its cell (4, 0) hit twice (y = 1/4 with tau = 2, alpha = 1),
+    # never crossed; the rays, sampled every 0.1 m up to 0.2 m short of it, cross cells (0..3, 0) twice
+    defaults = {"tau": 2.0, "alpha": 1.0, "top": 1}
+    det = HabituatingMap(**defaults).fit([scan((0.9, 0.1))] * 2)
+    v = det.novelty([scan((0.5, 0.1)), scan((0.9, 0.1)), scan((1.1, 0.1)), scan((0.5, 0.5))])
+    w = 1 - math.exp(-1.0)
+    # (2, 0): y = 1, f = 2; (4, 0): y = 1/4, f = 0; (5, 0) beside the hit cell, read alone: not met,
+    # y = 1, f = 0 (1/4 with tolerance 1); (2, 2): not met
+    assert v == pytest.approx([0.5 + 0.5 * w, 0.125, 0.5, 0.5], rel=1e-12, abs=0)
 
 
 def test_tolerance_looks_along_both_axes_and_the_diagonals():
