@@ -315,6 +315,7 @@ detectors = Registry(
         "hsom-mismatch": "novelty.presets:hsom_mismatch",
         "kmeans-stanley": "novelty.presets:kmeans_stanley",
         "habituating-map": "novelty.maps.habituating_map:HabituatingMap",
+        "map-explore": "novelty.maps.habituating_map:map_explore",
         "kohonen-filter": "novelty.baselines.kohonen:KohonenNoveltyFilter",
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",

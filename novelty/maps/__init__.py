@@ -6,10 +6,11 @@
   from a sonar ring at known bearings: :func:`~novelty.maps.points.ring_points`);
 - :mod:`~novelty.maps.habituating_map`: :class:`HabituatingMap`, the paper's
   architecture with the world's grid cells as its units (ours), registered as
-  ``habituating-map``.
+  ``habituating-map``; :func:`map_explore`, its settings for a robot that
+  explores (ours), registered as ``map-explore``.
 """
 
-from .habituating_map import HabituatingMap
+from .habituating_map import MAP_EXPLORE, HabituatingMap, map_explore
 from .points import POSE_COLUMNS, check_points, points_columns, ring_points, split_points
 
-__all__ = ["HabituatingMap", "POSE_COLUMNS", "check_points", "points_columns", "ring_points", "split_points"]
+__all__ = ["HabituatingMap", "MAP_EXPLORE", "map_explore", "POSE_COLUMNS", "check_points", "points_columns", "ring_points", "split_points"]

@@ -316,3 +316,19 @@ def test_cell_keys_increase_with_the_cell_in_row_major_order():
     keys = cell_keys(points, 0.2)
     assert np.all(np.diff(keys) > 0)
     assert keys[1] - keys[0] == 1 and keys[2] - keys[0] == 2 ** 32
+
+
+# ------------------------------------------------------------------ the preset
+def test_map_explore_is_the_fourth_selections_choice_written_out():
+    import novelty
+
+    det = novelty.make("map-explore")
+    assert isinstance(det, HabituatingMap)
+    chosen = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
+              "tolerance": 0, "unseen": 0.5}
+    assert {k: det.get_params()[k] for k in chosen} == chosen
+    X = HabituatingMap._example_rows(seed=2, n=60)
+    assert np.array_equal(det.fit(X).novelty(X), HabituatingMap(**chosen).fit(X).novelty(X))
+    # a parameter given replaces its value; the rest stay the preset's
+    other = novelty.make("map-explore", tolerance=1)
+    assert (other.tolerance, other.cell_size, other.unseen) == (1, 0.2, 0.5)
