@@ -191,9 +191,8 @@ class Engine:
         if counts != self._values_seen:
             self._values = self.value_arrays()
             self._values_seen = counts
-        with np.errstate(over="ignore", invalid="ignore"):
-            if all(map(cleared, self._values)):
-                return
+        if all(map(cleared, self._values)):
+            return
         check_finite(self.state_arrays())
         self.clusterer._check_norm()
 

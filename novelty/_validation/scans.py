@@ -95,17 +95,12 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
     rounding of either sum); NaN, infinity and too large values all fail the
     comparison, and then the rows are checked one by one.
     """
-    flat = X.reshape(-1)
-    # Scans of accepted norms can overflow the batch's sum (and a refused value, the
-    # rows' sums): that overflow is an answer here, not something to warn a user about.
+    if cleared(X):
+        return
+    # Scans of accepted norms can overflow the rows' sums (and a refused value): that
+    # overflow is an answer here, not something to warn a user about. One pass gives every
+    # row's squared norm.
     with np.errstate(over="ignore", invalid="ignore"):
-        # BLAS's dot for a short vector (one thread); einsum's own loop for a long one, which
-        # BLAS may split over threads whose wake-up was seen to cost milliseconds on a busy
-        # machine
-        total = np.dot(flat, flat) if flat.shape[0] <= 4096 else np.einsum("i,i->", flat, flat)
-        if total <= CLEARED:
-            return
-        # One pass gives every row's squared norm.
         squared = np.einsum("ij,ij->i", X, X)
     if not squared.max() <= _MAX_SQUARED_NORM:
         if not np.all(np.isfinite(X)):
@@ -121,19 +116,43 @@ def _check_norms(X: np.ndarray, owner: Any) -> None:
 def cleared(a: np.ndarray) -> bool:
     """Whether the sum of the squares of ``a`` is within ``CLEARED``: then every value is finite
     and every row's norm within the bound (as :func:`_check_norms` clears a batch); NaN,
-    infinity and too large values fail (call it under ``np.errstate(over="ignore",
-    invalid="ignore")``: overflow is an answer here). einsum's loop over a strided matrix (the
-    compiled engine's ``weights_``, a transposed view, is not copied); else over one row of
-    the values, by BLAS's dot where it is short (a long one by einsum, as below). Only a float
-    array is cleared (integer squares wrap around): any other answers False."""
+    infinity and too large values fail. Overflow is an answer here, never a warning: a short
+    contiguous float64 array (1 to 4096 values) by BLAS's ``ddot`` as scipy gives it, which
+    sets no numpy error state (numpy's ``dot`` warns on overflow, and its ``errstate``
+    context cost 1.6 us, more than the sum, of a call that scores one scan in 15 us); else
+    under ``np.errstate``, by einsum's loop over a strided matrix (the compiled engine's
+    ``weights_``, a transposed view, is not copied) or over the values (a long array: BLAS
+    may split it over threads, whose wake-up was seen to cost milliseconds on a busy
+    machine). Only a float array is cleared (integer squares wrap around): any other answers
+    False."""
     if a.dtype.kind != "f":
         return False
-    if a.ndim == 2 and not a.flags.c_contiguous:
-        return np.einsum("ij,ij->", a, a) <= CLEARED
-    flat = a.reshape(-1)  # a view where the memory is contiguous
-    if flat.shape[0] <= 4096:
-        return np.dot(flat, flat) <= CLEARED
-    return np.einsum("i,i->", flat, flat) <= CLEARED
+    if a.dtype == np.float64 and 0 < a.size <= 4096 and a.flags.c_contiguous:
+        flat = a.reshape(-1)
+        return _ddot()(flat, flat) <= CLEARED
+    with np.errstate(over="ignore", invalid="ignore"):
+        if a.ndim == 2 and not a.flags.c_contiguous:
+            total = np.einsum("ij,ij->", a, a)
+        else:
+            flat = a.reshape(-1)  # a view where the memory is contiguous
+            total = np.einsum("i,i->", flat, flat)
+    # compared as a Python float: a float32 sum against CLEARED would turn CLEARED into
+    # float32's infinity (NEP 50), and clear an array holding infinity
+    return float(total) <= CLEARED
+
+
+def _ddot():
+    """scipy's BLAS ``ddot``, imported at its first use (scipy.linalg takes 0.35 s to import;
+    fitting a model imports it anyway, through scikit-learn)."""
+    global _DDOT
+    if _DDOT is None:
+        from scipy.linalg.blas import ddot
+
+        _DDOT = ddot
+    return _DDOT
+
+
+_DDOT = None
 
 
 def check_one(x: Any, owner: Any, n_features: int | None, names: np.ndarray | None = None) -> np.ndarray:

@@ -248,9 +248,8 @@ class Clusterer(Component):
         lies beyond the bound scans are held to. Checked with the state, and before every call
         (values written into ``weights_`` in place). A state whose sum of squares is within the
         bound (``cleared``) is within it row by row, without the exact pass."""
-        with np.errstate(over="ignore", invalid="ignore"):
-            if type(self.weights_) is np.ndarray and cleared(self.weights_):
-                return
+        if type(self.weights_) is np.ndarray and cleared(self.weights_):
+            return
         if _largest_norm(self.weights_) > MAX_SCAN_NORM * (1 + 1e-9):
             raise StateError(f"{type(self).__name__}.weights_ reach a norm of {_largest_norm(self.weights_):.3g}, "
                              f"beyond the bound {MAX_SCAN_NORM:g} that learning keeps to.")

@@ -530,3 +530,53 @@ def test_a_growing_network_gets_room_to_grow(single):
     assert_same_filter(det, slow)
     n = det.clusterer_.n_units_
     assert n >= 64 and capacity >= n and moves <= 8
+
+
+@pytest.mark.parametrize("clusterer_name", CLUSTERERS)
+def test_short_batches_scored_scan_by_scan_equal_the_batch_kernel(clusterer_name, monkeypatch):
+    """The compiled engine scores a batch of at most FEW scans by the driver's score_one (one
+    scan at a time, against the weights as learning holds them): winners, distances and
+    efficacies equal the batch kernel's bit for bit, exact ties between two units included; a
+    read-only batch, and a unit within the bound that the driver's cheaper check of the
+    weights refuses, take the batch kernel, and so do strided scans (which the driver's
+    signature does not take)."""
+    from novelty._kernels import engine as engine_module
+    from novelty._kernels.engine import CompiledEngine
+
+    X = corridor(260, n_features=5, seed=3)
+    det = HabituatingFilter(clusterer=clusterer_name).fit(X[:2])
+    assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
+    det.stream(X[2:200])
+    engine = engine_of(det)
+    assert type(engine) is CompiledEngine and engine._score_one is not None
+    W = det.clusterer_.weights_
+    tie = (W[0] + W[-1]) / 2  # as far from the first unit as from the last (or nearly)
+    batches = [X[200:201], X[201:203], np.stack([tie, W[-1]]), tie[None, :]]
+    batch_kernel = engine_module._score_batch
+    calls = []
+    monkeypatch.setattr(engine_module, "_score_batch", lambda *a: calls.append(1) or batch_kernel(*a))
+    assert engine_module.FEW >= 2
+    for Q in batches:
+        got = engine.score(Q)
+        monkeypatch.setattr(engine_module, "FEW", 0)
+        want = engine.score(Q)
+        monkeypatch.undo()
+        monkeypatch.setattr(engine_module, "_score_batch", lambda *a: calls.append(1) or batch_kernel(*a))
+        for a, b in zip(got, want):
+            np.testing.assert_array_equal(a, b)
+    assert len(calls) == len(batches)  # the FEW = 0 calls only
+    read_only = X[200:202].copy()
+    read_only.setflags(write=False)
+    engine.score(read_only)
+    assert len(calls) == len(batches) + 1
+    engine.score(X[200:204:2])  # strided rows
+    engine.score(W[-1][None, :])  # a row of weights_, a transposed view: a strided scan
+    assert len(calls) == len(batches) + 3
+    far = X[203].copy()
+    far[:] = 0.99999999e100 / np.sqrt(far.size)  # within the bound, beyond the driver's check from X
+    W[0] = far
+    got = engine.score(X[204:205])
+    assert len(calls) == len(batches) + 4
+    monkeypatch.setattr(engine_module, "FEW", 0)
+    for a, b in zip(got, engine.score(X[204:205])):
+        np.testing.assert_array_equal(a, b)

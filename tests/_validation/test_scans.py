@@ -262,19 +262,33 @@ _VALUES = st.one_of(st.floats(allow_nan=True, allow_infinity=True, width=64),
                     st.sampled_from([0.0, 1e99, 1e100, 1.0000001e100, 7e99, 1e150, 1e154, 1e155, 1e300]))
 
 
-@given(st.lists(st.lists(_VALUES, min_size=3, max_size=3), min_size=1, max_size=6), st.booleans())
+_LAYOUTS = ["plain", "transposed", "long", "big-endian", "float32", "read-only"]
+
+
+@given(st.lists(st.lists(_VALUES, min_size=3, max_size=3), min_size=1, max_size=6), st.sampled_from(_LAYOUTS))
 @settings(max_examples=300, deadline=None)
-def test_an_array_cleared_is_finite_and_within_the_norm_bound_row_by_row(rows, transposed):
+def test_an_array_cleared_is_finite_and_within_the_norm_bound_row_by_row(rows, layout):
     """``cleared`` is the fast half of the state's value checks: what it clears, the exact
     checks (finite, each row's norm within MAX_SCAN_NORM) would pass; a strided view is
-    summed as its values are."""
+    summed as its values are; every layout (BLAS's ddot for a short contiguous float64
+    array, einsum for the others and for more than 4096 values) answers overflow without a
+    warning."""
     from novelty._validation.scans import cleared
 
-    a = np.array(rows, dtype=np.float64)
-    view = np.ascontiguousarray(a.T).T if transposed else a  # the compiled engine's weights_ layout
     with np.errstate(over="ignore", invalid="ignore"):
+        a = np.array(rows, dtype=np.float32 if layout == "float32" else np.float64)
+    if layout == "long":
+        a = np.tile(a, (700, 1))  # beyond 4096 values
+    view = {"transposed": lambda: np.ascontiguousarray(a.T).T,  # the compiled engine's weights_
+            "big-endian": lambda: a.astype(a.dtype.newbyteorder(">"))}.get(layout, lambda: a)()
+    if layout == "read-only":
+        view.setflags(write=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # overflow is an answer here, never a warning
         verdict = bool(cleared(view))
-        norms = np.sqrt(np.einsum("ij,ij->i", a.astype(np.longdouble), a.astype(np.longdouble)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        wide = a.astype(np.longdouble)
+        norms = np.sqrt(np.einsum("ij,ij->i", wide, wide))
     if verdict:
         assert np.isfinite(a).all() and norms.max() <= MAX_SCAN_NORM
     if np.isfinite(a).all() and np.abs(a).max() <= 1e90:  # far inside: always cleared
@@ -288,3 +302,4 @@ def test_only_float_arrays_are_cleared():
     assert np.dot(wrapping, wrapping) == 0
     assert not cleared(wrapping) and not cleared(np.zeros(3, dtype=bool))
     assert cleared(np.zeros(3)) and cleared(np.ones((2, 2, 2)))
+    assert cleared(np.empty((0, 3))) and cleared(np.empty(0))  # nothing beyond the bound
