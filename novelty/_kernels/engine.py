@@ -320,8 +320,9 @@ def _counter_writer(names: tuple[str, ...]) -> Callable:
 #: the units of a vector in the distance loops (``novelty._kernels._distances.VECTOR``, which
 #: imports numba, as this module must not: a test keeps the two equal)
 VECTOR = 8
-#: the longest batch :meth:`CompiledEngine._score` scores scan by scan (one scan 1.1 us that
-#: way, the batch kernel's fixed cost about 7 us: crossing at 3 scans, hsom 100 x 16, timeit)
+#: the longest batch :meth:`CompiledEngine._score` scores scan by scan (about 2 us a scan that
+#: way; the batch kernel 11 us for one scan, 11 for two, 11 for four, where scan by scan took
+#: 9, 7 and 16: hsom 100 x 16, timeit, min of 7)
 FEW = 2
 
 
