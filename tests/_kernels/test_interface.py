@@ -200,6 +200,16 @@ def _exact_norm(clusterer) -> None:
         raise StateError("beyond the bound")
 
 
+def _write(det, where: str, value: float, every: bool) -> None:
+    """Write ``value`` in place into the fitted part's ``where``: into one value, or into every
+    value (the weights halved: each row within 2x the value, their sum beyond it)."""
+    array = getattr(det.clusterer_ if where == "weights_" else det.synapse_, where)
+    if every:
+        array[...] = value / (2.0 if where == "weights_" else 1.0)
+    else:
+        array.flat[3] = value
+
+
 _WRITTEN = [np.nan, np.inf, -np.inf, 1e300, 1e155, 1e150, 1.0000001e100, 1e100, 9.9e99, 1e99, -1e99, 0.5]
 
 
@@ -216,12 +226,7 @@ def test_check_values_refuses_exactly_what_the_exact_checks_refuse(reference, wh
             det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
             det.stream(corridor(5, n_features=4, seed=1))
             engine = engine_of(det)
-            part = det.clusterer_ if where == "weights_" else det.synapse_
-            array = getattr(part, where)
-            if every:
-                array[...] = value / (2.0 if where == "weights_" else 1.0)  # each row within 2x
-            else:
-                array.flat[3] = value
+            _write(det, where, value, every)
             expected = _exact_verdict(engine)
             if expected is None:
                 engine.check_values()
@@ -247,12 +252,7 @@ def test_single_scan_calls_refuse_exactly_what_the_exact_checks_refuse(call, whe
         det.score_learn_one(x)  # the engine confirmed: the next call takes the compiled path
         engine = engine_of(det)
         assert type(engine) is CompiledEngine and engine.fresh()
-        part = det.clusterer_ if where == "weights_" else det.synapse_
-        array = getattr(part, where)
-        if every:
-            array[...] = value / (2.0 if where == "weights_" else 1.0)  # each row within 2x
-        else:
-            array.flat[3] = value
+        _write(det, where, value, every)
         expected = _exact_verdict(engine)
         if expected is not None:
             with pytest.raises(StateError):
