@@ -77,6 +77,20 @@ space over the cone inside that range (Moravec & Elfes 1985), sampled by
 longest sector of the scan), so that a wall seen from elsewhere falls in
 the cells of the arc that holds it.
 
+With ``arc="sector"`` (ours) each scan's cone is as wide as the angle its
+sectors stand for, measured from the scan itself, so one setting reads a
+sonar ring and a laser each at its own width: the bearings of its end
+points seen from the robot's position, sorted round the circle, and the
+median gap between neighbours (a ring of 16 sonars all round: 22.5
+degrees, close to a sonar's cone; a laser's 180 sectors over 180 degrees:
+1 degree, practically its beam; the one gap across the unseen half is
+outvoted). A sector with no echo counts: its end point lies along its
+direction (:mod:`novelty.maps.points`), so dropping it would widen the
+cones of a scan that sees few echoes, not of one whose sectors are wider.
+The width is at most pi (the option's own bound); a scan with fewer than
+two sectors that point anywhere (an end point off the robot's position)
+is read on its axes.
+
 Learning a scan applies (1) to the cells it hits and adds one pass to the
 cells its rays crossed (a cell both hit and crossed in one scan counts as
 hit). Cells are made as they are first met; the state is three arrays over
@@ -112,7 +126,7 @@ from .points import split_points
 #: The packed offsets of a cell's eight neighbours.
 _NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
 
-__all__ = ["HabituatingMap", "cell_keys", "map_explore", "MAP_EXPLORE", "MAX_COORDINATE"]
+__all__ = ["HabituatingMap", "cell_keys", "sector_width", "map_explore", "MAP_EXPLORE", "MAX_COORDINATE"]
 
 #: Coordinates (m) beyond which a row is refused: the packed cell indices stay exact.
 MAX_COORDINATE = 1e6
@@ -130,6 +144,26 @@ def cell_keys(points, cell_size: float) -> np.ndarray:
     """
     ij = np.floor(np.asarray(points, dtype=np.float64).reshape(-1, 2) / cell_size).astype(np.int64)
     return ((ij[:, 0] + _SHIFT_I) << np.int64(32)) + (ij[:, 1] + _SHIFT_J)
+
+
+def sector_width(pose, ends) -> float:
+    """The angle one sector of a scan stands for (rad; ours): the median gap between its bearings round the circle.
+
+    ``pose`` the robot's (x, y, ...), ``ends`` the sectors' end points (n, 2),
+    those with no echo included (they lie along their sectors' directions).
+    End points at the robot's position have no bearing and are left out;
+    with fewer than two left the width is 0 (the axes). At most pi.
+
+    >>> round(np.degrees(sector_width([0.0, 0.0], [[1.0, 0.0], [0.0, 1.0], [-2.0, 0.0], [0.0, -1.0]])), 6)
+    90.0
+    """
+    d = np.asarray(ends, dtype=np.float64).reshape(-1, 2) - np.asarray(pose, dtype=np.float64)[:2]
+    d = d[(d[:, 0] != 0) | (d[:, 1] != 0)]
+    if d.shape[0] < 2:
+        return 0.0
+    bearing = np.sort(np.arctan2(d[:, 1], d[:, 0]))
+    gaps = np.diff(np.append(bearing, bearing[0] + 2 * np.pi))
+    return float(min(np.median(gaps), np.pi))
 
 
 class HabituatingMap(NoveltyDetector):
@@ -164,8 +198,9 @@ class HabituatingMap(NoveltyDetector):
         Cells crossed fewer times than this give no novelty (ours).
     evidence_lag : int, default=0
         A scan's free space counts as evidence this many scans later (ours).
-    arc : float, default=0.0
-        Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis.
+    arc : float or "sector", default=0.0
+        Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis;
+        ``"sector"``: as wide as the median angle between the scan's sectors (ours).
     threshold : float, default=0.5
         Novelty above which :meth:`predict` says novel.
     contamination : "auto" or float in (0, 0.5], default="auto"
@@ -211,7 +246,7 @@ class HabituatingMap(NoveltyDetector):
         "tolerance": Interval(numbers.Integral, 0, 10),
         "min_passes": Interval(numbers.Real, 0, None),
         "evidence_lag": Interval(numbers.Integral, 0, None),
-        "arc": Interval(numbers.Real, 0, np.pi),
+        "arc": (Interval(numbers.Real, 0, np.pi), Options(("sector",))),
         "threshold": Interval(numbers.Real, None, None),
     }
 
@@ -266,12 +301,18 @@ class HabituatingMap(NoveltyDetector):
                              "from the world's origin; give poses in metres in a local frame (odom or map).")
         return poses, near, ends
 
-    def _cones(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
+    def _arc(self, pose, ends) -> float:
+        """The cone's width for one scan (rad): ``arc``, or with ``"sector"`` the median gap between its bearings."""
+        if not isinstance(self.arc, str):
+            return float(self.arc)
+        return sector_width(pose, ends)
+
+    def _cones(self, pose, near, ends, arc: float) -> tuple[np.ndarray, np.ndarray]:
         """Each sector as rays evenly across its cone of width ``arc``, each as long as the sector."""
         d = ends - pose[:2]
         length = np.hypot(d[:, 0], d[:, 1])
-        rays = 1 + int(np.ceil(float(self.arc) * length.max() / (float(self.cell_size) / 2))) if length.size else 1
-        spread = np.linspace(-self.arc / 2, self.arc / 2, rays)
+        rays = 1 + int(np.ceil(arc * length.max() / (float(self.cell_size) / 2))) if length.size else 1
+        spread = np.linspace(-arc / 2, arc / 2, rays)
         bearing = np.arctan2(d[:, 1], d[:, 0])[:, None] + spread[None, :]
         out = pose[:2] + length[:, None, None] * np.stack([np.cos(bearing), np.sin(bearing)], axis=-1)
         return np.repeat(near, rays), out.reshape(-1, 2)
@@ -279,8 +320,9 @@ class HabituatingMap(NoveltyDetector):
     def _cells(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
         """The cells one scan hits, and those its rays cross (not hit), as sorted unique keys."""
         c = float(self.cell_size)
-        if self.arc > 0:
-            near, ends = self._cones(pose, near, ends)
+        arc = self._arc(pose, ends)
+        if arc > 0:
+            near, ends = self._cones(pose, near, ends, arc)
         hit = near > 0
         hits = np.unique(cell_keys(ends[hit], c))
         d = ends - pose[:2]

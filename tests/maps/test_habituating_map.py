@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from novelty._component import StateError
-from novelty.maps.habituating_map import HabituatingMap, cell_keys
+from novelty.maps.habituating_map import HabituatingMap, cell_keys, sector_width
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
@@ -228,6 +228,71 @@ def test_with_an_arc_a_sector_without_echo_sees_its_whole_cone_free():
     assert cell(3, -1) not in HabituatingMap(evidence="hits", **EXACT).fit([scan(None)]).cells_
 
 
+def fan(*bearings, reach=2.0, robot=ROBOT, missing=()):
+    """One points row: a sector at each bearing (rad, world frame) with an echo ``reach`` m away, or none
+    (nearness 0, its end point 4 m along it) for the indices in ``missing``."""
+    near, xs, ys = [], [], []
+    for k, b in enumerate(bearings):
+        r = 4.0 if k in missing else reach
+        near.append(0.0 if k in missing else 1.0 - reach / 4.0)
+        xs.append(robot[0] + r * math.cos(b))
+        ys.append(robot[1] + r * math.sin(b))
+    return [*robot, *near, *xs, *ys]
+
+
+def ends(row):
+    n = (len(row) - 3) // 3
+    return np.c_[row[3 + n:3 + 2 * n], row[3 + 2 * n:]]
+
+
+@pytest.mark.parametrize("bearings, missing, width", [
+    ((0.0, math.pi / 2, math.pi, -math.pi / 2), (), math.pi / 2),         # a ring of 4: gaps of 90 degrees
+    ((0.0, math.pi / 2, math.pi, -math.pi / 2), (1, 2), math.pi / 2),     # sectors without echo count alike
+    ((math.pi / 2, 0.0, -math.pi / 2, math.pi), (), math.pi / 2),         # in any column order
+    ((-0.4, 0.0, 0.4), (), 0.4),                                          # a fan: gaps 0.4, 0.4, 2 pi - 0.8
+    ((0.0, 0.1), (), math.pi),                                            # gaps 0.1, 2 pi - 0.1: median capped at pi
+    ((1.0,), (), 0.0),                                                    # one sector: no neighbour, its axis
+])
+def test_a_sectors_width_is_the_median_gap_between_the_bearings_round_the_circle(bearings, missing, width):
+    assert sector_width(ROBOT, ends(fan(*bearings, missing=missing))) == pytest.approx(width, abs=1e-12)
+
+
+def test_a_laser_fan_of_180_sectors_over_180_degrees_stands_for_one_degree_and_an_end_at_the_robot_for_none():
+    bearings = np.radians(np.arange(180) - 89.5)
+    assert sector_width(ROBOT, ends(fan(*bearings))) == pytest.approx(math.radians(1.0), abs=1e-12)
+    points = ends(fan(0.0, math.pi / 2, math.pi, -math.pi / 2))
+    points[1] = ROBOT[:2]     # no bearing: left out, gaps 180, 90, 90 degrees
+    assert sector_width(ROBOT, points) == pytest.approx(math.pi / 2, abs=1e-12)
+
+
+def test_with_arc_sector_a_fan_is_read_as_cones_as_wide_as_its_sectors():
+    # a fan at -0.4, 0, 0.4 rad stands for 0.4 rad a sector: its middle sector's echo at (2.1, 0.1) is spread
+    # as in the test of arc = 0.4 above, over cells (2, -1) and (2, 0); on its axis it falls in (2, 0) only
+    row = fan(-0.4, 0.0, 0.4)
+    det = HabituatingMap(evidence="hits", arc="sector", **EXACT).fit([row])
+    fixed = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([row])
+    for name in ("cells_", "efficacy_", "passes_"):
+        assert np.array_equal(getattr(det, name), getattr(fixed, name)), name
+    assert state(det, 2, -1) == (0.5, 0.0) and state(det, 2, 0) == (0.5, 0.0)
+    axis = HabituatingMap(evidence="hits", **EXACT).fit([row])
+    assert state(axis, 2, 0) == (0.5, 0.0) and cell(2, -1) not in axis.cells_
+
+
+def test_with_arc_sector_each_scan_gets_its_own_width():
+    # a ring of 4 seeing a wall ahead only, its ahead sector twice (gaps 0 and four of 90 degrees: median 90),
+    # then a fan of 3 ahead with repeats (gaps 0, 0, 0.4, 0.4, 2 pi - 0.8: median 0.4): each is read as with
+    # its own fixed arc; the fan's narrow cones stay on the wall the ring's 90-degree cone learned (0.5 each)
+    ring = fan(0.0, math.pi / 2, math.pi, -math.pi / 2, 0.0, missing=(1, 2, 3))
+    fan3 = fan(-0.4, 0.0, 0.4, 0.4, 0.4)
+    mean = {**EXACT, "top": None}     # the mean over every hit cell: the cone's width shows
+    det = HabituatingMap(evidence="hits", arc="sector", **mean).fit([ring])
+    fixed = HabituatingMap(evidence="hits", arc=math.pi / 2, **mean).fit([ring])
+    assert np.array_equal(det.cells_, fixed.cells_) and np.array_equal(det.efficacy_, fixed.efficacy_)
+    wide = fixed.novelty([fan3]).tolist()
+    assert det.novelty([fan3]).tolist() == fixed.set_params(arc=0.4).novelty([fan3]).tolist() == [0.5]
+    assert wide[0] > 0.5
+
+
 # ------------------------------------------------------------------ determinism, persistence, refusals
 @pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2}])
 def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row(params):
@@ -303,6 +368,7 @@ def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_t
     ({"evidence_lag": -2}, "evidence_lag"),
     ({"arc": -0.1}, "arc"),
     ({"arc": 4.0}, "arc"),
+    ({"arc": "auto"}, "arc"),
     ({"unseen": -0.1}, "unseen"),
     ({"unseen": 1.5}, "unseen"),
 ])
