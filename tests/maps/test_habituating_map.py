@@ -18,7 +18,7 @@ from novelty.maps.habituating_map import HabituatingMap, cell_keys, sector_width
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
-EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0}
+EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0, "arc": 0.0}
 
 
 def scan(*echoes, robot=ROBOT):
@@ -147,20 +147,26 @@ def test_tolerance_reads_a_cell_as_the_least_efficacy_within_that_many_cells(tol
     assert state(det, 2, 0)[0] == 0.5                  # reading only: what is learned is unchanged
 
 
-def test_the_defaults_are_the_fourth_selections_cells_of_0_2_m_no_tolerance_and_unseen_one_half():
-    # chosen by benchmarks/selection/maps-round4.md (the guard first): cells of 0.2 m, each read alone,
-    # a cell never seen through weighing 1/2
+def test_the_defaults_are_the_fifth_selections_cells_of_0_1_m_tolerance_1_sector_cones_and_unseen_one_half():
+    # chosen by benchmarks/selection/maps-round5.md (the guard first): cells of 0.1 m read with their
+    # neighbours, each scan's sectors as cones as wide as they stand for, a cell never seen through weighing 1/2
     det = HabituatingMap()
-    assert (det.cell_size, det.tolerance, det.unseen, det.evidence) == (0.2, 0, 0.5, "free")
-    # two scans with an echo at (0.9, 0.1): its cell (4, 0) hit twice (y = 1/4 with tau = 2, alpha = 1),
-    # never crossed; the rays, sampled every 0.1 m up to 0.2 m short of it, cross cells (0..3, 0) twice
-    defaults = {"tau": 2.0, "alpha": 1.0, "top": 1}
-    det = HabituatingMap(**defaults).fit([scan((0.9, 0.1))] * 2)
-    v = det.novelty([scan((0.5, 0.1)), scan((0.9, 0.1)), scan((1.1, 0.1)), scan((0.5, 0.5))])
+    assert (det.cell_size, det.tolerance, det.arc, det.unseen, det.evidence) == (0.1, 1, "sector", 0.5, "free")
+    # one sector a scan (no neighbour: read on its axis), the robot at (0.05, 0.05); two scans with an echo
+    # at (0.93, 0.05): its cell (9, 0) hit twice (y = 1/4 with tau = 2, alpha = 1), never crossed; the ray,
+    # sampled every 0.05 m up to 0.1 m short of it (15 samples, x 0.075 to 0.775), crosses (0..7, 0) twice
+    robot = (0.05, 0.05, 0.0)
+    det = HabituatingMap(tau=2.0, alpha=1.0, top=1).fit([scan((0.93, 0.05), robot=robot)] * 2)
+    v = det.novelty([scan(echo, robot=robot) for echo in ((0.55, 0.05), (0.93, 0.05), (1.03, 0.05), (0.55, 0.35))])
     w = 1 - math.exp(-1.0)
-    # (2, 0): y = 1, f = 2; (4, 0): y = 1/4, f = 0; (5, 0) beside the hit cell, read alone: not met,
-    # y = 1, f = 0 (1/4 with tolerance 1); (2, 2): not met
-    assert v == pytest.approx([0.5 + 0.5 * w, 0.125, 0.5, 0.5], rel=1e-12, abs=0)
+    # (5, 0): y = 1, f = 2; (9, 0): y = 1/4, f = 0; (10, 0), not met, beside the hit cell: read with its
+    # neighbours, y = 1/4, f = 0 (1/2 read alone); (5, 3): nothing met within a cell, y = 1, f = 0
+    assert v == pytest.approx([0.5 + 0.5 * w, 0.125, 0.125, 0.5], rel=1e-12, abs=0)
+    # a ring of 4 is read as cones of 90 degrees by default
+    ring = fan(0.0, math.pi / 2, math.pi, -math.pi / 2)
+    cones = HabituatingMap(arc=math.pi / 2).fit([ring])
+    assert np.array_equal(HabituatingMap().fit([ring]).cells_, cones.cells_)
+    assert not np.array_equal(HabituatingMap(arc=0.0).fit([ring]).cells_, cones.cells_)
 
 
 def test_tolerance_looks_along_both_axes_and_the_diagonals():
@@ -213,7 +219,7 @@ def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
     # arc 0.4 rad, range 2 m, cells 1 m: 1 + ceil(0.4 * 2 / 0.5) = 3 rays at -0.2, 0, 0.2 rad; their ends
     # (2.060, -0.297), (2.1, 0.1), (2.060, 0.497) lie in cells (2, -1) and (2, 0); sampled at 0.25 and
     # 0.75 m (up to one cell short of the echo) they cross (0, 0) and, at (0.835, -0.049), (0, -1)
-    det = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([scan((2.1, 0.1))])
+    det = HabituatingMap(evidence="hits", **{**EXACT, "arc": 0.4}).fit([scan((2.1, 0.1))])
     assert det.cells_.tolist() == sorted([cell(0, -1), cell(0, 0), cell(2, -1), cell(2, 0)])
     assert state(det, 2, -1) == (0.5, 0.0) and state(det, 2, 0) == (0.5, 0.0)
     assert state(det, 0, -1) == (1.0, 1.0) and state(det, 0, 0) == (1.0, 1.0)
@@ -223,7 +229,7 @@ def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
 
 def test_with_an_arc_a_sector_without_echo_sees_its_whole_cone_free():
     # 4 m and 0.4 rad: five rays; the one at -0.2 rad passes (3.53, -0.595), in cell (3, -1)
-    det = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([scan(None)])
+    det = HabituatingMap(evidence="hits", **{**EXACT, "arc": 0.4}).fit([scan(None)])
     assert state(det, 3, -1) == (1.0, 1.0)
     assert cell(3, -1) not in HabituatingMap(evidence="hits", **EXACT).fit([scan(None)]).cells_
 
@@ -269,8 +275,8 @@ def test_with_arc_sector_a_fan_is_read_as_cones_as_wide_as_its_sectors():
     # a fan at -0.4, 0, 0.4 rad stands for 0.4 rad a sector: its middle sector's echo at (2.1, 0.1) is spread
     # as in the test of arc = 0.4 above, over cells (2, -1) and (2, 0); on its axis it falls in (2, 0) only
     row = fan(-0.4, 0.0, 0.4)
-    det = HabituatingMap(evidence="hits", arc="sector", **EXACT).fit([row])
-    fixed = HabituatingMap(evidence="hits", arc=0.4, **EXACT).fit([row])
+    det = HabituatingMap(evidence="hits", **{**EXACT, "arc": "sector"}).fit([row])
+    fixed = HabituatingMap(evidence="hits", **{**EXACT, "arc": 0.4}).fit([row])
     for name in ("cells_", "efficacy_", "passes_"):
         assert np.array_equal(getattr(det, name), getattr(fixed, name)), name
     assert state(det, 2, -1) == (0.5, 0.0) and state(det, 2, 0) == (0.5, 0.0)
@@ -285,8 +291,8 @@ def test_with_arc_sector_each_scan_gets_its_own_width():
     ring = fan(0.0, math.pi / 2, math.pi, -math.pi / 2, 0.0, missing=(1, 2, 3))
     fan3 = fan(-0.4, 0.0, 0.4, 0.4, 0.4)
     mean = {**EXACT, "top": None}     # the mean over every hit cell: the cone's width shows
-    det = HabituatingMap(evidence="hits", arc="sector", **mean).fit([ring])
-    fixed = HabituatingMap(evidence="hits", arc=math.pi / 2, **mean).fit([ring])
+    det = HabituatingMap(evidence="hits", **{**mean, "arc": "sector"}).fit([ring])
+    fixed = HabituatingMap(evidence="hits", **{**mean, "arc": math.pi / 2}).fit([ring])
     assert np.array_equal(det.cells_, fixed.cells_) and np.array_equal(det.efficacy_, fixed.efficacy_)
     wide = fixed.novelty([fan3]).tolist()
     assert det.novelty([fan3]).tolist() == fixed.set_params(arc=0.4).novelty([fan3]).tolist() == [0.5]
@@ -385,13 +391,13 @@ def test_cell_keys_increase_with_the_cell_in_row_major_order():
 
 
 # ------------------------------------------------------------------ the preset
-def test_map_explore_is_the_fourth_selections_choice_written_out():
+def test_map_explore_is_the_fourth_selections_choice_written_out_whatever_the_defaults():
     import novelty
 
     det = novelty.make("map-explore")
     assert isinstance(det, HabituatingMap)
     chosen = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
-              "tolerance": 0, "unseen": 0.5}
+              "tolerance": 0, "unseen": 0.5, "arc": 0.0}
     assert {k: det.get_params()[k] for k in chosen} == chosen
     X = HabituatingMap._example_rows(seed=2, n=60)
     assert np.array_equal(det.fit(X).novelty(X), HabituatingMap(**chosen).fit(X).novelty(X))
