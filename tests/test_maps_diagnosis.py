@@ -51,8 +51,12 @@ def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_
     away = (end - X[45, :2]) / np.hypot(*(end - X[45, :2]))
     post = Cylinder("post", x=float(end[0] + 0.2 * away[0]), y=float(end[1] + 0.2 * away[1]), radius=0.2,
                     start=45.0)
-    t = diagnosis.trace(HabituatingMap(), X, [post], np.arange(60.0))
-    np.testing.assert_allclose(t["score"], HabituatingMap().stream(X), rtol=0, atol=1e-12)
+    # each sector on its axis: the trace finds an object's cells at the sectors' end points, which a cone
+    # (arc, the default "sector") spreads over its arc and may step over
+    t = diagnosis.trace(HabituatingMap(arc=0.0), X, [post], np.arange(60.0))
+    np.testing.assert_allclose(t["score"], HabituatingMap(arc=0.0).stream(X), rtol=0, atol=1e-12)
+    assert np.allclose(diagnosis.trace(HabituatingMap(), X, [post], np.arange(60.0))["score"],
+                       HabituatingMap().stream(X), rtol=0, atol=1e-12)
     assert t["object_cells"][45] >= 1
     assert t["object_cells"][:45].sum() == 0          # not standing yet
 
