@@ -479,6 +479,9 @@ def map_explore(**params) -> HabituatingMap:
     and the reported seeds (lowest mean ROC AUC 0.525, ``paper-a-to-a-star``,
     seeds 5-9). On the reported seeds 0-4 of the objects tasks it habituates on
     none (aces 3rd/1st 0.32, separation 0.00) and flags first sight at 0.644 /
-    0.536 / 0.567 (intel / aces / csail): docs/guide/objects.md.
+    0.536 / 0.567 (intel / aces / csail): docs/guide/objects.md. The fifth
+    selection (benchmarks/selection/maps-round5.md) changed the class's
+    defaults, not the preset: its settings fell below chance on the reported
+    guard (0.440 on ``paper-a-to-b``, seeds 5-9).
     """
     return HabituatingMap(**{**MAP_EXPLORE, **params})
