@@ -1,4 +1,5 @@
-"""The scores of the fourth selection of habituating maps (benchmarks/selection/maps-round4.md) from its runs.
+"""The scores of the fourth and fifth selections of habituating maps (benchmarks/selection/maps-round4.md,
+maps-round5.md) from their runs.
 
     python benchmarks/maps_round4.py --inspection results/maps-round4-inspection \
         --exploration results/maps-round4-exploration --guard results/maps-round4-detection
