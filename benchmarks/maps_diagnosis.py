@@ -174,8 +174,8 @@ def pair_losses(scores, first, familiar) -> np.ndarray:
     return below + 0.5 * tied
 
 
-def diagnose(log: str, seed: int, params: dict, path=None) -> dict:
-    task = radish_objects_exploration(log, path, seed, inputs="points", sectors=180)
+def diagnose(log: str, seed: int, params: dict, path=None, options: dict | None = None) -> dict:
+    task = radish_objects_exploration(log, path, seed, **{"inputs": "points", "sectors": 180, **(options or {})})
     objects = [object_from_fields(dict(o)) for o in task.metadata["objects"]]
     det = HabituatingMap(**params)
     t = trace(det, task.X, objects, task.columns["time"])
@@ -297,15 +297,18 @@ def main(argv=None) -> int:
     parser.add_argument("--seeds", nargs="+", type=int, default=[100, 101, 102, 103, 104])
     parser.add_argument("--data", default=None, help="the folder of the Radish logs (default $NOVELTY_DATA_DIR)")
     parser.add_argument("--param", action="append", default=[], help="a HabituatingMap parameter, name=value")
+    parser.add_argument("--option", action="append", default=[],
+                        help="an option of the task (exploration_task), name=value; e.g. seen_before=1")
     parser.add_argument("--json", default=None, help="write the per-task rows here")
     args = parser.parse_args(argv)
     if any(s in REPORTED for s in args.seeds):
         parser.error("seeds 0-4 are the reported seeds: diagnose on development seeds (100-104).")
     params = dict(_param(p) for p in args.param)
+    options = dict(_param(p) for p in args.option)
     rows = []
     for log in args.logs:
         for seed in args.seeds:
-            rows.append(diagnose(log, seed, params, args.data))
+            rows.append(diagnose(log, seed, params, args.data, options))
             print(f"{log} seed {seed}: AUC {rows[-1]['auc']:.3f}", file=sys.stderr)
     print(report(rows))
     if args.json:

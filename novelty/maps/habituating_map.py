@@ -72,6 +72,20 @@ the fourth, with cells of 0.4 m; again from the fifth, with cells of
   approaching (a place met for the first time: its surfaces glimpsed
   through by grazing rays, then hit).
 
+A fourth, off by default, decides how often a cell habituates (ours):
+
+- ``visit_gap = G`` scans: a hit cell takes the step of (1) only at the
+  first hit of a visit, a hit after at least ``G`` scans that did not hit
+  it (the scans of one visit hit it again and again; they are one
+  encounter). A robot passing an object sees it on several scans of a
+  pass, more at a faster scan rate: with ``G = 0`` (every hit a step, the
+  paper's one step a scan) the object's cells have habituated before the
+  pass is over, and a sensor's rate sets how fast a feature grows
+  familiar. With ``G > 0`` it grows familiar by the visits: novel through
+  its first pass, less on each pass after. ``last_hit_`` holds the scan
+  (counted from 1 over all scans learned, ``scans_``) that last hit each
+  cell.
+
 A sonar's echo comes from anywhere in its cone, not from its axis. With
 ``arc = a`` (rad, ours; 0: a laser's beam) each sector is read
 as a cone of width ``a`` centred on the direction of its end point: its
@@ -121,7 +135,7 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError, check_array_state
+from .._component import StateError, check_array_state, check_int_state
 from .._validation import Interval, Options
 from ..detector import NoveltyDetector
 from ..habituation.stanley import euler_steps
@@ -202,6 +216,9 @@ class HabituatingMap(NoveltyDetector):
         Cells crossed fewer times than this give no novelty (ours).
     evidence_lag : int, default=0
         A scan's free space counts as evidence this many scans later (ours).
+    visit_gap : int, default=0
+        A hit cell habituates only at the first hit of a visit, after at
+        least this many scans that did not hit it (ours; 0: at every hit).
     arc : float or "sector", default="sector"
         Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis;
         ``"sector"``: as wide as the median angle between the scan's sectors (ours).
@@ -219,6 +236,10 @@ class HabituatingMap(NoveltyDetector):
         The scans whose rays crossed each cell.
     pending_ : ndarray of shape (n_pending, n_features)
         The last scans learned, their free space not counted yet (at most ``evidence_lag``).
+    last_hit_ : ndarray of int64, shape (n_cells,)
+        The scan (1, 2, ... over all scans learned) that last hit each cell; 0: never hit.
+    scans_ : int
+        The scans learned.
     n_features_in_ : int
 
     Examples
@@ -252,14 +273,16 @@ class HabituatingMap(NoveltyDetector):
         "tolerance": Interval(numbers.Integral, 0, 10),
         "min_passes": Interval(numbers.Real, 0, None),
         "evidence_lag": Interval(numbers.Integral, 0, None),
+        "visit_gap": Interval(numbers.Integral, 0, None),
         "arc": (Interval(numbers.Real, 0, np.pi), Options(("sector",))),
         "threshold": Interval(numbers.Real, None, None),
     }
 
     def __init__(self, cell_size=0.1, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.5, threshold=0.5,
-                 contamination="auto"):
+                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.5, visit_gap=0,
+                 threshold=0.5, contamination="auto"):
         self.unseen = unseen
+        self.visit_gap = visit_gap
         self.tau_neighbour = tau_neighbour
         self.arc = arc
         self.tolerance = tolerance
@@ -397,6 +420,8 @@ class HabituatingMap(NoveltyDetector):
         self.cells_ = np.empty(0, dtype=np.int64)
         self.efficacy_ = np.empty(0)
         self.passes_ = np.empty(0)
+        self.last_hit_ = np.empty(0, dtype=np.int64)
+        self.scans_ = 0
         self.pending_ = np.empty((0, X.shape[1]))
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
@@ -426,8 +451,16 @@ class HabituatingMap(NoveltyDetector):
             self._meet(around)
             at = self._slots(around)
             self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau_neighbour, dt, self.alpha, 1.0)
-        self.efficacy_[self._slots(hits)] = euler_steps(self.efficacy_[self._slots(hits)], 1.0, self.tau, dt,
-                                                        self.alpha, 1.0)
+        self.scans_ += 1
+        at = self._slots(hits)
+        if self.visit_gap > 0:
+            # a visit's first hit only: one not preceded by a hit in the `visit_gap` scans before this one
+            last = self.last_hit_[at]
+            self.last_hit_[at] = self.scans_
+            at = at[(last == 0) | (last < self.scans_ - self.visit_gap)]
+        else:
+            self.last_hit_[at] = self.scans_
+        self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau, dt, self.alpha, 1.0)
 
     def _meet(self, keys: np.ndarray) -> None:
         """Add the cells of ``keys`` not met yet (unhabituated, never crossed), keeping the keys sorted."""
@@ -438,6 +471,7 @@ class HabituatingMap(NoveltyDetector):
         self.cells_ = np.insert(self.cells_, at, new)
         self.efficacy_ = np.insert(self.efficacy_, at, 1.0)
         self.passes_ = np.insert(self.passes_, at, 0.0)
+        self.last_hit_ = np.insert(self.last_hit_, at, 0)
 
     def _check_state(self) -> None:
         super()._check_state()
@@ -445,6 +479,10 @@ class HabituatingMap(NoveltyDetector):
         n = cells.size
         efficacy = check_array_state(self, "efficacy_", 1, shape=(n,))
         passes = check_array_state(self, "passes_", 1, shape=(n,))
+        scans = check_int_state(self, "scans_")
+        last = check_array_state(self, "last_hit_", 1, "i", shape=(n,))
+        if n and (last.min() < 0 or last.max() > scans):
+            raise StateError(f"HabituatingMap.last_hit_ must lie in [0, scans_ = {scans}] (0: never hit).")
         if n > 1 and np.any(np.diff(cells) <= 0):
             raise StateError("HabituatingMap.cells_ must be increasing (each cell once).")
         floor = 1.0 - 1.0 / self.alpha

@@ -215,6 +215,37 @@ def test_an_evidence_lag_of_zero_is_the_map_without_it():
     assert np.array_equal(lagged.passes_, plain.passes_) and lagged.pending_.shape == (0, X.shape[1])
 
 
+# ------------------------------------------------------------------ visits
+def test_with_a_visit_gap_a_cell_habituates_once_a_visit():
+    hit, away = scan((2.1, 0.1)), scan((0.1, 2.1))
+    # cell (2, 0): scans 1-3 one visit (y 1 -> 0.5); scans 4-5 miss it: scan 6 opens a visit (0.25);
+    # one miss (scan 7) is not a gap of 2: scan 8 is the same visit. Cell (0, 2): one visit, scans 4-7
+    rows = [hit, hit, hit, away, away, hit, away, hit]
+    det = HabituatingMap(evidence="hits", visit_gap=2, **EXACT)
+    assert det.stream(rows).tolist() == [1.0, 0.5, 0.5, 1.0, 0.5, 0.5, 0.5, 0.25]
+    assert state(det, 2, 0)[0] == 0.25 and state(det, 0, 2)[0] == 0.5
+    assert det.scans_ == 8
+    assert det.last_hit_[det.cells_ == cell(2, 0)].tolist() == [8]
+    assert det.last_hit_[det.cells_ == cell(0, 0)].tolist() == [0]      # crossed, never hit
+    # without it, every hit is a step: 2^-5 after five hits
+    assert state(HabituatingMap(evidence="hits", **EXACT).fit(rows), 2, 0)[0] == 0.5 ** 5
+
+
+@pytest.mark.parametrize("gap, expected", [(1, 0.25), (3, 0.5)])
+def test_a_visit_ends_after_visit_gap_scans_that_miss_the_cell(gap, expected):
+    # hits at scans 1 and 4: two misses between them end a visit for a gap of 1, not of 3
+    rows = [scan((2.1, 0.1)), scan((0.1, 2.1)), scan((0.1, 2.1)), scan((2.1, 0.1))]
+    det = HabituatingMap(evidence="hits", visit_gap=gap, **EXACT).fit(rows)
+    assert state(det, 2, 0)[0] == expected
+
+
+def test_a_visit_gap_of_zero_is_the_map_without_it():
+    X = HabituatingMap._example_rows(seed=5, n=40)
+    gapless, plain = HabituatingMap(visit_gap=0).fit(X), HabituatingMap().fit(X)
+    assert np.array_equal(gapless.efficacy_, plain.efficacy_) and np.array_equal(gapless.last_hit_, plain.last_hit_)
+    assert np.array_equal(HabituatingMap(visit_gap=0).stream(X), HabituatingMap().stream(X))
+
+
 def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
     # arc 0.4 rad, range 2 m, cells 1 m: 1 + ceil(0.4 * 2 / 0.5) = 3 rays at -0.2, 0, 0.2 rad; their ends
     # (2.060, -0.297), (2.1, 0.1), (2.060, 0.497) lie in cells (2, -1) and (2, 0); sampled at 0.25 and
@@ -300,14 +331,15 @@ def test_with_arc_sector_each_scan_gets_its_own_width():
 
 
 # ------------------------------------------------------------------ determinism, persistence, refusals
-@pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2}])
+@pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2},
+                                    {"visit_gap": 3}])
 def test_the_same_rows_give_the_same_map_in_one_batch_or_row_by_row(params):
     X = HabituatingMap._example_rows(seed=3, n=60)
     batch = HabituatingMap(**params).fit(X)
     rows = HabituatingMap(**params).fit(X[:1])
     for row in X[1:]:
         rows.partial_fit(row[None, :])
-    for name in ("cells_", "efficacy_", "passes_", "pending_"):
+    for name in ("cells_", "efficacy_", "passes_", "pending_", "last_hit_", "scans_"):
         assert np.array_equal(getattr(batch, name), getattr(rows, name)), name
     assert np.array_equal(batch.novelty(X), HabituatingMap(**params).fit(X).novelty(X))
 
@@ -332,6 +364,24 @@ def test_a_saved_map_keeps_its_pending_scans_and_goes_on_as_the_map_it_was(tmp_p
     assert np.array_equal(back.pending_, X[25:30])
     assert np.array_equal(back.stream(X[30:]), det.stream(X[30:]))
     assert np.array_equal(back.passes_, det.passes_)
+
+
+def test_a_saved_map_keeps_its_visits_and_goes_on_as_the_map_it_was(tmp_path):
+    X = HabituatingMap._example_rows(seed=6, n=50)
+    det = HabituatingMap(visit_gap=4).fit(X[:30])
+    save(det, tmp_path / "map.npz")
+    back = load(tmp_path / "map.npz")
+    assert back.scans_ == 30 and np.array_equal(back.last_hit_, det.last_hit_)
+    assert np.array_equal(back.stream(X[30:]), det.stream(X[30:]))
+    assert np.array_equal(back.efficacy_, det.efficacy_)
+
+
+@pytest.mark.parametrize("last, scans", [(31, 30), (-1, 30)])
+def test_a_last_hit_outside_the_scans_learned_is_refused_as_a_bad_state(last, scans):
+    det = HabituatingMap(visit_gap=2).fit(HabituatingMap._example_rows(n=30))
+    det.last_hit_[0], det.scans_ = last, scans
+    with pytest.raises(StateError, match="last_hit_"):
+        det._check_state()
 
 
 def test_pending_scans_of_another_width_are_refused_as_a_bad_state():
@@ -377,6 +427,8 @@ def test_rows_not_of_the_points_input_are_refused_saying_what_was_expected_and_t
     ({"arc": "auto"}, "arc"),
     ({"unseen": -0.1}, "unseen"),
     ({"unseen": 1.5}, "unseen"),
+    ({"visit_gap": -1}, "visit_gap"),
+    ({"visit_gap": 2.5}, "visit_gap"),
 ])
 def test_bad_parameters_are_refused_by_name(params, message):
     with pytest.raises(ValueError, match=message):
