@@ -138,7 +138,7 @@ def _span(values) -> str:
 
 
 def _verdicts_on(found: dict[str, dict], what: str) -> str:
-    """``flagging on none and habituating on 1 of the 3 logs (aces)``."""
+    """``flagging on none and habituating on 1 of the 3 objects tasks (aces)``."""
     flags, habituates = _where(found, "flags"), _where(found, "habituates")
     if not flags and not habituates:
         return f"flagging and habituating on none of the {len(found)} {what}"
@@ -167,7 +167,7 @@ def facts(results: Callable[[str], list[dict]]) -> dict[str, str]:
                      f"and flags first sight on {_count(_where(explore, 'flags'))} (first-encounter AUC "
                      f"{_span(simulated)} on the simulated tasks, {_span(radish)} on the Radish logs); with virtual "
                      f"objects in real recordings, first-encounter AUC {_auc_place(objects, BY_KEY['learning'].use)}, "
-                     f"{_verdicts_on(on_objects, 'logs')}"),
+                     f"{_verdicts_on(on_objects, 'objects tasks')}"),
         "paper": (f"the paper's claims the tests check hold on seeds 0-9; frozen it is near chance: ROC AUC "
                   f"{_auc_rank(detection, BY_KEY['paper'].use)} on the detection suite"),
         "long-term": (f"flags and habituates on {_on(_where(long_term, 'both'), len(long_term), 'exploration tasks')}; "
@@ -239,9 +239,9 @@ def learning_text(results: Callable[[str], list[dict]]) -> str:
         f"{_on(_where(found, 'flags'), len(found), 'tasks')}; its mean first-encounter AUC is "
         f"{_auc_place(exploration, use)}.",
         f"- **With virtual objects in real recordings** ([the objects guide](objects.md); {len(on_objects)} "
-        f"Radish logs, seeds 0-4) every detector flags first sight weakly: `{use}`'s mean first-encounter AUC "
+        f"tasks on the Radish logs, seeds 0-4) every detector flags first sight weakly: `{use}`'s mean first-encounter AUC "
         f"is {_auc_place(objects, use)}; of the {len(objects)} detectors, "
-        f"{_plural(len(flagging), 'flags', 'flag')} on any log and "
+        f"{_plural(len(flagging), 'flags', 'flag')} on any task and "
         f"{_plural(len(habituating), 'habituates', 'habituate')} on any"
         + (f" ({', '.join(f'`{d}`' for d in habituating)})." if habituating else "."),
         f"- **If only first sight matters**: `{most}` flags on the most, "

@@ -270,7 +270,7 @@ def test_the_answers_state_what_hand_made_results_give():
     assert said["learning"] == ("habituates on 1 of the 2 exploration tasks (open-door) and flags first sight on "
                                 "1 (open-door) (first-encounter AUC 0.90-0.90 on the simulated tasks, 0.40-0.40 on "
                                 "the Radish logs); with virtual objects in real recordings, first-encounter AUC "
-                                "0.600, 2nd of 2, flagging and habituating on none of the 1 logs")
+                                "0.600, 2nd of 2, flagging and habituating on none of the 1 objects tasks")
     assert said["paper"].endswith("ROC AUC 0.510, 4th of 4 on the detection suite")
     assert said["long-term"] == ("flags and habituates on none of the 2 exploration tasks; 1 of the suite's 3 "
                                  "detectors does both on any task")
