@@ -1,5 +1,5 @@
-"""The scores of the fourth and fifth selections of habituating maps (benchmarks/selection/maps-round4.md,
-maps-round5.md) from their runs.
+"""The scores of the fourth, fifth and sixth selections of habituating maps (benchmarks/selection/maps-round4.md,
+maps-round5.md, maps-round6.md) from their runs.
 
     python benchmarks/maps_round4.py --inspection results/maps-round4-inspection \
         --exploration results/maps-round4-exploration --guard results/maps-round4-detection
@@ -9,7 +9,9 @@ G (passes the guard: mean ROC AUC > 0.5 on every task of the guard run), F, H an
 defines them (F: first-encounter AUC >= 0.90 with separation >= 0.5 on an ``exploration-objects-radish-*``
 task, as the exploration tables decide it; H: 3rd/1st within +-0.25 with separation >= 0.5 on intel and
 aces; S: the mean of the three inspection ROC AUCs and the three first-encounter AUCs), then the per-task
-figures. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
+figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs and the
+same with the objects where the robot had looked before (``-familiar``); F counts the six, H intel, aces,
+intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages nine. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
 reported as such and ranked last.
 """
 
@@ -35,8 +37,13 @@ def task_means(rows, metric: str) -> dict:
     return {k: float(np.mean(v)) for k, v in cells.items()}
 
 
-def scores(inspection, exploration, guard) -> list[dict]:
+def scores(inspection, exploration, guard, familiar: bool = False) -> list[dict]:
     """One record per candidate, ordered by the rule: G, then F + H, then S."""
+    tasks = [f"exploration-objects-radish-{log}" for log in LOGS]
+    habituation = tasks[:2]
+    if familiar:
+        tasks += [f"{t}-familiar" for t in tasks]
+        habituation += [f"{tasks[0]}-familiar", f"{tasks[2]}-familiar"]
     insp, gd = task_means(inspection, "roc_auc"), task_means(guard, "roc_auc")
     expl = {task: {r["detector"]: r for r in recs} for task, recs in exploration_records(exploration).items()}
     guard_tasks = sorted({t for _, t in gd})
@@ -44,12 +51,13 @@ def scores(inspection, exploration, guard) -> list[dict]:
     for det in sorted({d for d, _ in insp}):
         rec = {"candidate": det}
         rec["inspection"] = [insp.get((det, f"inspection-objects-radish-{log}"), math.nan) for log in LOGS]
-        ex = [expl.get(f"exploration-objects-radish-{log}", {}).get(det) for log in LOGS]
+        ex = [expl.get(t, {}).get(det) for t in tasks]
+        hab = [expl.get(t, {}).get(det) for t in habituation]
         rec["first"] = [e["auc"] if e else math.nan for e in ex]
         rec["separation"] = [e["separation"] if e else math.nan for e in ex]
-        rec["ratio"] = [e["ratio"] if e else math.nan for e in ex[:2]]
+        rec["ratio"] = [e["ratio"] if e else math.nan for e in hab]
         rec["F"] = sum(bool(e and e["flags"]) for e in ex)
-        rec["H"] = sum(bool(e and e["habituates"]) for e in ex[:2])
+        rec["H"] = sum(bool(e and e["habituates"]) for e in hab)
         rec["S"] = float(np.mean(rec["inspection"] + rec["first"]))
         rec["guard"] = {t: gd.get((det, t), math.nan) for t in guard_tasks}
         rec["G"] = bool(guard_tasks) and all(v > 0.5 for v in rec["guard"].values())
@@ -62,10 +70,12 @@ def _f(values, digits=3) -> str:
     return " / ".join("-" if math.isnan(v) else f"{v:.{digits}f}" for v in values)
 
 
-def table(records) -> str:
+def table(records, familiar: bool = False) -> str:
     """The selection's table, as markdown."""
-    head = ("| candidate | guard | F | H | S | inspection intel / aces / csail | first sight intel / aces / csail "
-            "| separation intel / aces / csail | 3rd/1st intel / aces | guard ROC AUC (" +
+    logs = "intel / aces / csail" + (" / the same, familiar" if familiar else "")
+    ratios = "intel / aces / intel-familiar / csail-familiar" if familiar else "intel / aces"
+    head = (f"| candidate | guard | F | H | S | inspection intel / aces / csail | first sight {logs} "
+            f"| separation {logs} | 3rd/1st {ratios} | guard ROC AUC (" +
             (" / ".join(records[0]["guard"]) if records else "") + ") |")
     lines = [head, "|" + "---|" * 10]
     for r in records:
@@ -79,9 +89,11 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     for name in ("inspection", "exploration", "guard"):
         parser.add_argument(f"--{name}", required=True, help=f"the {name} run's folder (its results.jsonl)")
+    parser.add_argument("--familiar", action="store_true",
+                        help="the sixth selection's six exploration tasks (the logs and their -familiar twins)")
     args = parser.parse_args(argv)
     rows = {name: read_rows(f"{getattr(args, name)}/results.jsonl") for name in ("inspection", "exploration", "guard")}
-    print(table(scores(rows["inspection"], rows["exploration"], rows["guard"])))
+    print(table(scores(rows["inspection"], rows["exploration"], rows["guard"], args.familiar), args.familiar))
 
 
 if __name__ == "__main__":
