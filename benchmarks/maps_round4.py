@@ -7,7 +7,7 @@ maps-round5.md, maps-round6.md) from their runs.
 Reads the three runs' ``results.jsonl`` and prints, one line a candidate (its label), in the rule's order:
 G (passes the guard: mean ROC AUC > 0.5 on every task of the guard run), F, H and S as maps-round3.md
 defines them (F: first-encounter AUC >= 0.90 with separation >= 0.5 on an ``exploration-objects-radish-*``
-task, as the exploration tables decide it; H: 3rd/1st within +-0.25 with separation >= 0.5 on intel and
+task (until round 6 the scorer took the tables' "flags", AUC >= 0.85; every candidate of rounds 4-5 had F = 0 either way, first sight at most 0.787); H: 3rd/1st within +-0.25 with separation >= 0.5 on intel and
 aces; S: the mean of the three inspection ROC AUCs and the three first-encounter AUCs), then the per-task
 figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs and the
 same with the objects where the robot had looked before (``-familiar``); F counts the six, H intel, aces,
@@ -23,10 +23,13 @@ from collections import defaultdict
 
 import numpy as np
 
+from novelty.bench.exploration.metrics import SEPARATES
 from novelty.bench.exploration.summary import exploration_records
 from novelty.bench.results import read_rows
 
 LOGS = ("intel", "aces", "csail")
+#: F's first-encounter AUC: the bar's (the tables' "flags" take 0.85, FLAGS_FIRST)
+BAR = 0.90
 
 
 def task_means(rows, metric: str) -> dict:
@@ -56,7 +59,7 @@ def scores(inspection, exploration, guard, familiar: bool = False) -> list[dict]
         rec["first"] = [e["auc"] if e else math.nan for e in ex]
         rec["separation"] = [e["separation"] if e else math.nan for e in ex]
         rec["ratio"] = [e["ratio"] if e else math.nan for e in hab]
-        rec["F"] = sum(bool(e and e["flags"]) for e in ex)
+        rec["F"] = sum(bool(e and e["auc"] >= BAR and e["separation"] >= SEPARATES) for e in ex)
         rec["H"] = sum(bool(e and e["habituates"]) for e in hab)
         rec["S"] = float(np.mean(rec["inspection"] + rec["first"]))
         rec["guard"] = {t: gd.get((det, t), math.nan) for t in guard_tasks}

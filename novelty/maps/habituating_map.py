@@ -37,11 +37,12 @@ so that a surface receding into space the map never saw (a door opened onto
 a room, a recess deeper than the map's wall) is not scored 0 by design, as
 it is with (2): ``u = 0`` is (2), ``u = 1`` is ``evidence="hits"``.
 
-The defaults, ``cell_size = 0.1``, ``tolerance = 1``, ``arc = "sector"``
-and ``unseen = 0.5``, were chosen by the fifth selection on development
-seeds (benchmarks/selection/maps-round5.md; the fourth,
-benchmarks/selection/maps-round4.md, chose cells of 0.2 m read alone and
-``unseen``), which ranks first the settings that stay above chance on the
+The defaults, ``cell_size = 0.1``, ``tolerance = 1``, ``arc = "sector"``,
+``unseen = 0.25`` and ``visit_gap = 10``, were chosen by the sixth selection
+on development seeds (benchmarks/selection/maps-round6.md: the last two; the
+fifth, maps-round5.md, chose the first three with ``unseen = 0.5``; the
+fourth, maps-round4.md, cells of 0.2 m read alone and ``unseen``), each of
+which ranks first the settings that stay above chance on the
 simulated detection tasks: a sonar's door inset 0.35 m is apart from its
 wall at 0.1 m even read with its neighbours, a laser's range noise within
 a cell of a known surface is that surface, and an office seen through an
@@ -72,9 +73,9 @@ the fourth, with cells of 0.4 m; again from the fifth, with cells of
   approaching (a place met for the first time: its surfaces glimpsed
   through by grazing rays, then hit).
 
-A fourth, off by default, decides how often a cell habituates (ours):
+A fourth decides how often a cell habituates (ours):
 
-- ``visit_gap = G`` scans: a hit cell takes the step of (1) only at the
+- ``visit_gap = G`` scans (10 by default since the sixth selection): a hit cell takes the step of (1) only at the
   first hit of a visit, a hit after at least ``G`` scans that did not hit
   it (the scans of one visit hit it again and again; they are one
   encounter). A robot passing an object sees it on several scans of a
@@ -196,7 +197,7 @@ class HabituatingMap(NoveltyDetector):
         there (2), or its efficacy alone.
     free_scale : float, default=2.0
         ``f0`` in (2): the passes at which the weight reaches 1 - 1/e.
-    unseen : float in [0, 1], default=0.5
+    unseen : float in [0, 1], default=0.25
         ``u`` in (2'): the weight of a cell never seen through (ours; 0: none,
         as (2); no effect with ``evidence="hits"``).
     top : int or None, default=3
@@ -216,7 +217,7 @@ class HabituatingMap(NoveltyDetector):
         Cells crossed fewer times than this give no novelty (ours).
     evidence_lag : int, default=0
         A scan's free space counts as evidence this many scans later (ours).
-    visit_gap : int, default=0
+    visit_gap : int, default=10
         A hit cell habituates only at the first hit of a visit, after at
         least this many scans that did not hit it (ours; 0: at every hit).
     arc : float or "sector", default="sector"
@@ -279,7 +280,7 @@ class HabituatingMap(NoveltyDetector):
     }
 
     def __init__(self, cell_size=0.1, evidence="free", free_scale=2.0, top=3, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.5, visit_gap=0,
+                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.25, visit_gap=10,
                  threshold=0.5, contamination="auto"):
         self.unseen = unseen
         self.visit_gap = visit_gap

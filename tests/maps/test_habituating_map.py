@@ -3,7 +3,7 @@
 Rows are the ``points`` input (x, y, heading, n nearness values, n end points'
 x, then y). With alpha = 1 and tau = 2, one Euler step of equation (1) a scan
 halves a hit cell's efficacy: y_k = 2^-k exactly (y_inf = 1 - 1/alpha = 0,
-r = 1 - alpha / tau = 1/2). Cells are 1 m, the robot stands at (0.1, 0.1), so
+r = 1 - alpha / tau = 1/2; ``visit_gap=0``: every hit a step). Cells are 1 m, the robot stands at (0.1, 0.1), so
 that an echo at (2.1, 0.1) lies in cell (2, 0) and its ray, sampled every
 0.5 m up to one cell short of it (0.35 and 0.85), crosses cell (0, 0) only.
 """
@@ -18,7 +18,8 @@ from novelty.maps.habituating_map import HabituatingMap, cell_keys, sector_width
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
-EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0, "arc": 0.0}
+EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0, "arc": 0.0,
+         "visit_gap": 0}
 
 
 def scan(*echoes, robot=ROBOT):
@@ -59,7 +60,7 @@ def test_a_cell_hit_k_times_has_efficacy_two_to_the_minus_k(k):
 
 def test_the_papers_synapse_follows_the_closed_form_of_its_euler_steps():
     # y_k = y_inf + (1 - y_inf) (1 - alpha / tau)^k, y_inf = 1 - 1/alpha (tests/habituation/test_stanley.py)
-    det = HabituatingMap(cell_size=1.0, evidence="hits", tau=3.33, alpha=1.05).fit([scan((2.1, 0.1))] * 4)
+    det = HabituatingMap(cell_size=1.0, evidence="hits", tau=3.33, alpha=1.05, visit_gap=0).fit([scan((2.1, 0.1))] * 4)
     y_inf = 1 - 1 / 1.05
     assert state(det, 2, 0)[0] == pytest.approx(y_inf + (1 - y_inf) * (1 - 1.05 / 3.33) ** 4, rel=1e-12)
 
@@ -147,21 +148,28 @@ def test_tolerance_reads_a_cell_as_the_least_efficacy_within_that_many_cells(tol
     assert state(det, 2, 0)[0] == 0.5                  # reading only: what is learned is unchanged
 
 
-def test_the_defaults_are_the_fifth_selections_cells_of_0_1_m_tolerance_1_sector_cones_and_unseen_one_half():
-    # chosen by benchmarks/selection/maps-round5.md (the guard first): cells of 0.1 m read with their
-    # neighbours, each scan's sectors as cones as wide as they stand for, a cell never seen through weighing 1/2
+def test_the_defaults_are_the_sixth_selections_cells_of_0_1_m_tolerance_1_sector_cones_unseen_a_quarter_visits_of_10():
+    # chosen by benchmarks/selection/maps-round6.md (the guard first; cells, tolerance and cones by round 5):
+    # cells of 0.1 m read with their neighbours, each scan's sectors as cones as wide as they stand for, a
+    # cell never seen through weighing 1/4, a cell habituating once a visit (10 scans without a hit end one)
     det = HabituatingMap()
-    assert (det.cell_size, det.tolerance, det.arc, det.unseen, det.evidence) == (0.1, 1, "sector", 0.5, "free")
+    assert (det.cell_size, det.tolerance, det.arc, det.unseen, det.visit_gap, det.evidence) == \
+        (0.1, 1, "sector", 0.25, 10, "free")
     # one sector a scan (no neighbour: read on its axis), the robot at (0.05, 0.05); two scans with an echo
-    # at (0.93, 0.05): its cell (9, 0) hit twice (y = 1/4 with tau = 2, alpha = 1), never crossed; the ray,
-    # sampled every 0.05 m up to 0.1 m short of it (15 samples, x 0.075 to 0.775), crosses (0..7, 0) twice
+    # at (0.93, 0.05): its cell (9, 0) hit twice in one visit, one step (y = 1/2 with tau = 2, alpha = 1),
+    # never crossed; the ray, sampled every 0.05 m up to 0.1 m short of it (15 samples, x 0.075 to 0.775),
+    # crosses (0..7, 0) twice
     robot = (0.05, 0.05, 0.0)
     det = HabituatingMap(tau=2.0, alpha=1.0, top=1).fit([scan((0.93, 0.05), robot=robot)] * 2)
     v = det.novelty([scan(echo, robot=robot) for echo in ((0.55, 0.05), (0.93, 0.05), (1.03, 0.05), (0.55, 0.35))])
     w = 1 - math.exp(-1.0)
-    # (5, 0): y = 1, f = 2; (9, 0): y = 1/4, f = 0; (10, 0), not met, beside the hit cell: read with its
-    # neighbours, y = 1/4, f = 0 (1/2 read alone); (5, 3): nothing met within a cell, y = 1, f = 0
-    assert v == pytest.approx([0.5 + 0.5 * w, 0.125, 0.125, 0.5], rel=1e-12, abs=0)
+    # (5, 0): y = 1, f = 2; (9, 0): y = 1/2, f = 0; (10, 0), not met, beside the hit cell: read with its
+    # neighbours, y = 1/2, f = 0 (1/4 read alone); (5, 3): nothing met within a cell, y = 1, f = 0
+    assert v == pytest.approx([0.25 + 0.75 * w, 0.125, 0.125, 0.25], rel=1e-12, abs=0)
+    # ten scans that miss (9, 0) end its visit: the next hit is a step (1/2 -> 1/4)
+    away = scan((0.05, 0.93), robot=robot)
+    det.partial_fit([away] * 10 + [scan((0.93, 0.05), robot=robot)])
+    assert det.novelty([scan((0.93, 0.05), robot=robot)]).tolist() == [0.25 * 0.25]
     # a ring of 4 is read as cones of 90 degrees by default
     ring = fan(0.0, math.pi / 2, math.pi, -math.pi / 2)
     cones = HabituatingMap(arc=math.pi / 2).fit([ring])
@@ -221,7 +229,7 @@ def test_with_a_visit_gap_a_cell_habituates_once_a_visit():
     # cell (2, 0): scans 1-3 one visit (y 1 -> 0.5); scans 4-5 miss it: scan 6 opens a visit (0.25);
     # one miss (scan 7) is not a gap of 2: scan 8 is the same visit. Cell (0, 2): one visit, scans 4-7
     rows = [hit, hit, hit, away, away, hit, away, hit]
-    det = HabituatingMap(evidence="hits", visit_gap=2, **EXACT)
+    det = HabituatingMap(evidence="hits", **{**EXACT, "visit_gap": 2})
     assert det.stream(rows).tolist() == [1.0, 0.5, 0.5, 1.0, 0.5, 0.5, 0.5, 0.25]
     assert state(det, 2, 0)[0] == 0.25 and state(det, 0, 2)[0] == 0.5
     assert det.scans_ == 8
@@ -235,15 +243,17 @@ def test_with_a_visit_gap_a_cell_habituates_once_a_visit():
 def test_a_visit_ends_after_visit_gap_scans_that_miss_the_cell(gap, expected):
     # hits at scans 1 and 4: two misses between them end a visit for a gap of 1, not of 3
     rows = [scan((2.1, 0.1)), scan((0.1, 2.1)), scan((0.1, 2.1)), scan((2.1, 0.1))]
-    det = HabituatingMap(evidence="hits", visit_gap=gap, **EXACT).fit(rows)
+    det = HabituatingMap(evidence="hits", **{**EXACT, "visit_gap": gap}).fit(rows)
     assert state(det, 2, 0)[0] == expected
 
 
-def test_a_visit_gap_of_zero_is_the_map_without_it():
+def test_fewer_steps_leave_every_cell_at_least_as_novel_as_a_step_a_scan():
+    # each step lowers an efficacy above the floor and keeps the order of two (1 - alpha / tau >= 0), so a
+    # map that habituates once a visit holds every cell at or above the paper's one step a scan
     X = HabituatingMap._example_rows(seed=5, n=40)
-    gapless, plain = HabituatingMap(visit_gap=0).fit(X), HabituatingMap().fit(X)
-    assert np.array_equal(gapless.efficacy_, plain.efficacy_) and np.array_equal(gapless.last_hit_, plain.last_hit_)
-    assert np.array_equal(HabituatingMap(visit_gap=0).stream(X), HabituatingMap().stream(X))
+    visits, scans = HabituatingMap(visit_gap=3).fit(X), HabituatingMap(visit_gap=0).fit(X)
+    assert np.array_equal(visits.cells_, scans.cells_) and np.array_equal(visits.last_hit_, scans.last_hit_)
+    assert np.all(visits.efficacy_ >= scans.efficacy_) and np.any(visits.efficacy_ > scans.efficacy_)
 
 
 def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
