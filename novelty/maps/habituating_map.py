@@ -495,10 +495,11 @@ class HabituatingMap(NoveltyDetector):
                              f"got {self.n_features_in_}.")
 
 
-#: The settings of ``map-explore``, written out so that the preset stays what the fourth selection chose
-#: whatever the class's defaults become.
+#: The settings of ``map-explore``, every one written out so that the preset stays what the fourth selection
+#: chose whatever the class's defaults become (``visit_gap = 0``: a step a scan, as it was chosen).
 MAP_EXPLORE = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
-               "tolerance": 0, "unseen": 0.5, "arc": 0.0}
+               "tolerance": 0, "unseen": 0.5, "arc": 0.0, "tau_neighbour": None, "min_passes": 0,
+               "evidence_lag": 0, "visit_gap": 0}
 
 
 def map_explore(**params) -> HabituatingMap:
@@ -507,7 +508,7 @@ def map_explore(**params) -> HabituatingMap:
     :class:`HabituatingMap` with cells of 0.2 m, each read alone (``tolerance=0``) on its axis (``arc=0``),
     free-space evidence with ``free_scale=2``, a cell never seen through weighing
     ``unseen=0.5``, the paper's synapse (``tau=3.33``, ``alpha=1.05``) and the top
-    three hit cells; any parameter given replaces its value.
+    three hit cells, one step a scan (``visit_gap=0``); any parameter given replaces its value.
 
     Chosen by the rule of benchmarks/selection/maps-round4.md, written before its
     run: the candidates that stay above chance on every detection hold-out task

@@ -459,8 +459,11 @@ def test_map_explore_is_the_fourth_selections_choice_written_out_whatever_the_de
     det = novelty.make("map-explore")
     assert isinstance(det, HabituatingMap)
     chosen = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
-              "tolerance": 0, "unseen": 0.5, "arc": 0.0}
+              "tolerance": 0, "unseen": 0.5, "arc": 0.0, "tau_neighbour": None, "min_passes": 0,
+              "evidence_lag": 0, "visit_gap": 0}
     assert {k: det.get_params()[k] for k in chosen} == chosen
+    # every setting is written out (but the threshold and contamination of predict): no default leaks in
+    assert set(chosen) == set(HabituatingMap().get_params()) - {"threshold", "contamination"}
     X = HabituatingMap._example_rows(seed=2, n=60)
     assert np.array_equal(det.fit(X).novelty(X), HabituatingMap(**chosen).fit(X).novelty(X))
     # a parameter given replaces its value; the rest stay the preset's
