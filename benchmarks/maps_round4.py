@@ -7,11 +7,13 @@ maps-round5.md, maps-round6.md) from their runs.
 Reads the three runs' ``results.jsonl`` and prints, one line a candidate (its label), in the rule's order:
 G (passes the guard: mean ROC AUC > 0.5 on every task of the guard run), F, H and S as maps-round3.md
 defines them (F: first-encounter AUC >= 0.90 with separation >= 0.5 on an ``exploration-objects-radish-*``
-task (until round 6 the scorer took the tables' "flags", AUC >= 0.85; every candidate of rounds 4-5 had F = 0 either way, first sight at most 0.787); H: 3rd/1st within +-0.25 with separation >= 0.5 on intel and
-aces; S: the mean of the three inspection ROC AUCs and the three first-encounter AUCs), then the per-task
-figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs and the
-same with the objects where the robot had looked before (``-familiar``); F counts the six, H intel, aces,
-intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages nine. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
+task; until round 6 the scorer took the tables' "flags", AUC >= 0.85, and every candidate of rounds 4-5
+had F = 0 either way, first sight at most 0.787; H: 3rd/1st within +-0.25 with separation >= 0.5 on intel
+and aces; S: the mean of the three inspection ROC AUCs and the three first-encounter AUCs), then the
+per-task figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs
+and the same with the objects where the robot had looked before (``-familiar``); F counts the six, H
+intel, aces, intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages
+nine. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
 reported as such and ranked last.
 """
 

@@ -7,7 +7,8 @@ the clusterer is the world itself, cut into square cells of side ``c``
 the robot's pose and each sector's end point in the world frame) stimulates
 every cell its echoes fall in. Each cell is a unit with a habituating synapse,
 Stanley's (1976) as in the paper (equation 3 of
-:mod:`novelty.habituation.stanley`, one step a scan, the cells not hit held):
+:mod:`novelty.habituation.stanley`, one step a scan as in the paper, or one
+a visit with ``visit_gap``, below; the cells not hit held):
 
     y_c <- y_c + (dt / tau) (alpha (1 - y_c) - 1)      for every cell c hit     (1)
 
@@ -75,10 +76,10 @@ the fourth, with cells of 0.4 m; again from the fifth, with cells of
 
 A fourth decides how often a cell habituates (ours):
 
-- ``visit_gap = G`` scans (10 by default since the sixth selection): a hit cell takes the step of (1) only at the
-  first hit of a visit, a hit after at least ``G`` scans that did not hit
-  it (the scans of one visit hit it again and again; they are one
-  encounter). A robot passing an object sees it on several scans of a
+- ``visit_gap = G`` scans (10 by default since the sixth selection): a
+  hit cell takes the step of (1) only at the first hit of a visit, a hit
+  after at least ``G`` scans that did not hit it (the scans of one visit
+  hit it again and again; they are one encounter). A robot passing an object sees it on several scans of a
   pass, more at a faster scan rate: with ``G = 0`` (every hit a step, the
   paper's one step a scan) the object's cells have habituated before the
   pass is over, and a sensor's rate sets how fast a feature grows
