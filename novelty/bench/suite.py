@@ -50,7 +50,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..registry import of_kind
+from ..datasets import registry
+from ..registry import RegistryError, of_kind
+from .build import build_detector
 from .spec_checks import check_detector, check_task, check_threshold, with_policy
 from .specs import PROTOCOLS, Cell, DetectorSpec, SuiteError, TaskSpec, parse_seeds
 
@@ -90,8 +92,9 @@ class Suite:
 
     def cells(self) -> list[Cell]:
         components = _resolve_components(self)
+        layouts = {d.label: input_layout(d) for d in self.detectors}
         return [
-            Cell(d, t, s, self.threshold,
+            Cell(d, task_for(t, layouts[d.label]), s, self.threshold,
                  self.memory is True or (self.memory == "first-seed" and s == self.seeds[0]),
                  self.protocol, self.cell_timeout, components)
             for t in self.tasks
@@ -136,6 +139,36 @@ class Suite:
         for spec in self.tasks:
             check_task(spec)
         return self
+
+
+def input_layout(spec: DetectorSpec) -> str | None:
+    """The rows a detector reads when it says (``input_layout``, e.g. ``"points"``); None: any rows."""
+    try:
+        return getattr(build_detector(spec), "input_layout", None)
+    except Exception:  # noqa: BLE001 - an unbuildable detector is refused by check() or fails in its cells
+        return None
+
+
+def task_for(task: TaskSpec, layout: str | None) -> TaskSpec:
+    """``task`` as a detector that reads ``layout`` rows gets it.
+
+    A detector that states its input (the habituating map reads the ``points``
+    input: the robot's pose with each scan) gets a task that can give it
+    (``inputs`` among its options) with ``inputs = layout``, under the same
+    label, so that its rows line up with the other detectors' on the same
+    scans and labels. A task given ``inputs`` by the suite, a task object, and a
+    task without that option are left as they are (the detector then refuses
+    rows it cannot read, in its cells).
+    """
+    if layout is None or task.data is not None or "inputs" in task.options:
+        return task
+    try:
+        valid = registry.parameters(task.name)
+    except RegistryError:
+        return task
+    if valid is None or "inputs" not in valid:
+        return task
+    return TaskSpec(task.name, {**task.options, "inputs": layout}, task.label)
 
 
 def _resolve_components(suite: "Suite") -> tuple:

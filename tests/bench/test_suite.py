@@ -247,3 +247,35 @@ def test_a_suite_nested_thousands_deep_is_a_suite_error(tmp_path):
     path.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
     with pytest.raises(SuiteError, match="nests its tables or arrays too deeply"):
         load_suite(path)
+
+
+def test_a_detector_that_reads_the_points_input_gets_it_from_a_task_that_can_give_it(tmp_path):
+    path = write(tmp_path, """
+[suite]
+name = "layouts"
+seeds = [0]
+
+[[detectors]]
+name = "map-explore"
+
+[[detectors]]
+name = "kmeans-stanley"
+
+[[tasks]]
+name = "inspection-easy"
+
+[[tasks]]
+name = "paper-a-to-b"
+options = { inputs = "ring" }
+
+[[tasks]]
+name = "uci-sonar-mines"
+""")
+    cells = {(c.detector.label, c.task.label): c.task for c in load_suite(path).cells()}
+    # the map reads the points input: the task that offers it gives it, under the same label
+    assert cells["map-explore", "inspection-easy"].options == {"inputs": "points"}
+    assert cells["kmeans-stanley", "inspection-easy"].options == {}
+    # what the suite says is kept, and a task without the option is left as it is
+    assert cells["map-explore", "paper-a-to-b"].options == {"inputs": "ring"}
+    assert cells["map-explore", "uci-sonar-mines"].options == {}
+    assert len({t.label for t in cells.values()}) == 3
