@@ -255,7 +255,7 @@ _CONTEXT_PARAMS = ("delay", "lag", "differences", "smoothing", "threshold", "con
 
 
 def explore(**params) -> SequenceContext:
-    """The recommended detector for a robot that keeps learning as it explores (ours).
+    """An exploring detector of the sonar ring that keeps learning (ours).
 
     ``gwr-explore-staddon-higa`` (``gwr-explore``'s network with synapses that
     habituate at two time scales, a fast and a slow memory in cascade, Staddon &
@@ -285,6 +285,13 @@ def explore(**params) -> SequenceContext:
     first ``explore``, ``gwr-explore-wang-hsu`` with the same context, which
     met the same three criteria at a lower least AUC (0.811, 0.768, 0.776).
     The numbers on seeds 0-4 are in the exploration guide.
+
+    It was the answer of "Which detector?" for a robot that keeps learning
+    until the rule of benchmarks/selection/learning-answer.md, which let the
+    detectors of the ``points`` input compete: on that rule's new guard seeds
+    105-109 it falls below chance on ``paper-a-to-b`` (0.470), and
+    :func:`~novelty.maps.habituating_map.map_explore`, which needs the
+    robot's pose with each scan, is the answer now.
     """
     context = {k: params.pop(k) for k in _CONTEXT_PARAMS if k in params}
     return SequenceContext(gwr_explore_staddon_higa(**params), **{"delay": 3, "lag": 2, **context})

@@ -175,6 +175,7 @@ ACROSS = {
     "test_tables.py": "the results tables of the documents against benchmarks/results/ and the suites",
     "test_maps_diagnosis.py": "benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall",
     "test_maps_guard_trace.py": "benchmarks/maps_guard_trace.py: each guard scan traced to its most novel cell",
+    "test_learning_answer.py": "benchmarks/learning_answer.py: the scores and the decision of the learning answer's rule",
     "test_perf_compare.py": "benchmarks/perf_compare.py: two revisions timed alternately",
     "test_layout.py": "this file: the layout of the repository",
     "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",

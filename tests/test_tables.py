@@ -261,16 +261,26 @@ def test_the_answers_state_what_hand_made_results_give():
                                            "exploration-radish-aces": (0.6, 0.5, 0.5)}}),
         "objects-exploration": _explored({"explore": {"exploration-objects-radish-intel": (0.6, 0.5, 0.5)},
                                           "hsom": {"exploration-objects-radish-intel": (0.7, 0.5, 0.1)}}),
+        # the points input: map-explore habituates on the door (3rd/1st 0.1) and flags the objects (0.9)
+        "maps-exploration": _explored({"map-explore": {"exploration-open-door": (0.7, 0.5, 0.05),
+                                                       "exploration-objects-radish-intel": (0.9, 0.5, 0.5)},
+                                       "habituating-map": {"exploration-open-door": (0.8, 0.5, 0.5),
+                                                           "exploration-objects-radish-intel": (0.6, 0.5, 0.5)}}),
+        "maps-detection": _holdout({"map-explore": [0.6, 0.55], "habituating-map": [0.45, 0.7]}),
     }
     said = w.facts(results.__getitem__)
     # kmeans-stanley: (0.9 + 0.7) / 2 = 0.8, first; parzen 0.79; on the objects 0.525 of 0.475-0.525
     assert said["frozen"] == ("ROC AUC 0.800, 1st of 4 on the detection suite (2 tasks x seeds 0-1; `parzen` "
                               "0.790, 2nd of 4); with virtual objects in real recordings 0.525, 1st of 3, every "
                               "detector within 0.47-0.53")
-    assert said["learning"] == ("habituates on 1 of the 2 exploration tasks (open-door) and flags first sight on "
-                                "1 (open-door) (first-encounter AUC 0.90-0.90 on the simulated tasks, 0.40-0.40 on "
-                                "the Radish logs); with virtual objects in real recordings, first-encounter AUC "
-                                "0.600, 2nd of 2, flagging and habituating on none of the 1 objects tasks")
+    assert said["learning"] == ("needs the robot's pose with each scan; frozen, its lowest mean ROC AUC on the "
+                                "hold-out tasks with poses is 0.550 (t2); learning, it flags first sight on 1 "
+                                "(radish-intel) and habituates on 1 (open-door) of the 2 exploration tasks it runs "
+                                "(first-encounter AUC 0.70-0.70 on the simulated tasks, 0.90-0.90 with virtual "
+                                "objects in real recordings, mean 0.900; `explore` on the sonar ring 0.600)")
+    text = w.learning_text(results.__getitem__)
+    assert "its mean first-encounter AUC is 0.800, 1st of 2 of the detectors given the same rows" in text
+    assert "`habituating-map` 0.450 (t1, below chance)" in text
     assert said["paper"].endswith("ROC AUC 0.510, 4th of 4 on the detection suite")
     assert said["long-term"] == ("flags and habituates on none of the 2 exploration tasks; 1 of the suite's 3 "
                                  "detectors does both on any task")

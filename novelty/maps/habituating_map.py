@@ -524,5 +524,15 @@ def map_explore(**params) -> HabituatingMap:
     selection (benchmarks/selection/maps-round5.md) changed the class's
     defaults, not the preset: its settings fell below chance on the reported
     guard (0.440 on ``paper-a-to-b``, seeds 5-9).
+
+    The answer of "Which detector?" for a robot that keeps learning, by the
+    rule of benchmarks/selection/learning-answer.md (written before its run):
+    against ``explore`` and ``habituating-map`` on seeds 100-104 of the
+    simulated open door, tour and patrol and the six objects tasks, it is the
+    one candidate above chance frozen on every hold-out task on seeds 105-109
+    and 5-9 (lowest 0.525, ``paper-a-to-a-star``). It won by that guard alone:
+    on those exploration tasks it flags first sight on one (csail-familiar,
+    0.860) and habituates on one (aces), below both others on first sight
+    (mean 0.610; ``habituating-map`` 0.692, ``explore`` 0.662).
     """
     return HabituatingMap(**{**MAP_EXPLORE, **params})
