@@ -22,6 +22,7 @@ from sklearn.base import clone
 
 from .._validation import pass_timestamps
 from ..datasets import load, registry
+from ..maps.points import POSE_COLUMNS
 from ..registry import detectors, of_kind
 from . import river
 from .specs import Cell, DetectorSpec
@@ -71,6 +72,32 @@ def build_detector(spec: DetectorSpec):
         return clone(spec.instance)
     make = river.make if river.is_river(spec.name) else detectors.make
     return make(spec.name, **spec.params)
+
+
+def check_input_layout(det, data, label: str) -> None:
+    """Refuse a task whose rows are not the input the detector reads (its ``input_layout``).
+
+    The habituating maps read the ``points`` input (the robot's pose, the ring,
+    the end points: :mod:`novelty.maps.points`), whose width alone cannot tell
+    it from any other rows of ``3 + 3n`` values (the UCI sonar's 60). A task
+    says what its rows are in ``metadata["inputs"]`` (a task given
+    ``inputs="points"`` does), or names its columns (``metadata["columns"]``,
+    or the ``sensor_columns`` of the user's own file) starting with the pose's.
+    """
+    layout = getattr(det, "input_layout", None)
+    if layout is None:
+        return
+    meta = getattr(data, "metadata", None) or {}
+    given = meta.get("inputs")
+    if given == layout:
+        return
+    named = list(meta.get("columns") or meta.get("sensor_columns") or [])
+    if given is None and layout == "points" and named[:len(POSE_COLUMNS)] == list(POSE_COLUMNS):
+        return
+    what = f"rows of the {given!r} input" if given is not None else "rows that do not say what they are"
+    raise CellError(f"{type(det).__name__} reads rows of the {layout!r} input (the robot's pose with each scan); "
+                    f"task {label!r} gives {what}. Give the task inputs={layout!r} if it has the robot's poses, or "
+                    f"for rows of your own in that layout set metadata['inputs'] = {layout!r} (novelty.maps.points).")
 
 
 def make_detector(cell: Cell):

@@ -38,7 +38,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..build import load_task, make_detector, n_units, resting_novelty
+from ..build import check_input_layout, load_task, make_detector, n_units, resting_novelty
 from ..specs import SuiteError
 from . import metrics as xm
 
@@ -145,6 +145,7 @@ def evaluate(cell) -> tuple[dict, dict]:
     run, feature = np.asarray(data.run), data.columns["feature"].astype(str)
     exposure = np.asarray(data.columns["exposure"])
     probe = make()
+    check_input_layout(probe, data, cell.task.label)
     policy = cell.detector.policy or default_policy(probe)
     start = time.perf_counter()
     novelty, det = prequential(make, data.X, run, warmup, policy)

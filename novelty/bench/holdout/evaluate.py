@@ -40,7 +40,7 @@ import tracemalloc
 import numpy as np
 
 from ...datasets.labels import check_both_classes, check_labels
-from ..build import (check_finite, check_raw_finite, load_task, make_detector, n_units, resting_novelty,
+from ..build import (check_finite, check_input_layout, check_raw_finite, load_task, make_detector, n_units, resting_novelty,
                      train_detector)
 from ..specs import Cell
 from . import metrics
@@ -107,6 +107,7 @@ def evaluate(cell: Cell) -> tuple[dict, dict]:
     passes = data.train_passes
 
     det = make_detector(cell)
+    check_input_layout(det, data, cell.task.label)
     start = time.perf_counter()
     train_detector(det, train.X, passes, train.columns.get("time"))
     train_time = time.perf_counter() - start
