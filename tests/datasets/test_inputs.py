@@ -41,3 +41,20 @@ def test_an_unknown_input_or_a_task_without_poses_is_refused(ring_task):
         with_inputs(ring_task, "rings")
     with pytest.raises(ValueError, match="needs the robot's pose at each scan.*has no poses"):
         with_inputs(replace(ring_task, poses=None), "points")
+
+
+@pytest.mark.parametrize("name, options", [
+    ("exploration-irregular", {"runs": 3, "warmup": 1}),
+    ("exploration-return", {"before": 1, "absence": 1, "after": 1, "warmup": 1}),
+    ("exploration-moving", {"runs": 2, "warmup": 1}),
+])
+def test_the_objects_that_come_and_go_give_the_points_input_of_their_own_scans(name, options):
+    from novelty.datasets import load
+
+    ring, points = load(name, seed=3, **options), load(name, seed=3, inputs="points", **options)
+    poses, near, ends = split_points(points.X)
+    assert np.array_equal(near, ring.X) and np.array_equal(poses[:, :2], ring.poses[:, :2])
+    assert np.array_equal(points.run, ring.run) and points.metadata["inputs"] == "points"
+    assert points.metadata["exploration"] == ring.metadata["exploration"]  # features, exposures, returns
+    for column in ("feature", "exposure"):
+        assert np.array_equal(points.columns[column], ring.columns[column])

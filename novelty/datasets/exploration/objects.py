@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...sonar.inspection import DIFFICULTIES, generate_corridor
+from ..inputs import with_inputs
 from .runs import Leg, simulate_exploration
 from .tasks import place_object, with_items
 
@@ -65,13 +66,14 @@ def _irregular_schedule(rng, runs: int, max_gap: int) -> list[int]:
 
 
 def irregular(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: int = 12,
-              max_gap: int = 4, length: float = 18.0):
+              max_gap: int = 4, length: float = 18.0, inputs: str = "ring"):
     """Two objects recurring at irregular intervals along a generated corridor.
 
     After ``warmup`` clean runs, ``runs`` runs in which each of two objects
     (``irregular-0``, ``irregular-1``, at fixed places at least 3 m apart)
     is present on its own schedule: from run 0 or 1, then after gaps of 1 to
-    ``max_gap`` runs drawn from the seed.
+    ``max_gap`` runs drawn from the seed. ``inputs="points"``: the rows of
+    :func:`novelty.datasets.inputs.with_inputs` (the robot's pose with each scan).
     """
     _check(warmup=(warmup, 1), runs=(runs, 3), max_gap=(max_gap, 1))
     clean, rng, makers = _setup(seed, difficulty, length, 0x1EE)
@@ -80,21 +82,22 @@ def irregular(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: in
         objects.append(place_object(clean, makers, rng, f"irregular-{i}", objects))
     schedules = [set(_irregular_schedule(rng, runs, max_gap)) for _ in objects]
     placements = [[o for o, when in zip(objects, schedules) if r in when] for r in range(runs)]
-    return simulate_exploration(
+    return with_inputs(simulate_exploration(
         "exploration-irregular", _legs(clean, warmup, placements), seed=seed, warmup=warmup,
         description=f"Patrol a generated corridor ({difficulty}): two objects recur at irregular "
                     f"intervals (gaps of 1-{max_gap} runs).",
-        difficulty=difficulty)
+        difficulty=difficulty), inputs)
 
 
 def returning(seed: int = 0, difficulty: str = "easy", warmup: int = 3, before: int = 3,
-              absence: int = 6, after: int = 2, length: float = 18.0):
+              absence: int = 6, after: int = 2, length: float = 18.0, inputs: str = "ring"):
     """An object met on a few runs, absent for several, then back.
 
     Met on ``before`` runs, absent for ``absence``, back for ``after``. The
     object (``returning``) stays at one place; the runs of its absence
     are clean runs of the corridor. ``metadata["exploration"]["returns"]``
-    is ``{"returning": before + 1}``, the exposure of its return.
+    is ``{"returning": before + 1}``, the exposure of its return. ``inputs``: as
+    :func:`irregular`.
     """
     _check(warmup=(warmup, 1), before=(before, 1), absence=(absence, 1), after=(after, 1))
     clean, rng, makers = _setup(seed, difficulty, length, 0x2E7)
@@ -106,21 +109,22 @@ def returning(seed: int = 0, difficulty: str = "easy", warmup: int = 3, before: 
                     f"absent for {absence}, then back.",
         difficulty=difficulty)
     task.metadata["exploration"]["returns"] = {"returning": before + 1}
-    return task
+    return with_inputs(task, inputs)
 
 
-def moving(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: int = 6, length: float = 18.0):
+def moving(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: int = 6, length: float = 18.0,
+           inputs: str = "ring"):
     """One object (``mover``, always of one kind) at a new place on every run.
 
     ``runs`` runs after the warm-up; ``metadata["moving_places"]`` lists its (wall, position along the
-    corridor in m) on each run.
+    corridor in m) on each run. ``inputs``: as :func:`irregular`.
     """
     _check(warmup=(warmup, 1), runs=(runs, 1))
     clean, rng, makers = _setup(seed, difficulty, length, 0x30F)
     kind = str(rng.choice(sorted(makers)))
     placements = [[place_object(clean, {kind: makers[kind]}, rng, "mover", [])] for _ in range(runs)]
-    return simulate_exploration(
+    return with_inputs(simulate_exploration(
         "exploration-moving", _legs(clean, warmup, placements), seed=seed, warmup=warmup,
         description=f"Patrol a generated corridor ({difficulty}): one {kind} placed anew on every run.",
         difficulty=difficulty, moving_kind=kind,
-        moving_places=[[side, item.x] for [(side, item)] in placements])
+        moving_places=[[side, item.x] for [(side, item)] in placements]), inputs)
