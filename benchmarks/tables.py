@@ -298,6 +298,26 @@ def _git_revision() -> str:
     return run_provenance()["git_revision"]
 
 
+def _is_ancestor(older: str, newer: str) -> bool:
+    """Whether commit ``older`` is an ancestor of ``newer`` in this checkout (False when git cannot tell)."""
+    try:
+        done = subprocess.run(["git", "-C", str(ROOT), "merge-base", "--is-ancestor", older, newer],
+                              capture_output=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return done.returncode == 0
+
+
+def _newest(revisions: set[str]) -> str | None:
+    """Of clean revisions, the one that descends from all the others (a run resumed on later code); else None."""
+    if not revisions or any("+" in r or r in ("unknown", "") for r in revisions):
+        return None
+    for candidate in sorted(revisions):
+        if all(r == candidate or _is_ancestor(r, candidate) for r in revisions):
+            return candidate
+    return None
+
+
 def _versions() -> dict:
     found = {"python": platform.python_version()}
     for dist in VERSIONED:
@@ -313,7 +333,8 @@ def record(suite: str, out: Path, command: str, elapsed_s: float | None, jobs: i
     """Copy a run's ``results.csv`` into ``benchmarks/results/<suite>/`` with its provenance.
 
     The revision is ``revision``, else the one every row names ("unknown" for a run outside a
-    checkout), else this checkout's.
+    checkout), else, when the rows name several (a run resumed on later code; each row keeps its
+    own in ``results.csv``), the one that descends from the others, else this checkout's.
     """
     target = RESULTS / suite
     target.mkdir(parents=True, exist_ok=True)
@@ -328,7 +349,8 @@ def record(suite: str, out: Path, command: str, elapsed_s: float | None, jobs: i
     made = {
         "command": command,
         "suite": f"benchmarks/suites/{suite}.toml",
-        "revision": revision or same.get("git_revision") or _git_revision(),
+        "revision": revision or same.get("git_revision") or _newest({r.get("git_revision", "") for r in rows})
+        or _git_revision(),
         "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         "versions": _versions(),
         "elapsed_s": None if elapsed_s is None else round(elapsed_s),

@@ -12,6 +12,7 @@ results are what the suites compute now.
 
 import csv
 import importlib.util
+import subprocess
 import io
 import math
 import os
@@ -206,6 +207,32 @@ def test_a_finished_run_is_recorded_with_the_revision_its_rows_name(results, tmp
         assert not {"git_revision", "host"} & set(next(csv.reader(fh)))    # said once, in provenance.json
     with pytest.raises(SystemExit):
         tables.main(["--from", str(store.out)])                           # --from needs the suite
+
+
+def test_a_run_resumed_on_later_code_is_recorded_with_the_newest_revision_its_rows_name(results, monkeypatch):
+    store, _ = results
+    old, new = "a" * 40, "b" * 40
+    rows = [dict(row, git_revision=old if i % 2 else new) for i, row in enumerate(store.rows())]
+    store.write_csv(rows)
+    monkeypatch.setattr(tables, "_is_ancestor", lambda older, newer: (older, newer) == (old, new))
+    monkeypatch.setattr(tables, "_git_revision", lambda: "c" * 40 + "+dirty")
+    target = tables.record("toy", store.out, "novelty bench toy.toml", None, None)
+    assert tables.provenance("toy")["revision"] == new
+    with open(target / tables.RESULTS_CSV, newline="", encoding="utf-8") as fh:
+        assert "git_revision" in next(csv.reader(fh))       # each row keeps its own
+    # unrelated revisions, or a dirty one: nothing descends from the rest, so this checkout's
+    monkeypatch.setattr(tables, "_is_ancestor", lambda older, newer: False)
+    tables.record("toy", store.out, "novelty bench toy.toml", None, None)
+    assert tables.provenance("toy")["revision"] == "c" * 40 + "+dirty"
+
+
+def test_ancestry_is_read_from_this_checkout():
+    head = subprocess.run(["git", "-C", str(tables.ROOT), "rev-parse", "HEAD", "HEAD~1"], capture_output=True, text=True)
+    if head.returncode:
+        pytest.skip("not a checkout with two commits")
+    newer, older = head.stdout.split()
+    assert tables._is_ancestor(older, newer) and not tables._is_ancestor(newer, older)
+    assert tables._newest({older, newer}) == newer and tables._newest({newer + "+dirty", older}) is None
 
 
 @pytest.mark.parametrize("suite", COMMITTED)
