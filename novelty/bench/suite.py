@@ -39,6 +39,10 @@ The TOML form::
 
 Every detector entry expands over the Cartesian product of its ``grid``;
 the label of each then carries its grid values, ``hsom-5x5[alpha=1.2]``.
+A detector that reads the ``points`` input (the habituating maps: the
+robot's pose with each scan) gets it from every task that offers it, as if
+the task said ``inputs = "points"``, under the task's own label
+(:func:`task_for`); elsewhere its cells fail and say why.
 
 The parts of a suite are in :mod:`novelty.bench.specs`, their checks against
 the registries in :mod:`novelty.bench.spec_checks`, and the reading of a
