@@ -153,11 +153,11 @@ def _verdicts_on(found: dict[str, dict], what: str) -> str:
 
 def _guard_low(rows: list[dict], detector: str) -> tuple[float, str]:
     """The detector's lowest mean ROC AUC over the hold-out tasks, and its task."""
-    ranked_tasks = {}
+    by_task = {}
     for r in rows:
         if r["detector"] == detector and r.get("status") == "ok":
-            ranked_tasks.setdefault(r["task"], []).append(float(r["roc_auc"]))
-    return min((sum(v) / len(v), t) for t, v in ranked_tasks.items())
+            by_task.setdefault(r["task"], []).append(float(r["roc_auc"]))
+    return min((sum(v) / len(v), t) for t, v in by_task.items())
 
 
 def _kinds(found: dict[str, dict]) -> tuple[list[float], list[float]]:
