@@ -1,5 +1,5 @@
-"""The scores of the fourth, fifth and sixth selections of habituating maps (benchmarks/selection/maps-round4.md,
-maps-round5.md, maps-round6.md) from their runs.
+"""The scores of the fourth to seventh selections of habituating maps (benchmarks/selection/maps-round4.md,
+maps-round5.md, maps-round6.md, maps-round7.md) from their runs.
 
     python benchmarks/maps_round4.py --inspection results/maps-round4-inspection \
         --exploration results/maps-round4-exploration --guard results/maps-round4-detection
@@ -13,7 +13,7 @@ and aces; S: the mean of the three inspection ROC AUCs and the three first-encou
 per-task figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs
 and the same with the objects where the robot had looked before (``-familiar``); F counts the six, H
 intel, aces, intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages
-nine. Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
+nine. ``--guard-above`` sets G's threshold (the seventh selection's margin: 0.55; until then 0.5). Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
 reported as such and ranked last.
 """
 
@@ -42,8 +42,9 @@ def task_means(rows, metric: str) -> dict:
     return {k: float(np.mean(v)) for k, v in cells.items()}
 
 
-def scores(inspection, exploration, guard, familiar: bool = False) -> list[dict]:
-    """One record per candidate, ordered by the rule: G, then F + H, then S."""
+def scores(inspection, exploration, guard, familiar: bool = False, guard_above: float = 0.5) -> list[dict]:
+    """One record per candidate, ordered by the rule: G (mean ROC AUC above ``guard_above`` on every guard task),
+    then F + H, then S."""
     tasks = [f"exploration-objects-radish-{log}" for log in LOGS]
     habituation = tasks[:2]
     if familiar:
@@ -65,7 +66,7 @@ def scores(inspection, exploration, guard, familiar: bool = False) -> list[dict]
         rec["H"] = sum(bool(e and e["habituates"]) for e in hab)
         rec["S"] = float(np.mean(rec["inspection"] + rec["first"]))
         rec["guard"] = {t: gd.get((det, t), math.nan) for t in guard_tasks}
-        rec["G"] = bool(guard_tasks) and all(v > 0.5 for v in rec["guard"].values())
+        rec["G"] = bool(guard_tasks) and all(v > guard_above for v in rec["guard"].values())
         out.append(rec)
     out.sort(key=lambda r: (not r["G"], -(r["F"] + r["H"]), -np.nan_to_num(r["S"], nan=-1.0), r["candidate"]))
     return out
@@ -96,9 +97,12 @@ def main(argv=None) -> None:
         parser.add_argument(f"--{name}", required=True, help=f"the {name} run's folder (its results.jsonl)")
     parser.add_argument("--familiar", action="store_true",
                         help="the sixth selection's six exploration tasks (the logs and their -familiar twins)")
+    parser.add_argument("--guard-above", type=float, default=0.5,
+                        help="G's threshold on every guard task's mean ROC AUC (the seventh selection's: 0.55)")
     args = parser.parse_args(argv)
     rows = {name: read_rows(f"{getattr(args, name)}/results.jsonl") for name in ("inspection", "exploration", "guard")}
-    print(table(scores(rows["inspection"], rows["exploration"], rows["guard"], args.familiar), args.familiar))
+    print(table(scores(rows["inspection"], rows["exploration"], rows["guard"], args.familiar, args.guard_above),
+                args.familiar))
 
 
 if __name__ == "__main__":

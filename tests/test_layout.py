@@ -175,6 +175,7 @@ ACROSS = {
     "test_tables.py": "the results tables of the documents against benchmarks/results/ and the suites",
     "test_maps_diagnosis.py": "benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall",
     "test_maps_guard_trace.py": "benchmarks/maps_guard_trace.py: each guard scan traced to its most novel cell",
+    "test_maps_round4.py": "benchmarks/maps_round4.py: the scores of the habituating-map selections",
     "test_learning_answer.py": "benchmarks/learning_answer.py: the scores and the decision of the learning answer's rule",
     "test_perf_compare.py": "benchmarks/perf_compare.py: two revisions timed alternately",
     "test_layout.py": "this file: the layout of the repository",
