@@ -11,6 +11,9 @@ tasks), then the per-task figures; and the decision of step 2: the answer change
 (``explore``) only to a candidate ahead of it. The verdicts are the tables' own
 (:func:`novelty.bench.exploration.summary.exploration_records`). A task a candidate has no verdict on
 (its cells failed or were not run) counts as no verdict and NaN in S.
+
+With ``--must-pass`` (the rule of learning-answer-no-pose.md, for a robot without a pose) there is no
+incumbent: the answer is the first candidate in order if it passes G, and none otherwise.
 """
 
 from __future__ import annotations
@@ -93,6 +96,12 @@ def answer(records) -> str:
     return first["candidate"] if ahead(first, incumbent) else INCUMBENT
 
 
+def answer_that_passes(records) -> str | None:
+    """learning-answer-no-pose.md's answer: the first in order if it passes the guard, else None."""
+    first = ordered(records)[0] if records else None
+    return first["candidate"] if first is not None and first["G"] else None
+
+
 def _f(values, digits=3) -> str:
     return " / ".join("-" if math.isnan(v) else f"{v:.{digits}f}" for v in values)
 
@@ -121,12 +130,19 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--exploration", nargs="+", required=True, help="the exploration runs' folders")
     parser.add_argument("--guard", nargs="+", required=True, help="the guard runs' folders")
+    parser.add_argument("--must-pass", action="store_true",
+                        help="no incumbent: the first in order if it passes the guard, else none "
+                             "(learning-answer-no-pose.md)")
     args = parser.parse_args(argv)
     exploration = [r for d in args.exploration for r in read_rows(f"{d}/results.jsonl")]
     guard = [r for d in args.guard for r in read_rows(f"{d}/results.jsonl")]
     records = scores(exploration, guard)
     print(table(records))
-    print(f"\nThe rule's answer: `{answer(records)}`.")
+    if args.must_pass:
+        found = answer_that_passes(records)
+        print("\nThe rule's answer: " + (f"`{found}`." if found else "none (no candidate passes the guard)."))
+    else:
+        print(f"\nThe rule's answer: `{answer(records)}`.")
 
 
 if __name__ == "__main__":

@@ -83,3 +83,12 @@ def test_a_task_without_a_verdict_counts_as_none():
     by = {r["candidate"]: r for r in la.scores(rows, [])}
     assert by["a"]["V"] == 4 and by["b"]["V"] == 2
     assert math.isnan(by["b"]["S"])
+
+
+def test_without_an_incumbent_the_answer_must_pass_the_guard():
+    # learning-answer-no-pose.md: the first in order if it passes G, else none
+    assert la.answer_that_passes([record("a", G=False, B=3), record("b", B=0, S=0.6), record("c", B=1)]) == "c"
+    assert la.answer_that_passes([record("a", G=False, B=3, S=0.9), record("b", G=False)]) is None
+    assert la.answer_that_passes([]) is None
+    # the incumbent's rule, given the same records, names a candidate that fails the guard
+    assert la.answer([record("explore", G=False), record("a", G=False, B=3)]) == "a"
