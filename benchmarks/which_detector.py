@@ -28,7 +28,7 @@ OBJECTS_INSPECTION, OBJECTS_EXPLORATION = "objects-inspection", "objects-explora
 #: the detectors of the points input (the robot's pose with each scan): their exploration and their guard
 MAPS_EXPLORATION, MAPS_DETECTION = "maps-exploration", "maps-detection"
 SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION, MAPS_EXPLORATION, MAPS_DETECTION)
-#: the answer before the rule of benchmarks/selection/learning-answer.md, for robots without a pose
+#: the answer before the rule of benchmarks/selection/learning-answer.md (the sonar ring alone)
 BEFORE = "explore"
 
 
@@ -54,6 +54,12 @@ ANSWERS = (
            "a map of 0.2 m cells in the world frame, each with the paper's habituating synapse; it needs the "
            "robot's pose with each scan (the `points` input, [the map](objects.md#a-habituating-map-novelty-where-"
            "the-scan-was-taken-ours))"),
+    Answer("no-pose", "the same, on a robot that does not know its pose (the sonar ring alone)",
+           "gwr-explore-wang-hsu",
+           "chosen by a rule fixed before its run (`benchmarks/selection/learning-answer-no-pose.md`) among the 13 "
+           "habituating detectors of the ring, on the same tasks and seeds: the one that stays above chance frozen "
+           "on every hold-out task (seeds 5-9 and 105-109), by 0.008",
+           "a growing network with the Wang-Hsu long-term synapse, on the sonar ring"),
     Answer("paper", "the paper's exact behaviour", "hsom",
            "Marsland, Nehmzow & Shapiro (2000) with every constant of the paper"),
     Answer("long-term", "long-term habituation (a feature that returns settles lower each time)",
@@ -160,6 +166,13 @@ def _guard_low(rows: list[dict], detector: str) -> tuple[float, str]:
     return min((sum(v) / len(v), t) for t, v in by_task.items())
 
 
+def _chance(value: float) -> str:
+    """``, at chance`` for a mean ROC AUC that rounds to 0.500, ``, below chance`` under it, else nothing."""
+    if round(value, 3) == 0.5:
+        return ", at chance"
+    return ", below chance" if value < 0.5 else ""
+
+
 def _kinds(found: dict[str, dict]) -> tuple[list[float], list[float]]:
     """First-encounter AUCs on the simulated tasks and on the objects tasks."""
     return ([r["auc"] for t, r in found.items() if "radish" not in t],
@@ -183,6 +196,8 @@ def facts(results: Callable[[str], list[dict]]) -> dict[str, str]:
     simulated, on_objects = _kinds(maps[use])
     low, low_task = _guard_low(results(MAPS_DETECTION), use)
     long_term = exploration[BY_KEY["long-term"].use]
+    no_pose = BY_KEY["no-pose"].use
+    ring_low, ring_low_task = _guard_low(detection, no_pose)
     both = {d for d, found in exploration.items() for r in found.values() if r["both"]}
     return {
         "frozen": (f"ROC AUC {_auc_rank(detection, BY_KEY['frozen'].use)} on the detection suite "
@@ -194,6 +209,10 @@ def facts(results: Callable[[str], list[dict]]) -> dict[str, str]:
                      f"(first-encounter AUC {_span(simulated)} on the simulated tasks, {_span(on_objects)} with virtual "
                      f"objects in real recordings, mean {sum(on_objects) / len(on_objects):.3f}; `{BEFORE}` on the "
                      f"sonar ring {_mean_auc(objects[BEFORE]):.3f})"),
+        "no-pose": (f"frozen, its lowest mean ROC AUC on the detection suite is {ring_low:.3f} "
+                    f"({ring_low_task}{_chance(ring_low)}); "
+                    f"learning, it {_verdicts(exploration[no_pose], 'exploration tasks')}; with virtual objects in "
+                    f"real recordings its mean first-encounter AUC is {_auc_place(objects, no_pose)} ring detectors"),
         "paper": (f"the paper's claims the tests check hold on seeds 0-9; frozen it is near chance: ROC AUC "
                   f"{_auc_rank(detection, BY_KEY['paper'].use)} on the detection suite"),
         "long-term": (f"flags and habituates on {_on(_where(long_term, 'both'), len(long_term), 'exploration tasks')}; "
@@ -254,8 +273,10 @@ def frozen_text(results: Callable[[str], list[dict]]) -> str:
 def learning_text(results: Callable[[str], list[dict]]) -> str:
     exploration, objects = _exploration(results(EXPLORATION)), _exploration(results(OBJECTS_EXPLORATION))
     maps, guard = _exploration(results(MAPS_EXPLORATION)), results(MAPS_DETECTION)
-    use = BY_KEY["learning"].use
-    found, before = maps[use], exploration[BEFORE]
+    detection = results(DETECTION)
+    use, no_pose = BY_KEY["learning"].use, BY_KEY["no-pose"].use
+    found, ring = maps[use], exploration[no_pose]
+    ring_low, ring_low_task = _guard_low(detection, no_pose)
     low, low_task = _guard_low(guard, use)
     others = sorted(d for d in {r["detector"] for r in guard} if d != use)
     most = max(sorted(exploration), key=lambda d: len(_where(exploration[d], "flags")))
@@ -266,7 +287,7 @@ def learning_text(results: Callable[[str], list[dict]]) -> str:
 
     def guard_of(detector: str) -> str:
         value, task = _guard_low(guard, detector)
-        return f"`{detector}` {value:.3f} ({task}{', below chance' if value <= 0.5 else ''})"
+        return f"`{detector}` {value:.3f} ({task}{_chance(value)})"
 
     return "\n".join([
         f"- **Use `{use}`** (`novelty.make(\"{use}\")`: {BY_KEY['learning'].what}), "
@@ -275,14 +296,17 @@ def learning_text(results: Callable[[str], list[dict]]) -> str:
         "given the same rows.",
         f"- **Frozen** (the hold-out tasks with poses, {_seeds(guard)}) its lowest mean ROC AUC is {low:.3f} "
         f"({low_task}); " + "; ".join(guard_of(d) for d in others) + ".",
-        f"- **Without a pose** (the sonar ring alone) no candidate of the rule passes it: `{BEFORE}`, the answer "
-        "before, fell below chance frozen on the guard's seeds 105-109 (`paper-a-to-b`). On seeds 0-4 it habituates on "
-        f"{_on(_where(before, 'habituates'), len(before), 'exploration tasks')} and flags first sight on "
-        f"{_count(_where(before, 'flags'))}; with virtual objects in real recordings its mean first-encounter "
-        f"AUC is {_auc_place(objects, BEFORE)} ring detectors; of those, "
+        f"- **Without a pose** (the sonar ring alone) use `{no_pose}` ({BY_KEY['no-pose'].what}), "
+        f"{BY_KEY['no-pose'].chosen}. On seeds 0-4 it {_verdicts(ring, 'exploration tasks')}: "
+        + ", ".join(f"{_short(task)} {record['auc']:.2f}" for task, record in sorted(ring.items()))
+        + f" at first sight; with virtual objects in real recordings its mean first-encounter AUC is "
+        f"{_auc_place(objects, no_pose)} ring detectors (`{BEFORE}`, the answer before, {_auc_place(objects, BEFORE)}; "
+        f"it fell below chance frozen on the guard's seeds 105-109); of those, "
         f"{_plural(len(flagging), 'flags', 'flag')} on any objects task and "
         f"{_plural(len(habituating), 'habituates', 'habituate')} on any"
-        + (f" ({', '.join(f'`{d}`' for d in habituating)})." if habituating else "."),
+        + (f" ({', '.join(f'`{d}`' for d in habituating)})." if habituating else ".")
+        + f" Frozen, its lowest mean ROC AUC on the detection suite ({_seeds(detection)}) is {ring_low:.3f} "
+        f"({ring_low_task}{_chance(ring_low)}).",
         f"- **If only first sight matters**: `{most}` flags on the most, "
         f"{_on(_where(exploration[most], 'flags'), len(exploration[most]), 'exploration tasks')}, and "
         f"habituates on {_count(_where(exploration[most], 'habituates'))}.",

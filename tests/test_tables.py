@@ -277,7 +277,7 @@ def test_the_answers_state_what_hand_made_results_give():
     w = _which_detector()
     results = {
         "detection": _holdout({"kmeans-stanley": [0.9, 0.7], "parzen": [0.8, 0.78], "hsom": [0.5, 0.52],
-                               "lof": [0.6, 0.6]}),
+                               "lof": [0.6, 0.6], "gwr-explore-wang-hsu": [0.6, 0.52]}),
         "objects-inspection": _holdout({"kmeans-stanley": [0.55, 0.5], "parzen": [0.5, 0.5], "hsom": [0.45, 0.5]}),
         # explore habituates (3rd/1st 0.1) on the simulated door and flags (0.9) nowhere but there
         "exploration": _explored({"explore": {"exploration-open-door": (0.9, 0.5, 0.05),
@@ -287,6 +287,7 @@ def test_the_answers_state_what_hand_made_results_give():
                                   "hsom": {"exploration-open-door": (0.6, 0.5, 0.5),
                                            "exploration-radish-aces": (0.6, 0.5, 0.5)}}),
         "objects-exploration": _explored({"explore": {"exploration-objects-radish-intel": (0.6, 0.5, 0.5)},
+                                          "gwr-explore-wang-hsu": {"exploration-objects-radish-intel": (0.65, 0.5, 0.5)},
                                           "hsom": {"exploration-objects-radish-intel": (0.7, 0.5, 0.1)}}),
         # the points input: map-explore habituates on the door (3rd/1st 0.1) and flags the objects (0.9)
         "maps-exploration": _explored({"map-explore": {"exploration-open-door": (0.7, 0.5, 0.05),
@@ -297,8 +298,8 @@ def test_the_answers_state_what_hand_made_results_give():
     }
     said = w.facts(results.__getitem__)
     # kmeans-stanley: (0.9 + 0.7) / 2 = 0.8, first; parzen 0.79; on the objects 0.525 of 0.475-0.525
-    assert said["frozen"] == ("ROC AUC 0.800, 1st of 4 on the detection suite (2 tasks x seeds 0-1; `parzen` "
-                              "0.790, 2nd of 4); with virtual objects in real recordings 0.525, 1st of 3, every "
+    assert said["frozen"] == ("ROC AUC 0.800, 1st of 5 on the detection suite (2 tasks x seeds 0-1; `parzen` "
+                              "0.790, 2nd of 5); with virtual objects in real recordings 0.525, 1st of 3, every "
                               "detector within 0.47-0.53")
     assert said["learning"] == ("needs the robot's pose with each scan; frozen, its lowest mean ROC AUC on the "
                                 "hold-out tasks with poses is 0.550 (t2); learning, it flags first sight on 1 "
@@ -308,7 +309,15 @@ def test_the_answers_state_what_hand_made_results_give():
     text = w.learning_text(results.__getitem__)
     assert "its mean first-encounter AUC is 0.800, 1st of 2 of the detectors given the same rows" in text
     assert "`habituating-map` 0.450 (t1, below chance)" in text
-    assert said["paper"].endswith("ROC AUC 0.510, 4th of 4 on the detection suite")
+    assert said["paper"].endswith("ROC AUC 0.510, 5th of 5 on the detection suite")
+    # without a pose: its lowest task mean frozen (t2: 0.52), its verdicts (it habituates on the door, 3rd/1st
+    # 0.1, and flags nowhere: 0.8 < 0.85), and its place on the objects (0.65 between hsom 0.7 and explore 0.6)
+    assert said["no-pose"] == ("frozen, its lowest mean ROC AUC on the detection suite is 0.520 (t2); learning, it "
+                               "flags first sight on none and habituates on 1 (open-door) of the 2 exploration "
+                               "tasks; with virtual objects in real recordings its mean first-encounter AUC is "
+                               "0.650, 2nd of 3 ring detectors")
+    assert [w._chance(v) for v in (0.4997, 0.5004, 0.49, 0.51)] == [", at chance", ", at chance", ", below chance", ""]
+    assert "use `gwr-explore-wang-hsu`" in text and "open-door 0.80, radish-aces 0.70 at first sight" in text
     assert said["long-term"] == ("flags and habituates on none of the 2 exploration tasks; 1 of the suite's 3 "
                                  "detectors does both on any task")
     # one name a question, and the table names it
