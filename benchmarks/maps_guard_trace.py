@@ -19,6 +19,11 @@ with no echo beyond the doorway (x 2.5-3.5 m, y < -0.25 m), the share of those e
 crossed in training (``f`` = 0: scored 0 by (2) with ``unseen`` = 0), and the novel scans at or below
 the familiar scans' median.
 
+Every guard task with poses (``--saturation``): the share of familiar and of novel test scans the map
+scores at ``SATURATED`` (0.99) or more, as new as a scan can be. Where the patrolled corridor is another
+place than the learned one (B's doors stand 0.2-0.8 m from A's; C is another corridor), a map of places
+scores most familiar scans there: the task's labels name a feature (door G), the map a place.
+
 Development seeds only: the guard's reported seeds 5-9 and the objects' 0-4 are refused.
 """
 
@@ -38,6 +43,10 @@ REPORTED = range(0, 10)
 FAR = 0.2          # m behind a wall line
 BEHIND = 0.25      # m behind the right wall: beyond the doorway
 DOOR_G = (3.15, 4.05, -0.45, -0.2)
+#: a scan's novelty at or above this is saturated: as new as the map can say
+SATURATED = 0.99
+GUARD_TASKS = ("paper-a-to-a-star", "paper-a-to-b", "paper-a-to-c", "inspection-easy", "inspection-medium",
+               "inspection-hard")
 
 
 def _value(text: str):
@@ -118,16 +127,42 @@ def open_door(params: dict, seeds) -> None:
           f"at or below the familiar median {r[:, 2].mean():.2f}")
 
 
+def saturated_shares(novelty: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """The share of familiar (``y`` 0) and of novel (``y`` 1) scans with novelty >= SATURATED (NaN: none)."""
+    novelty, y = np.asarray(novelty, dtype=float), np.asarray(y).astype(bool)
+    at = novelty >= SATURATED
+    share = [float(at[m].mean()) if m.any() else float("nan") for m in (~y, y)]
+    return share[0], share[1]
+
+
+def saturation(params: dict, seeds) -> None:
+    for task in GUARD_TASKS:
+        rows = []
+        for seed in seeds:
+            data = of_kind("dataset").make(task, seed=seed, inputs="points")
+            train, test = data.train(), data.test()
+            s = HabituatingMap(**params).fit(train.X).novelty(test.X)
+            rows.append((roc_auc(s, test.y.astype(bool)), *saturated_shares(s, test.y)))
+        auc, familiar, novel = np.mean(rows, axis=0)
+        print(f"  {task}: ROC AUC {auc:.3f}; scans at novelty >= {SATURATED}: familiar {familiar:.2f}, "
+              f"novel {novel:.2f}")
+
+
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, nargs="+", default=list(range(105, 110)))
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
                         help="a parameter of habituating-map (repeat); its defaults otherwise")
+    parser.add_argument("--saturation", action="store_true",
+                        help="every guard task: the share of familiar and novel scans scored as new as can be")
     args = parser.parse_args(argv)
     if any(s in REPORTED for s in args.seeds):
         sys.exit("maps_guard_trace: seeds 0-9 are reported seeds; trace on development seeds (105-109).")
     params = {k: _value(v) for k, v in (p.split("=", 1) for p in args.param)}
     print(f"habituating-map {params or '(defaults)'}, seeds {args.seeds}")
+    if args.saturation:
+        saturation(params, args.seeds)
+        return
     door_g(params, args.seeds)
     open_door(params, args.seeds)
 

@@ -40,3 +40,30 @@ def test_a_cell_centre_is_read_back_from_its_packed_key():
 def test_reported_seeds_are_refused(seeds):
     with pytest.raises(SystemExit, match="reported seeds"):
         trace.main(["--seeds", *seeds])
+
+
+def test_saturated_shares_count_scans_at_the_threshold_by_label():
+    novelty = [1.0, 0.99, 0.5, 0.98, 1.0]
+    y = [0, 0, 0, 1, 1]
+    assert trace.saturated_shares(novelty, y) == (2 / 3, 1 / 2)
+
+
+def test_a_map_saturates_on_another_place_and_not_on_the_learned_one():
+    # a second drive down the learned corridor (another seed's wander, the same x): its walls' cells were
+    # hit; the same drive in a corridor 0.5 m narrower: every wall echo lands where rays had passed and
+    # nothing was hit (a surface where free space was), so the map reads the scan as new as it can be
+    learned = HabituatingMap._example_rows(seed=3, n=80)
+    det = HabituatingMap(arc=0.0).fit(np.vstack([learned] * 5))   # five drives: the free space well seen
+    again = HabituatingMap._example_rows(seed=4, n=80)[10:70]
+    narrower = again.copy()
+    ends_x, ends_y = narrower[:, 3 + 8:3 + 16], narrower[:, 3 + 16:]
+    wall = np.abs(ends_y) > 1.99          # an echo off a wall (the others end at 4 m, in free space)
+    # the echo moves 0.5 m nearer along its own ray
+    across = np.abs(ends_y - narrower[:, [1]])      # from the robot to the wall, across the corridor
+    scale = np.where(wall, (across - 0.5) / across, 1.0)
+    narrower[:, 3 + 8:3 + 16] = narrower[:, [0]] + (ends_x - narrower[:, [0]]) * scale
+    narrower[:, 3 + 16:] = narrower[:, [1]] + (ends_y - narrower[:, [1]]) * scale
+    zeros = np.zeros(len(again))
+    same, _ = trace.saturated_shares(det.novelty(again), zeros)
+    other, _ = trace.saturated_shares(det.novelty(narrower), zeros)
+    assert same < 0.2 and other > 0.8, (same, other)
