@@ -13,7 +13,8 @@ and aces; S: the mean of the three inspection ROC AUCs and the three first-encou
 per-task figures. With ``--familiar`` (the sixth selection) the exploration tasks are six: the three logs
 and the same with the objects where the robot had looked before (``-familiar``); F counts the six, H
 intel, aces, intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages
-nine. ``--guard-above`` sets G's threshold (the seventh selection's margin: 0.55; until then 0.5). Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
+nine. ``--guard-above`` sets G's threshold (the seventh selection's margin: 0.55; until then 0.5).
+Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
 reported as such and ranked last.
 """
 

@@ -54,8 +54,9 @@ hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
 few of the hundreds of cells a laser scan hits; ``top=None`` takes the mean
 over all of them. A scan with no echo scores 0. ``top = 2`` is a default since
 the seventh selection (benchmarks/selection/maps-round7.md; the third to the
-sixth kept ``top = 3``): on new seeds no candidate kept the guard's margin,
-and the two most novel cells habituated on one more objects task than three.
+sixth kept ``top = 3``): on its new seeds no candidate kept the guard's
+margin, and the two most novel cells habituated on one more objects task
+than three.
 
 Three options read the map more carefully (ours); ``tolerance = 1`` is a
 default (from the third selection, benchmarks/selection/maps-round3.md, to
@@ -206,7 +207,8 @@ class HabituatingMap(NoveltyDetector):
         as (2); no effect with ``evidence="hits"``).
     top : int or None, default=2
         A scan's novelty is the mean of its ``top`` most novel hit cells;
-        None: of all its hit cells (3 until the seventh selection).
+        None: of all its hit cells. (The default was 3 until the seventh
+        selection.)
     tau : float, default=3.33
         The synapses' time constant (the paper's winner's).
     alpha : float, default=1.05
