@@ -134,8 +134,13 @@ def main(argv=None) -> None:
                         help="no incumbent: the first in order if it passes the guard, else none "
                              "(learning-answer-no-pose.md)")
     args = parser.parse_args(argv)
-    exploration = [r for d in args.exploration for r in read_rows(f"{d}/results.jsonl")]
-    guard = [r for d in args.guard for r in read_rows(f"{d}/results.jsonl")]
+    runs = {d: read_rows(f"{d}/results.jsonl") for d in [*args.exploration, *args.guard]}
+    empty = [d for d, rows in runs.items() if not rows]
+    if empty:
+        parser.error(f"no rows in {', '.join(f'{d}/results.jsonl' for d in empty)}: give the folders that "
+                     "`novelty bench --out` wrote")
+    exploration = [r for d in args.exploration for r in runs[d]]
+    guard = [r for d in args.guard for r in runs[d]]
     records = scores(exploration, guard)
     print(table(records))
     if args.must_pass:

@@ -102,6 +102,9 @@ def main(argv=None) -> None:
                         help="G's threshold on every guard task's mean ROC AUC (the seventh selection's: 0.55)")
     args = parser.parse_args(argv)
     rows = {name: read_rows(f"{getattr(args, name)}/results.jsonl") for name in ("inspection", "exploration", "guard")}
+    empty = [f"{getattr(args, name)}/results.jsonl" for name, found in rows.items() if not found]
+    if empty:
+        parser.error(f"no rows in {', '.join(empty)}: give the folders that `novelty bench --out` wrote")
     print(table(scores(rows["inspection"], rows["exploration"], rows["guard"], args.familiar, args.guard_above),
                 args.familiar))
 

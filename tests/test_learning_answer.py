@@ -92,3 +92,9 @@ def test_without_an_incumbent_the_answer_must_pass_the_guard():
     assert la.answer_that_passes([]) is None
     # the incumbent's rule, given the same records, names a candidate that fails the guard
     assert la.answer([record("explore", G=False), record("a", G=False, B=3)]) == "a"
+
+
+def test_a_folder_without_rows_is_an_error_not_an_answer(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        la.main(["--exploration", str(tmp_path / "missing"), "--guard", str(tmp_path), "--must-pass"])
+    assert "no rows in" in capsys.readouterr().err

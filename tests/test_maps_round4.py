@@ -76,3 +76,9 @@ def test_the_order_is_guard_then_f_plus_h_then_s():
     assert order == ["d-passes-with-h", "c-passes-higher-s", "b-passes", "a-fails-guard"]
     # with the old threshold the first candidate passes and leads on F + H
     assert mr.scores(*runs)[0]["candidate"] == "a-fails-guard"
+
+
+def test_a_folder_without_rows_is_an_error(tmp_path, capsys):
+    with pytest.raises(SystemExit):
+        mr.main(["--inspection", str(tmp_path), "--exploration", str(tmp_path), "--guard", str(tmp_path)])
+    assert "no rows in" in capsys.readouterr().err
