@@ -32,6 +32,7 @@ scans' order, scan i at i s; objects given for it use that clock.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Sequence
@@ -41,6 +42,7 @@ import numpy as np
 from ...data import FAMILIAR, Dataset
 from ...datasets.exploration.runs import from_runs
 from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
+from ..report import ReadReport
 from ..sweeps import RingMaker, read_sweeps
 from .labels import cast_all, passes, sightings
 from .placement import check_objects, draw_objects, read_objects
@@ -54,10 +56,27 @@ __all__ = ["object_rings", "object_inputs", "INPUTS", "read_drive", "inspection_
 LABEL_DEFAULTS = {"margin": 0.1, "min_beams": 3, "leave": 4.0}
 
 
-def read_drive(path, topic=None, *, pose_topic=None, base_frame=None) -> list:
-    """The recording's sweeps that have a pose, timed by their order where the clock does not tell them apart."""
-    sweeps = [s for s in read_sweeps(path, topic, pose_topic=pose_topic, base_frame=base_frame)
+def read_drive(path, topic=None, *, pose_topic=None, base_frame=None, mounts=None, fragments="auto",
+               echo: str = "first", report: ReadReport | None = None) -> list:
+    """The recording's sweeps that have a pose, timed by their order where the clock does not tell them apart.
+
+    ``topic``, ``pose_topic``, ``base_frame``, ``mounts`` (where a bag's laser
+    sits when the bag holds no transform for it: ``"X,Y,YAW[,flipped]"``, a
+    laser mounted upside down included), ``fragments``, ``echo`` and
+    ``report`` are :func:`novelty.io.sweeps.read_sweeps`'s. A laser whose
+    place the bag does not give and no mount states is read as at the
+    robot's centre, facing forward, upright, with a warning: objects cast
+    into a laser read in the wrong place stand where the robot never saw
+    them.
+    """
+    report = ReadReport() if report is None else report
+    sweeps = [s for s in read_sweeps(path, topic, pose_topic=pose_topic, base_frame=base_frame, mounts=mounts,
+                                     fragments=fragments, echo=echo, report=report)
               if s.pose is not None]
+    for sensor, how in report.mounts.items():
+        if "assumed" in how:
+            warnings.warn(f"{path}: {sensor} {how}; an objects task takes the mount as mounts=\"X,Y,YAW[,flipped]\".",
+                          UserWarning, stacklevel=2)
     if len(sweeps) < 2:
         raise ValueError(f"{path}: {len(sweeps)} scans with a pose; objects need a drive with poses "
                          "(give pose_topic=).")
@@ -158,11 +177,22 @@ def _cast(sweeps, objects, threshold: float):
     return cast, seen, which
 
 
-def _metadata(objects, sweeps, path, options: dict) -> dict:
+#: How a recording is read unless told otherwise; only the options given otherwise enter a task's metadata,
+#: so that the tasks made before they existed keep their digest.
+READING_DEFAULTS = {"mounts": None, "fragments": "auto", "echo": "first"}
+
+
+def _metadata(objects, sweeps, path, options: dict, reading: dict, report: ReadReport) -> dict:
     # a ring task's metadata as it was before the points input existed: its rows keep their digest
     layout = {}
     if options.get("inputs", "ring") == "points":
         layout = {"inputs": "points", "columns": points_columns(int(options["sectors"]))}
+    given = {k: (str(v) if k == "mounts" else v) for k, v in reading.items()
+             if k in READING_DEFAULTS and v != READING_DEFAULTS[k]}
+    if given:
+        layout["reading"] = given
+    if report.lines():   # what reading a bag found and chose (a CARMEN log says nothing: its digest stays)
+        layout["read"] = report.lines()
     return {**layout, "source": str(path), "objects": [{"kind": type(o).__name__.lower(), **{
         k: (float(v) if isinstance(v, (int, float)) else v) for k, v in vars(o).items()}} for o in objects],
             "labels": {**LABEL_DEFAULTS, "within_m": options["threshold"]}, "sectors": options["sectors"],
@@ -174,7 +204,8 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
                     min_passes: int = 1, inputs: str = "ring", sectors=16, reduce="min",
                     threshold: float = PAPER_THRESHOLD,
                     radius: float = 1.0, max_turn: float = math.pi / 2, topic=None, pose_topic=None,
-                    base_frame=None, name: str | None = None) -> Dataset:
+                    base_frame=None, mounts=None, fragments="auto", echo: str = "first",
+                    name: str | None = None) -> Dataset:
     """A hold-out task: learn the recording's first part as it was, then find the objects (module docstring).
 
     Parameters
@@ -194,10 +225,15 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
         The rings (:func:`object_rings`).
     radius, max_turn
         Which later scans are at learned places (:func:`familiar_places`).
-    topic, pose_topic, base_frame
-        Which of the recording's messages (:func:`novelty.io.sweeps.read_sweeps`).
+    topic, pose_topic, base_frame, mounts, fragments, echo
+        Which of the recording's messages, and how a bag's scans are read
+        (:func:`read_drive`): a laser mounted upside down whose bag holds no
+        transform for it needs ``mounts="X,Y,YAW,flipped"``.
     """
-    sweeps = read_drive(path, topic, pose_topic=pose_topic, base_frame=base_frame)
+    reading = dict(topic=topic, pose_topic=pose_topic, base_frame=base_frame, mounts=mounts, fragments=fragments,
+                   echo=echo)
+    report = ReadReport()
+    sweeps = read_drive(path, **reading, report=report)
     first = _first_scan(len(sweeps), learn)
     objects = _objects(sweeps, objects, first, seed, n_objects, min_passes, 1, threshold)
     cast, seen, which = _cast(sweeps, objects, threshold)
@@ -210,7 +246,8 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
     take = np.r_[np.flatnonzero(~later), np.flatnonzero(test), np.flatnonzero(twins)]
     n_train, n_test, n_twin = int(first), int(test.sum()), int(twins.sum())
     seen_as = np.array([o.name for o in objects] + [FAMILIAR], dtype=object)[which]
-    meta = _metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce, threshold=threshold))
+    meta = _metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce, threshold=threshold),
+                     reading, report)
     meta.update(task=name or f"inspection-objects-{Path(path).name}", train_passes=1,
                 description="A recording learned as it was; virtual objects appear in its later part.",
                 test_parts={"with objects": n_test, "as recorded (the scans that see an object)": n_twin},
@@ -229,12 +266,12 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
 def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int = 20, n_objects: int = 4,
                      seed: int = 0, min_passes: int = 3, seen_before: int = 0, inputs: str = "ring", sectors=16,
                      reduce="min", threshold: float = PAPER_THRESHOLD, topic=None, pose_topic=None, base_frame=None,
-                     name: str | None = None) -> Dataset:
+                     mounts=None, fragments="auto", echo: str = "first", name: str | None = None) -> Dataset:
     """An exploration task: the objects appear after the warm-up and stay; exposures are passes (module docstring).
 
     Parameters
     ----------
-    path, objects, seed, n_objects, inputs, sectors, reduce, threshold, topic, pose_topic, base_frame
+    path, objects, seed, n_objects, inputs, sectors, reduce, threshold, topic, pose_topic, base_frame, mounts, fragments, echo
         As :func:`inspection_task`; drawn objects are passed ``min_passes``
         times after they appear.
     seen_before : int, default=0
@@ -248,7 +285,10 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     """
     if isinstance(run_scans, bool) or not isinstance(run_scans, (int, np.integer)) or run_scans < 1:
         raise ValueError(f"run_scans must be an int >= 1; got {run_scans!r}.")
-    sweeps = read_drive(path, topic, pose_topic=pose_topic, base_frame=base_frame)
+    reading = dict(topic=topic, pose_topic=pose_topic, base_frame=base_frame, mounts=mounts, fragments=fragments,
+                   echo=echo)
+    report = ReadReport()
+    sweeps = read_drive(path, **reading, report=report)
     n_runs = len(sweeps) // run_scans
     if n_runs < 2:
         raise ValueError(f"{path}: {len(sweeps)} scans make {n_runs} run(s) of {run_scans}; use shorter runs.")
@@ -268,7 +308,7 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     task = from_runs(np.split(X, cuts), np.split(names, cuts), warmup=warm, name=label,
                      environments=[f"{Path(path).name}#{r}" for r in range(n_runs)])
     meta = dict(task.metadata, **_metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce,
-                                                                         threshold=threshold)))
+                                                                         threshold=threshold), reading, report))
     meta.update(task=label, run_scans=int(run_scans),
                 description="A recording driven on; virtual objects appear after the warm-up and stay.")
     meta["labels"]["exposure"] = "the robot's passes of the object before this one (0 at first sight)"
