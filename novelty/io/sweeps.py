@@ -50,6 +50,7 @@ from .scans import clean_ranges
 from .sweep_rings import RingMaker
 
 __all__ = ["Sweep", "read_sweeps", "sweep_ring", "RingMaker", "scan_sweep", "bag_scan_topics", "mount_options",
+           "reading_given",
            "CARMEN_SUFFIXES", "CARMEN_LASERS", "LASER_TYPES"]
 
 #: File names taken for CARMEN logs (``.clf``: the "CARMEN log file" of some data sets).
@@ -127,6 +128,24 @@ def mount_options(mounts) -> dict:
         topic, mount = parse_mount(m) if isinstance(m, str) else (None, m)
         out[topic] = mount
     return out
+
+
+def reading_given(fragments="auto", mounts=None, echo: str = "first") -> dict:
+    """The options of :func:`read_sweeps` given otherwise than by default, as a task's metadata keeps them.
+
+    Only these enter it, so that a task made before they existed keeps its digest.
+
+    >>> reading_given(mounts="/rear=-0.3,0,180,flipped", echo="last")
+    {'mounts': {'/rear': 'x=-0.3 m, y=0 m, yaw=180 deg, upside down, from option'}, 'echo': 'last'}
+    """
+    given = {}
+    if fragments != "auto":
+        given["fragments"] = fragments
+    if mounts is not None:
+        given["mounts"] = {topic or "every scan topic": m.describe() for topic, m in mount_options(mounts).items()}
+    if echo != "first":
+        given["echo"] = echo
+    return given
 
 
 def bag_scan_topics(bag: Bag, topic) -> list[str]:

@@ -31,6 +31,7 @@ from ..datasets.exploration.runs import from_runs
 from ..sonar.preprocessing import PAPER_THRESHOLD
 from .places import finite_positions
 from .recording import read_recording
+from .sweeps import reading_given
 
 __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
            "recording_task"]
@@ -213,7 +214,7 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
                    threshold: float = PAPER_THRESHOLD, sectors: int = 16, reduce="min", limits=None,
                    front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
                    sensors=None, max_span: float | None = None, base_frame: str | None = None,
-                   seed: int = 0) -> Dataset:
+                   fragments="auto", mounts=None, echo: str = "first", seed: int = 0) -> Dataset:
     """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
 
     Parameters
@@ -224,6 +225,11 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
         further by ``gap`` or ``intervals``.
     topic, threshold, sectors, reduce, limits, front, clip, pose_topic, sensors, max_span, base_frame
         As :func:`novelty.io.recording.read_recording`.
+    fragments, mounts, echo
+        How a bag's scans are read (:func:`novelty.io.sweeps.read_sweeps`): a
+        laser mounted upside down whose bag holds no transform for it needs
+        ``mounts="X,Y,YAW,flipped"``. Given otherwise than by default, they
+        are kept in ``metadata["reading"]``.
     seed : int, default=0
         Unused: a recording is what it is (the benchmark gives every task a seed).
     marks : str, Path or sequence of Mark, optional
@@ -247,7 +253,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
         ``columns["time"]`` and ``metadata["sources"]``.
     """
     options = dict(sectors=sectors, reduce=reduce, limits=limits, front=front, clip=clip,
-                   pose_topic=pose_topic, sensors=sensors, max_span=max_span, base_frame=base_frame)
+                   pose_topic=pose_topic, sensors=sensors, max_span=max_span, base_frame=base_frame,
+                   fragments=fragments, mounts=mounts, echo=echo)
     if isinstance(paths, str) and "," in paths and not Path(paths).exists():
         paths = paths.split(",")   # as the command line gives a list: paths=monday.bag,tuesday.bag
     paths = [paths] if isinstance(paths, (str, Path)) else list(paths)
@@ -274,6 +281,9 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     task = from_runs(runs, features, warmup=warmup, name=name or Path(paths[0]).name, environments=envs)
     meta = dict(task.metadata, sources=[str(p) for p in paths], threshold_m=float(threshold),
                 encoding="1 - min(r, T) / T", description="Recorded runs of a robot.")
+    given = reading_given(fragments, mounts, echo)
+    if given:
+        meta["reading"] = given
     pose_array = None if any(p is None for p in poses) else np.concatenate(poses)
     return replace(task, poses=pose_array, columns=dict(task.columns, time=np.concatenate(times)),
                    metadata=meta)

@@ -43,7 +43,7 @@ from ...data import FAMILIAR, Dataset
 from ...datasets.exploration.runs import from_runs
 from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from ..report import ReadReport
-from ..sweeps import RingMaker, read_sweeps
+from ..sweeps import RingMaker, read_sweeps, reading_given
 from .labels import cast_all, passes, sightings
 from .placement import check_objects, draw_objects, read_objects
 from .points import points_columns, sweep_points
@@ -177,18 +177,12 @@ def _cast(sweeps, objects, threshold: float):
     return cast, seen, which
 
 
-#: How a recording is read unless told otherwise; only the options given otherwise enter a task's metadata,
-#: so that the tasks made before they existed keep their digest.
-READING_DEFAULTS = {"mounts": None, "fragments": "auto", "echo": "first"}
-
-
 def _metadata(objects, sweeps, path, options: dict, reading: dict, report: ReadReport) -> dict:
     # a ring task's metadata as it was before the points input existed: its rows keep their digest
     layout = {}
     if options.get("inputs", "ring") == "points":
         layout = {"inputs": "points", "columns": points_columns(int(options["sectors"]))}
-    given = {k: (str(v) if k == "mounts" else v) for k, v in reading.items()
-             if k in READING_DEFAULTS and v != READING_DEFAULTS[k]}
+    given = reading_given(reading["fragments"], reading["mounts"], reading["echo"])
     if given:
         layout["reading"] = given
     if report.lines():   # what reading a bag found and chose (a CARMEN log says nothing: its digest stays)

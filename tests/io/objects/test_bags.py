@@ -6,7 +6,8 @@ and the bag holds no transform for the laser's frame, as happens when a
 robot's description is not running while it records. Read with the mount
 given (``mounts="0,0,0,flipped"``), the task is the upright laser's (whose
 bag places it through ``/tf_static``), ray for ray; read as if upright, with
-a warning, the object stands on the other side of the robot.
+a warning, the object stands on the other side of the robot. The
+``recording`` task, which reads the same bags, takes the mount too.
 """
 
 import math
@@ -101,7 +102,8 @@ def test_a_task_of_the_upside_down_laser_is_the_upright_lasers_with_its_mount_re
                           pose_topic="/odom", learn=0.45, mounts="0,0,0,flipped")
     assert truth.y.sum() > 0 and np.array_equal(given.y, truth.y) and np.array_equal(given.split, truth.split)
     np.testing.assert_allclose(given.X, truth.X, atol=1e-6)
-    assert given.metadata["reading"] == {"mounts": "0,0,0,flipped"} and "reading" not in truth.metadata
+    assert given.metadata["reading"] == {
+        "mounts": {"every scan topic": "x=0 m, y=0 m, yaw=0 deg, upside down, from option"}} and "reading" not in truth.metadata
     # what the reading found and chose, as novelty run says it
     assert given.metadata["read"] == ["/scan: x=0 m, y=0 m, yaw=0 deg, upside down, from option",
                                       "poses from /odom, interpolated at each scan's time"]
@@ -113,3 +115,16 @@ def test_a_task_of_the_upside_down_laser_is_the_upright_lasers_with_its_mount_re
 def test_a_bad_mount_is_refused_with_what_was_expected(bags):
     with pytest.raises(ValueError, match="X,Y,YAW"):
         read_drive(bags[1], "/scan", pose_topic="/odom", mounts="upside down")
+
+
+def test_a_recording_task_takes_the_mount_too(bags):
+    upright, flipped = bags
+    options = dict(topic="/scan", pose_topic="/odom", places=1.0, warmup=1, gap=None, intervals=[(0, 4), (4, 8)])
+    truth = quietly(datasets.load, "recording", paths=str(upright), **options)
+    given = quietly(datasets.load, "recording", paths=str(flipped), mounts="0,0,0,flipped", **options)
+    np.testing.assert_allclose(given.X, truth.X, atol=1e-6)
+    assert given.metadata["reading"] == {
+        "mounts": {"every scan topic": "x=0 m, y=0 m, yaw=0 deg, upside down, from option"}}
+    assert "reading" not in truth.metadata
+    mirrored = datasets.load("recording", paths=str(flipped), mounts="0,0,0", **options)
+    assert not np.allclose(mirrored.X, truth.X, atol=1e-3)
