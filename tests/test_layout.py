@@ -177,6 +177,7 @@ ACROSS = {
     "test_maps_guard_trace.py": "benchmarks/maps_guard_trace.py: each guard scan traced to its most novel cell",
     "test_maps_round4.py": "benchmarks/maps_round4.py: the scores of the habituating-map selections",
     "test_learning_answer.py": "benchmarks/learning_answer.py: the scores and the decision of the learning answer's rule",
+    "test_guard_margins.py": "benchmarks/guard_margins.py: each guard mean's interval over its seeds",
     "test_perf_compare.py": "benchmarks/perf_compare.py: two revisions timed alternately",
     "test_layout.py": "this file: the layout of the repository",
     "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",
