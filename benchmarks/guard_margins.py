@@ -62,7 +62,7 @@ def cells(rows) -> tuple[dict, dict]:
 
 
 def margins(rows) -> list[dict]:
-    """One record per detector and task, in the order of the detectors' lowest means (lowest first)."""
+    """One record per detector and task, sorted by detector, then task."""
     ok, failed = cells(rows)
     out = []
     for (det, task), by_seed in sorted(ok.items()):
