@@ -53,6 +53,10 @@ class SuiteError(ValueError):
 FILES_TASK = "files"
 #: its options that name files, read relative to the suite file
 FILE_OPTIONS = ("path", "test_path")
+#: the options that name files of the tasks read from a recording, read relative to the suite file too
+#: (a list, or a comma-separated text, of recordings each)
+RECORDING_FILE_OPTIONS = {"recording": ("paths", "marks"), "inspection-objects": ("path", "objects"),
+                          "exploration-objects": ("path", "objects")}
 #: the files a folder given as a files task's path holds, one task each (ADBench's .npz, ODDS's .mat, CSV)
 FOLDER_SUFFIXES = (".npz", ".mat", ".csv")
 
@@ -223,11 +227,31 @@ class Cell:
         return hashlib.sha256(_canonical(self.key).encode()).hexdigest()[:16]
 
 
-def resolve_files(options: dict, base: Path | None) -> dict:
-    """File options made absolute against the suite's folder (a suite runs from anywhere)."""
+def resolve_files(options: dict, base: Path | None, task: str = FILES_TASK) -> dict:
+    """The options of ``task`` that name files made absolute against the suite's folder (a suite runs from
+    anywhere): the ``files`` task's :data:`FILE_OPTIONS`, a recording task's :data:`RECORDING_FILE_OPTIONS`.
+
+    >>> resolve_files({"paths": "mon.bag,tue.bag", "places": 1.0}, Path("/runs"), "recording")
+    {'paths': '/runs/mon.bag,/runs/tue.bag', 'places': 1.0}
+    """
     if base is None:
         return options
-    return {k: str(base / v) if k in FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
+    if task == FILES_TASK:
+        return {k: str(base / v) if k in FILE_OPTIONS and isinstance(v, str) else v for k, v in options.items()}
+    named = RECORDING_FILE_OPTIONS.get(task, ())
+    return {k: _resolved(v, base) if k in named else v for k, v in options.items()}
+
+
+def _resolved(value, base: Path):
+    """A file name, a comma-separated text of them or a list of them, each against ``base``; anything else
+    (objects given as tables, say) as it is."""
+    if isinstance(value, str):
+        if "," in value and not (base / value).exists():   # as the command line gives a list
+            return ",".join(str(base / v.strip()) for v in value.split(","))
+        return str(base / value)
+    if isinstance(value, list) and all(isinstance(v, str) for v in value):
+        return [str(base / v) for v in value]
+    return value
 
 
 def expand_folder(spec: TaskSpec) -> list[TaskSpec]:

@@ -171,8 +171,7 @@ def suite_from_dict(data: dict, source: str = "suite", base: Path | None = None)
             reasons[name] = "not registered here"
             continue
         options = _table(entry.get("options"), f"{where}: options")
-        if name == FILES_TASK:
-            options = resolve_files(options, base)
+        options = resolve_files(options, base, name)
         tasks.extend(expand_folder(TaskSpec(name, options, _label(entry, name, where))))
     memory = head.get("memory", True)
     if not isinstance(memory, bool) and memory != "first-seed":

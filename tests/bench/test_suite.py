@@ -167,6 +167,38 @@ options = { path = "data/scans.csv", train_rows = 2 }
         ("files", "same", {"path": expected, "train_rows": 2})]
 
 
+def test_a_recordings_files_are_read_relative_to_the_suite_too(tmp_path, monkeypatch):
+    suite_path = write(tmp_path, """
+[[detectors]]
+name = "hsom"
+
+[[tasks]]
+name = "recording"
+options = { paths = "mon.bag,tue.bag", marks = "marks.csv", places = 1.0 }
+
+[[tasks]]
+name = "recording"
+label = "listed"
+options = { paths = ["mon.bag", "/abs/tue.bag"], places = 1.0 }
+
+[[tasks]]
+name = "inspection-objects"
+options = { path = "run.log", objects = "objects.toml", learn = 0.5 }
+
+[[tasks]]
+name = "exploration-objects"
+options = { path = "run.log", n_objects = 2 }
+""")
+    monkeypatch.chdir(tmp_path.parent)              # run from elsewhere: the files stay the suite's
+    options = [t.options for t in load_suite(suite_path).tasks]
+    assert options == [
+        {"paths": f"{tmp_path / 'mon.bag'},{tmp_path / 'tue.bag'}", "marks": str(tmp_path / "marks.csv"),
+         "places": 1.0},
+        {"paths": [str(tmp_path / "mon.bag"), "/abs/tue.bag"], "places": 1.0},
+        {"path": str(tmp_path / "run.log"), "objects": str(tmp_path / "objects.toml"), "learn": 0.5},
+        {"path": str(tmp_path / "run.log"), "n_objects": 2}]
+
+
 @pytest.mark.parametrize("task, message", [
     ('path = "missing.csv"', "Data file not found: .*missing.csv"),
     ('name = "files"', "the 'files' task needs path="),

@@ -82,3 +82,26 @@ def test_a_users_recording_is_benchmarked_by_name_as_the_command_line_gives_it(d
     results = bench.run(["nearest-memory"], f"inspection-objects path={drive_log} objects={objects} sectors=8")
     row = results.rows[0]
     assert row["status"] == "ok" and row["n_novel"] == expected_sightings()[42:].sum() and row["roc_auc"] > 0.5
+
+
+def test_a_suite_beside_its_recording_runs_from_anywhere(drive_log, tmp_path, monkeypatch):
+    from novelty.bench import load_suite
+    from novelty.bench.runner import run_bench
+
+    (tmp_path / "objects.csv").write_text("kind,name,x,y,radius,start\ncylinder,bin,5.0,0.6,0.25,42\n")
+    suite_path = tmp_path / "suite.toml"
+    suite_path.write_text(f"""
+[suite]
+seeds = 1
+
+[[detectors]]
+name = "nearest-memory"
+
+[[tasks]]
+name = "inspection-objects"
+options = {{ path = "{drive_log.name}", objects = "objects.csv", sectors = 8 }}
+""")
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")      # the files are the suite's, wherever it is run from
+    (row,) = run_bench(load_suite(suite_path), tmp_path / "out", plots=False, quiet=True).rows
+    assert row["status"] == "ok" and row["n_novel"] == expected_sightings()[42:].sum()
