@@ -12,7 +12,12 @@ import numpy as np
 from .._atomic import write_atomically
 from ._common import UserError, format_cell
 
-__all__ = ["add_recording_options", "recording_rings", "pose_columns", "RowSink"]
+__all__ = ["add_recording_options", "recording_rings", "recording_points", "pose_columns", "RowSink",
+           "POINTS_SECTORS"]
+
+#: the points input's sectors unless --sectors says: the habituating maps were measured on lasers with
+#: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
+POINTS_SECTORS = 180
 
 
 def add_recording_options(parser) -> None:
@@ -40,8 +45,10 @@ def add_recording_options(parser) -> None:
                        help="the echo of a MultiEchoLaserScan's beams read (default first)")
     group.add_argument("--tolerance", type=float, default=0.1, metavar="S",
                        help="several lasers' scans within S seconds are merged into one ring (default 0.1)")
-    group.add_argument("--sectors", type=int, default=16, metavar="N",
-                       help="laser beams reduced to N equal sectors (default 16, the paper's sonars)")
+    group.add_argument("--sectors", type=int, default=None, metavar="N",
+                       help="laser beams reduced to N equal sectors (default 16, the paper's sonars; for a "
+                       f"detector that reads the robot's pose with each scan, the habituating maps, "
+                       f"{POINTS_SECTORS} or one a beam)")
     group.add_argument("--reduce", default="min", metavar="HOW",
                        help="a sector's beams to one range: min (a sonar's nearest echo), mean, median or "
                        "a percentile 0-100 (default min)")
@@ -99,7 +106,8 @@ def recording_rings(args, report=None):
     topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
     threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
     try:
-        rings = read_rings(args.data, topic, sectors=args.sectors, reduce=_reduce(args.reduce),
+        rings = read_rings(args.data, topic, sectors=16 if args.sectors is None else args.sectors,
+                           reduce=_reduce(args.reduce),
                            limits=_limits(args.limits), front=math.radians(args.front),
                            pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
                            fragments=_fragments(getattr(args, "fragments", "auto")),
@@ -109,6 +117,51 @@ def recording_rings(args, report=None):
             yield ring.time, preprocess(ring.ranges, threshold), ring.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
+
+
+def recording_points(args, report=None):
+    """``(time, row, pose)`` for each scan of ``--data`` that has a pose, ``row`` the ``points`` input.
+
+    The input of the detectors that read the robot's pose with each scan
+    (the habituating maps, :mod:`novelty.maps.points`): the pose, each
+    sector's nearness and its end point in the world frame
+    (:func:`novelty.io.objects.points.sweep_points`). Scans before the pose
+    source's first message are left out, and ``report`` says how many; a
+    recording with no pose at all is an error that says where poses come from.
+    """
+    # deferred: the readers are loaded only for a recording
+    from ..io.objects.points import sweep_points
+    from ..io.sweeps import read_sweeps
+    from ..sonar.preprocessing import PAPER_THRESHOLD
+
+    if args.reduce != "min" or args.limits is not None or args.front != 0.0:
+        raise UserError("The points input reads each sector's nearest echo over the whole scan, placed in the "
+                        "world by the robot's pose: no --reduce, --limits or --front.")
+    topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
+    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
+    sectors, without, scored = args.sectors, 0, 0
+    try:
+        sweeps = read_sweeps(args.data, topic, pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
+                             fragments=_fragments(getattr(args, "fragments", "auto")),
+                             mounts=getattr(args, "mount", None), echo=getattr(args, "echo", "first"),
+                             tolerance=getattr(args, "tolerance", 0.1), report=report)
+        for sweep in sweeps:
+            if sweep.pose is None:
+                without += 1
+                continue
+            if sectors is None:
+                sectors = min(POINTS_SECTORS, len(sweep.ranges))
+            scored += 1
+            yield sweep.time, sweep_points([sweep], sectors, threshold)[0], sweep.pose
+    except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
+        raise UserError(str(exc)) from None
+    if without and not scored:
+        raise UserError(f"{args.detector} reads the robot's pose with each scan; none of the {without} scans of "
+                        f"{args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
+                        "a CARMEN log).")
+    if without and report is not None:
+        report.notes.append(f"{without} scans before the first pose left out (the points input places each "
+                            "echo in the world by the robot's pose)")
 
 
 def pose_columns(pose) -> dict:

@@ -12,7 +12,7 @@ from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
     write_novelty
-from .recording import RowSink, add_recording_options, pose_columns, recording_rings
+from .recording import RowSink, add_recording_options, pose_columns, recording_points, recording_rings
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 
@@ -39,7 +39,10 @@ mount in the tf tree or --mount, several lasers merged) reduced to --sectors
 sectors seen from the robot's centre (or each ring of sonar Range readings),
 preprocessed as the paper's (1 - min(r, T) / T), scored, learned, and its
 row (scan, novelty, alarm, time, x, y, theta: the base frame's pose at the
-scan's time) written and flushed at once. What the reading found (scans
+scan's time) written and flushed at once. A detector that reads the robot's
+pose with each scan (map-explore, habituating-map) gets the points input
+instead: the pose, each sector's nearness and its end point in the world,
+180 sectors unless --sectors says (one a beam for a sensor of fewer). What the reading found (scans
 assembled, base frame, mounts, poses) is said on standard error. A run that
 fails leaves an existing --out as it was, or (midway) keeps the rows written."""
 
@@ -53,6 +56,7 @@ EXAMPLES = [
     "novelty run hsom --data run.bag --topic /scan --sectors 16 --pose-topic /odom --out novelty.csv",
     "novelty run hsom --data intel-corrected.log.gz --sectors 16 --reduce min",
     "novelty run hsom --data robot.bag --topic /scan_front,/scan_rear --mount /scan_rear=-0.3,0,180",
+    "novelty run map-explore --data run.bag --topic /scan --pose-topic /odom --out novelty.csv",
 ]
 
 
@@ -147,9 +151,11 @@ def _run_recording(det, args, alarm: Alarm | None) -> int:
         raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
                         "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
     report = ReadReport()
+    # a detector that reads the robot's pose with each scan (the habituating maps) gets the points input
+    read = recording_points if getattr(det, "input_layout", None) == "points" else recording_rings
     with RowSink(args.out, pose=args.pose_topic is not None) as sink:
         try:
-            for n, (time, x, pose) in enumerate(recording_rings(args, report)):
+            for n, (time, x, pose) in enumerate(read(args, report)):
                 sink.pose = sink.pose or report.has_poses   # known once the reading has begun
                 novelty = det.score_learn_one(x, time if args.stamps else None)
                 row = {"scan": n, "novelty": novelty}

@@ -61,6 +61,42 @@ def test_a_bag_streams_its_laser_with_odometry(bag, tmp_path, capsys):
         assert saved["novelty"].shape == (3,) and saved["time"][0] == pytest.approx(1.02)
 
 
+def test_a_map_reads_the_points_input_of_a_bag_with_its_poses(bag, tmp_path, capsys):
+    # map-explore reads the robot's pose with each scan: novelty run gives it the points input, here one
+    # sector a beam (the bag's laser has four), each row scored then learned as a script would
+    import novelty
+    from novelty.io.objects.points import sweep_points
+    from novelty.io.sweeps import read_sweeps
+
+    out = tmp_path / "map.csv"
+    assert main(["run", "map-explore", "--data", str(bag), "--topic", "/scan", "--pose-topic", "/odom",
+                 "--out", str(out)]) == 0
+    rows = table(out.read_text())
+    sweeps = list(read_sweeps(bag, "/scan", pose_topic="/odom"))
+    det = novelty.make("map-explore")
+    expected = [det.score_learn_one(r) for r in sweep_points(sweeps, sectors=4)]
+    assert [float(r["novelty"]) for r in rows] == pytest.approx(expected, abs=1e-9)
+    assert [r["x"] for r in rows] == ["1", "1.1", "1.2", "5.95", "5.95"]
+    capsys.readouterr()
+    assert main(["run", "map-explore", "--data", str(bag), "--topic", "/scan", "--pose-topic", "/odom",
+                 "--sectors", "5"]) == 2
+    assert "sectors hold no beam" in capsys.readouterr().err
+    assert main(["run", "map-explore", "--data", str(bag), "--topic", "/scan", "--pose-topic", "/odom",
+                 "--reduce", "mean"]) == 2
+    assert "no --reduce, --limits or --front" in capsys.readouterr().err
+
+
+def test_a_map_on_a_recording_without_poses_says_where_poses_come_from(tmp_path, capsys):
+    pytest.importorskip("rosbags", reason="the bag is written with rosbags' writers (the ros extra)")
+    from ..io.objects.test_bags import robot_bag
+
+    bag = robot_bag(tmp_path / "no-poses", False)   # no /tf: its poses are on /odom, read only when named
+    assert main(["run", "map-explore", "--data", str(bag)]) == 2
+    err = capsys.readouterr().err
+    assert "map-explore reads the robot's pose with each scan; none of the 40 scans" in err
+    assert "give --pose-topic" in err
+
+
 def test_a_bag_refuses_a_wrong_topic_naming_what_exists(bag, capsys):
     assert main(["run", "hsom", "--data", str(bag), "--topic", "/laser"]) == 2
     err = capsys.readouterr().err
