@@ -30,8 +30,9 @@ from ..data import Dataset
 from ..datasets.exploration.runs import from_runs
 from ..sonar.preprocessing import PAPER_THRESHOLD
 from .places import finite_positions
+from .objects.points import points_columns, sweep_points
 from .recording import read_recording
-from .sweeps import reading_given
+from .sweeps import read_sweeps, reading_given
 
 __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
            "recording_task"]
@@ -214,7 +215,8 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
                    threshold: float = PAPER_THRESHOLD, sectors: int = 16, reduce="min", limits=None,
                    front: float = 0.0, clip: float | None = None, pose_topic: str | None = None,
                    sensors=None, max_span: float | None = None, base_frame: str | None = None,
-                   fragments="auto", mounts=None, echo: str = "first", seed: int = 0) -> Dataset:
+                   fragments="auto", mounts=None, echo: str = "first", inputs: str = "ring",
+                   seed: int = 0) -> Dataset:
     """An exploration task (and hold-out task) from recordings: runs, tracked features, poses.
 
     Parameters
@@ -230,6 +232,14 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
         laser mounted upside down whose bag holds no transform for it needs
         ``mounts="X,Y,YAW,flipped"``. Given otherwise than by default, they
         are kept in ``metadata["reading"]``.
+    inputs : {"ring", "points"}, default="ring"
+        The rows: the paper's ring, or the ``points`` input of the detectors
+        that read the robot's pose with each scan (the habituating maps:
+        the pose, each of ``sectors`` sectors' nearness and its end point in
+        the world, :func:`novelty.io.objects.points.sweep_points`), read
+        from the laser scans that have a pose; the ring's own options
+        (``reduce``, ``limits``, ``front``, ``clip``, ``sensors``,
+        ``max_span``) do not apply to it.
     seed : int, default=0
         Unused: a recording is what it is (the benchmark gives every task a seed).
     marks : str, Path or sequence of Mark, optional
@@ -263,8 +273,17 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     if isinstance(marks, (str, Path)):
         marks = read_marks(marks)
     runs, features, envs, poses, times = [], [], [], [], []
+    if inputs not in ("ring", "points"):
+        raise ValueError(f"inputs must be 'ring' or 'points'; got {inputs!r}.")
+    if inputs == "points":
+        ring_only = {k: v for k, v in options.items()
+                     if k in _RING_ONLY and v != _RING_ONLY[k]}
+        if ring_only:
+            raise ValueError(f"The points input reads each sector's nearest echo over the whole scan; "
+                             f"{', '.join(sorted(ring_only))} apply to the ring only.")
     for path in paths:
-        data = read_recording(path, topic, threshold=threshold, **options)
+        data = (_points(path, topic, threshold, sectors, options) if inputs == "points"
+                else read_recording(path, topic, threshold=threshold, **options))
         t = data.columns["time"]
         run = np.zeros(len(data), np.int64) if gap is None and intervals is None else \
             split_runs(t, gap=gap, intervals=intervals)
@@ -284,9 +303,27 @@ def recording_task(paths, topic=None, *, marks=None, places: float | None = None
     given = reading_given(fragments, mounts, echo)
     if given:
         meta["reading"] = given
+    if inputs == "points":
+        meta.update(inputs="points", columns=points_columns(int(sectors)))
     pose_array = None if any(p is None for p in poses) else np.concatenate(poses)
     return replace(task, poses=pose_array, columns=dict(task.columns, time=np.concatenate(times)),
                    metadata=meta)
+
+
+#: the options of the ring that the points input does not read, and their defaults
+_RING_ONLY = {"reduce": "min", "limits": None, "front": 0.0, "clip": None, "sensors": None, "max_span": None}
+
+
+def _points(path, topic, threshold: float, sectors: int, options: dict) -> Dataset:
+    """A recording's laser scans that have a pose as the ``points`` input, with their times and poses."""
+    reading = {k: options[k] for k in ("pose_topic", "base_frame", "fragments", "mounts", "echo")}
+    sweeps = [s for s in read_sweeps(path, topic, **reading) if s.pose is not None]
+    if not sweeps:
+        raise ValueError(f"{path}: no scan with a pose; the points input places each echo in the world by the "
+                         "robot's pose (give pose_topic=).")
+    return Dataset(Path(path).name, sweep_points(sweeps, sectors, threshold),
+                   poses=np.array([s.pose for s in sweeps], dtype=np.float64),
+                   columns={"time": np.array([s.time for s in sweeps])})
 
 
 def _new_places_only(features: list, warmup: int) -> list:

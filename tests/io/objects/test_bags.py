@@ -128,3 +128,21 @@ def test_a_recording_task_takes_the_mount_too(bags):
     assert "reading" not in truth.metadata
     mirrored = datasets.load("recording", paths=str(flipped), mounts="0,0,0", **options)
     assert not np.allclose(mirrored.X, truth.X, atol=1e-3)
+
+
+def test_a_recording_task_gives_a_map_the_points_input(bags):
+    from novelty import bench
+    from novelty.io.objects.points import sweep_points
+
+    upright, _ = bags
+    options = dict(topic="/scan", pose_topic="/odom", places=1.0, intervals=[(0, 4), (4, 8)], sectors=90)
+    task = quietly(datasets.load, "recording", paths=str(upright), inputs="points", **options)
+    expected = sweep_points(read_drive(upright, "/scan", pose_topic="/odom"), sectors=90)
+    np.testing.assert_array_equal(task.X, expected)
+    assert task.metadata["inputs"] == "points" and task.metadata["columns"][:4] == ["x", "y", "heading", "near_0"]
+    with pytest.raises(ValueError, match="reduce apply to the ring only"):
+        datasets.load("recording", paths=str(upright), inputs="points", reduce="mean", **options)
+    # in a benchmark a map gets the points input of the same task on its own, a ring detector the ring
+    text = f"recording paths={upright} topic=/scan pose_topic=/odom places=1.0 intervals=[[0,4],[4,8]] sectors=90"
+    results = bench.run(["map-explore", "hsom"], text, protocol="exploration", seeds=1)
+    assert {r["detector"]: r["status"] for r in results.rows} == {"map-explore": "ok", "hsom": "ok"}
