@@ -8,7 +8,9 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-__all__ = ["Layout", "plan_columns", "is_ros_export", "LABEL_COLUMNS", "TIME_COLUMNS", "ROUTE_COLUMNS",
+from ..maps.points import points_columns
+
+__all__ = ["Layout", "plan_columns", "is_ros_export", "is_points_file", "LABEL_COLUMNS", "TIME_COLUMNS", "ROUTE_COLUMNS",
            "TEXT_COLUMNS", "cell_text"]
 
 #: columns found by name that are never sensors
@@ -22,6 +24,23 @@ TEXT_COLUMNS = ("features", "class", "row_index")
 def is_ros_export(names: Sequence[str]) -> bool:
     """A ``rostopic echo -p`` export: a ``%time`` column or ``field.*`` columns."""
     return "%time" in names or any(n.startswith("field.") for n in names)
+
+
+def is_points_file(names: Sequence[str]) -> bool:
+    """A file of the ``points`` input (:mod:`novelty.maps.points`): its header is the layout's own names,
+    in order, among columns of other roles (a ``label``, a time, the route's, text).
+
+    Its ``y`` is the robot's position, not a label, and every column of the layout is an input.
+
+    >>> is_points_file(["time", "x", "y", "heading", "near_0", "x_0", "y_0", "label"])
+    True
+    >>> is_points_file(["x", "y", "label"])
+    False
+    """
+    roles = {n.lower() for n in ("label",) + TIME_COLUMNS + ROUTE_COLUMNS + TEXT_COLUMNS}
+    core = [str(n).strip().lower() for n in names if str(n).strip().lower() not in roles]
+    extra = len(core) - 3
+    return extra >= 3 and extra % 3 == 0 and core == points_columns(extra // 3)
 
 
 def _is_ros_header(name: str) -> bool:
@@ -119,7 +138,9 @@ def _column_list(columns) -> list:
 def plan_columns(names: Sequence[str], columns=None, label=None, time=None, split=None) -> Layout:
     """Decide which column is what (see the module docstring); names alone decide."""
     names = tuple(names)
-    label_j = _one(names, label, "label") if label is not None else _by_default(names, LABEL_COLUMNS)
+    # in a file of the points input, y is the robot's position: only a column named label is a label
+    labels = ("label",) if is_points_file(names) else LABEL_COLUMNS
+    label_j = _one(names, label, "label") if label is not None else _by_default(names, labels)
     time_j = _one(names, time, "time") if time is not None else _by_default(names, TIME_COLUMNS)
     split_j = _one(names, split, "split") if split is not None else _by_default(names, ("split",))
     distance_j, run_j = _by_default(names, ("distance",)), _by_default(names, ("run",))
@@ -139,7 +160,7 @@ def plan_columns(names: Sequence[str], columns=None, label=None, time=None, spli
             raise ValueError("This is a ROS 'rostopic echo -p' export: its header columns (%time, "
                              "field.header.*) are not sensor readings. Choose the sensor columns with "
                              f"columns= (--columns), e.g. {example!r}.")
-        skip = {n.lower() for n in TEXT_COLUMNS + TIME_COLUMNS + LABEL_COLUMNS + ROUTE_COLUMNS}
+        skip = {n.lower() for n in TEXT_COLUMNS + TIME_COLUMNS + labels + ROUTE_COLUMNS}
         sensors = [j for j, n in enumerate(names) if j not in roles and n.lower() not in skip]
     if not sensors:
         raise ValueError("No sensor columns: every column is a label, time, distance, run or split column.")

@@ -13,7 +13,9 @@ Which columns are what:
   below; a text column among them is refused with a message naming it.
 - ``label``: per-scan ground truth, 1 novel, 0 normal, nothing else
   (:mod:`novelty.datasets.labels`: NaN, scikit-learn's -1/+1 or 0.5 are
-  refused, saying where). Default: a column named ``y`` or ``label``.
+  refused, saying where). Default: a column named ``y`` or ``label``; in a
+  file of the ``points`` input (:func:`novelty.datasets.columns.is_points_file`),
+  whose ``y`` is the robot's position, a column named ``label`` only.
 - ``time``: per-scan timestamps, given to the detector as elapsed time, never
   a sensor. Default: a column named ``time``, ``timestamp``,
   ``field.header.stamp`` or ``%time``. ROS stamps (``%time``, ``*.stamp``)
