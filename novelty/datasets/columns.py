@@ -8,8 +8,6 @@ from typing import Iterable, Sequence
 
 import numpy as np
 
-from ..maps.points import points_columns
-
 __all__ = ["Layout", "plan_columns", "is_ros_export", "is_points_file", "LABEL_COLUMNS", "TIME_COLUMNS", "ROUTE_COLUMNS",
            "TEXT_COLUMNS", "cell_text"]
 
@@ -37,6 +35,9 @@ def is_points_file(names: Sequence[str]) -> bool:
     >>> is_points_file(["x", "y", "label"])
     False
     """
+    # deferred: novelty.maps loads the detectors, which the command line's start does not need
+    from ..maps.points import points_columns
+
     roles = {n.lower() for n in ("label",) + TIME_COLUMNS + ROUTE_COLUMNS + TEXT_COLUMNS}
     core = [str(n).strip().lower() for n in names if str(n).strip().lower() not in roles]
     extra = len(core) - 3
