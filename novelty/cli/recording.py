@@ -94,6 +94,18 @@ def _fragments(text: str):
     return n
 
 
+def _reading(args, report) -> tuple:
+    """``(topic, threshold, options)``: which messages of ``--data`` are read and how, as both inputs read them."""
+    from ..sonar.preprocessing import PAPER_THRESHOLD
+
+    topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
+    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
+    options = dict(pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
+                   fragments=_fragments(getattr(args, "fragments", "auto")), mounts=getattr(args, "mount", None),
+                   echo=getattr(args, "echo", "first"), tolerance=getattr(args, "tolerance", 0.1), report=report)
+    return topic, threshold, options
+
+
 def recording_rings(args, report=None):
     """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes.
 
@@ -101,18 +113,13 @@ def recording_rings(args, report=None):
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording import read_rings
-    from ..sonar.preprocessing import PAPER_THRESHOLD, preprocess
+    from ..sonar.preprocessing import preprocess
 
-    topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
-    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
+    topic, threshold, options = _reading(args, report)
     try:
         rings = read_rings(args.data, topic, sectors=16 if args.sectors is None else args.sectors,
-                           reduce=_reduce(args.reduce),
-                           limits=_limits(args.limits), front=math.radians(args.front),
-                           pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
-                           fragments=_fragments(getattr(args, "fragments", "auto")),
-                           mounts=getattr(args, "mount", None), echo=getattr(args, "echo", "first"),
-                           tolerance=getattr(args, "tolerance", 0.1), report=report)
+                           reduce=_reduce(args.reduce), limits=_limits(args.limits),
+                           front=math.radians(args.front), **options)
         for ring in rings:
             yield ring.time, preprocess(ring.ranges, threshold), ring.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
@@ -132,19 +139,14 @@ def recording_points(args, report=None):
     # deferred: the readers are loaded only for a recording
     from ..io.objects.points import sweep_points
     from ..io.sweeps import read_sweeps
-    from ..sonar.preprocessing import PAPER_THRESHOLD
 
     if args.reduce != "min" or args.limits is not None or args.front != 0.0:
         raise UserError("The points input reads each sector's nearest echo over the whole scan, placed in the "
                         "world by the robot's pose: no --reduce, --limits or --front.")
-    topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
-    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
+    topic, threshold, options = _reading(args, report)
     sectors, without, scored = args.sectors, 0, 0
     try:
-        sweeps = read_sweeps(args.data, topic, pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
-                             fragments=_fragments(getattr(args, "fragments", "auto")),
-                             mounts=getattr(args, "mount", None), echo=getattr(args, "echo", "first"),
-                             tolerance=getattr(args, "tolerance", 0.1), report=report)
+        sweeps = read_sweeps(args.data, topic, **options)
         for sweep in sweeps:
             if sweep.pose is None:
                 without += 1
