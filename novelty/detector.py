@@ -42,6 +42,7 @@ import functools
 import math
 import numbers
 import threading
+import warnings
 from abc import abstractmethod
 from typing import Any
 
@@ -51,6 +52,7 @@ from sklearn.exceptions import NotFittedError
 from sklearn.utils.metaestimators import available_if
 
 from . import persistence
+from .conformal import CalibrationWarning, check_rate, conformal_p_values, conformal_threshold
 from .river_composition import register_with_river, unlearned_river_scan
 from ._component import Component, StateError, _is_state_name, check_array_state, check_int_state
 from ._validation import (Interval, Options, check_batch, check_feature_names, check_one, check_timestamps,
@@ -122,6 +124,14 @@ class NoveltyDetector(OutlierMixin, Component):
     ``threshold_`` and ``labels_`` follow the parameters in force: changing
     ``threshold`` or ``contamination`` with ``set_params`` takes effect at once.
 
+    The quantile of the training scans does not carry over to new scans for
+    every detector (a memory scores its own training scans near 0). To alarm
+    at a stated rate on scans the model did not learn, :meth:`calibrate` it on
+    a familiar stretch scored as in use: ``threshold_`` is then the
+    split-conformal threshold of that stretch (:mod:`novelty.conformal`),
+    which wins over ``threshold`` and ``contamination`` until the next
+    :meth:`fit`, and :meth:`p_values` gives each scan's conformal p-value.
+
     Scans are arrays, or, one at a time, dicts as in River: a dict scan is
     read by key. The first scan learned fixes the features, in the sorted
     order of its keys (``feature_names_in_``); every later dict scan must
@@ -153,6 +163,14 @@ class NoveltyDetector(OutlierMixin, Component):
         fitted model (PyOD's name; higher = more abnormal). Saved with the model.
     threshold_ : float
         The threshold in force (see above).
+    calibration_scores_ : ndarray of shape (n_calibration,)
+        After :meth:`calibrate`: the novelty of the calibration scans, sorted.
+        Saved with the model.
+    false_alarm_rate_ : float
+        After :meth:`calibrate`: the target rate the threshold was set for.
+    calibrated_on_ : str
+        After :meth:`calibrate`: what the calibration scans were (the
+        ``source`` given, and how they were scored).
     labels_ : ndarray of int of shape (n_samples,)
         1 where ``decision_scores_ > threshold_`` (outlier), else 0 (PyOD's
         convention; :meth:`predict` says -1 and +1).
@@ -270,14 +288,15 @@ class NoveltyDetector(OutlierMixin, Component):
                 f"or all integers; got {names!r}."
             )
         if hasattr(self, "decision_scores_"):
-            self._check_scores(check_array_state(self, "decision_scores_", 1))
+            self._check_scores(check_array_state(self, "decision_scores_", 1), "decision_scores_")
+        self._check_calibration()
         t = getattr(self, "last_time_", None)
         if t is not None and (isinstance(t, bool) or not isinstance(t, numbers.Real) or (
                 abs(t) > 2**63 - 1 if isinstance(t, numbers.Integral) else not math.isfinite(t))):
             raise StateError(f"{type(self).__name__}.last_time_ must be None or a finite number (an int "
                              f"within int64); got {t!r}.")
 
-    def _check_scores(self, scores: np.ndarray) -> None:
+    def _check_scores(self, scores: np.ndarray, name: str) -> None:
         bounds = self._novelty_bounds()
         if bounds is None or not scores.size:
             return
@@ -285,10 +304,31 @@ class NoveltyDetector(OutlierMixin, Component):
         slack = 1e-9 * max(1.0, abs(low), abs(high))
         if scores.min() < low - slack or scores.max() > high + slack:
             raise StateError(
-                f"{type(self).__name__}.decision_scores_ must lie in [{low:.6g}, {high:.6g}], where this "
+                f"{type(self).__name__}.{name} must lie in [{low:.6g}, {high:.6g}], where this "
                 f"model's novelty lies; they hold values from {scores.min():.6g} to {scores.max():.6g} "
                 "(a threshold_ taken from them could not be reached)."
             )
+
+    def _check_calibration(self) -> None:
+        names = ("calibration_scores_", "false_alarm_rate_", "calibrated_on_")
+        present = [hasattr(self, name) for name in names]
+        if not any(present):
+            return
+        if not all(present):
+            raise StateError(f"{type(self).__name__} holds part of a calibration: {', '.join(names)} come "
+                             "together or not at all.")
+        scores = check_array_state(self, "calibration_scores_", 1)
+        if not scores.size or np.any(np.diff(scores) < 0):
+            raise StateError(f"{type(self).__name__}.calibration_scores_ must hold the novelty of at least one "
+                             "scan, sorted.")
+        self._check_scores(scores, "calibration_scores_")
+        try:
+            check_rate(self.false_alarm_rate_, "a model file")
+        except ValueError as exc:
+            raise StateError(str(exc).replace("argument", "state")) from None
+        if not isinstance(self.calibrated_on_, str):
+            raise StateError(f"{type(self).__name__}.calibrated_on_ must be a string; got "
+                             f"{self.calibrated_on_!r}.")
 
     def _validate_params(self) -> None:
         super()._validate_params()
@@ -387,8 +427,10 @@ class NoveltyDetector(OutlierMixin, Component):
 
     @property
     def threshold_(self) -> float:
-        """The threshold in force: ``threshold``, or the contamination quantile of ``decision_scores_``."""
+        """The threshold in force: the calibrated one, else ``threshold`` or the contamination quantile."""
         self._check_fitted()
+        if hasattr(self, "calibration_scores_"):
+            return self._calibrated_threshold()
         contamination = getattr(self, "contamination", "auto")
         if isinstance(contamination, str):  # "auto"
             return float(self.threshold)
@@ -400,6 +442,79 @@ class NoveltyDetector(OutlierMixin, Component):
                 f"threshold={self.threshold!r}."
             )
         return float(np.quantile(self.decision_scores_, 1.0 - contamination))
+
+    def _calibrated_threshold(self) -> float:
+        with warnings.catch_warnings():  # calibrate warned once; threshold_ is read at every predict
+            warnings.simplefilter("ignore", CalibrationWarning)
+            return conformal_threshold(self.calibration_scores_, self.false_alarm_rate_)
+
+    @_one_at_a_time
+    def calibrate(self, X, false_alarm_rate=0.01, *, learn=False, timestamps=None, source=None):
+        """Set ``threshold_`` for a false-alarm rate from scans of a stretch the robot knows.
+
+        The scans are scored as the detector scores in use, never in-sample:
+        ``learn=False`` (a frozen detector) scores them without learning, so
+        they must not be scans the model learned; ``learn=True`` (a detector
+        that keeps learning) streams them, each scored before it is learned.
+        ``threshold_`` becomes the split-conformal threshold of their novelty
+        (:mod:`novelty.conformal`): the ``ceil((n + 1)(1 - a))``-th smallest,
+        so that a later familiar scan, if exchangeable with these, raises an
+        alarm with probability at most ``false_alarm_rate``. With fewer than
+        ``1/a - 1`` scans it is infinite (no alarm) and a
+        :class:`~novelty.conformal.CalibrationWarning` says so.
+
+        The calibration (``calibration_scores_``, ``false_alarm_rate_``,
+        ``calibrated_on_``) is saved with the model and wins over ``threshold``
+        and ``contamination`` until the next :meth:`fit`.
+
+        Parameters
+        ----------
+        X : array-like of shape (n_scans, n_features)
+            Familiar scans, in the order perceived.
+        false_alarm_rate : float in (0, 1), default=0.01
+            The target rate of alarms on familiar scans.
+        learn : bool, default=False
+            Stream (score, then learn) the scans instead of scoring them frozen.
+        timestamps : array-like of shape (n_scans,), optional
+            Their times, when ``learn`` (as :meth:`stream` takes them).
+        source : str, optional
+            What the scans are, kept in ``calibrated_on_`` (a recording and its
+            time range, a second pass of a route).
+
+        Returns
+        -------
+        self
+        """
+        rate = check_rate(false_alarm_rate)
+        if source is not None and not isinstance(source, str):
+            raise ValueError(f"The 'source' argument of calibrate must be a string; got {source!r}.")
+        if learn:
+            scores = self.stream(X, timestamps=timestamps, learn=True)
+        else:
+            if timestamps is not None:
+                raise ValueError("calibrate takes timestamps only with learn=True: frozen scoring has no clock.")
+            scores = self.novelty(X)
+        how = "as learned" if learn else "frozen"
+        described = f"{scores.size} scans, scored {how}"
+        conformal_threshold(scores, rate)  # warns now when too few scans promise the rate
+        self.calibration_scores_ = np.sort(scores)
+        self.false_alarm_rate_ = rate
+        self.calibrated_on_ = described if source is None else f"{source} ({described})"
+        return self
+
+    def p_values(self, X) -> np.ndarray:
+        """The conformal p-value of each scan, scored without learning, against the calibration.
+
+        ``(1 + #{calibration scans at least as novel}) / (n + 1)``; a scan
+        raises an alarm exactly where its p-value is at most
+        ``false_alarm_rate_``. For scores of a stream, use
+        :func:`novelty.conformal.conformal_p_values` with ``calibration_scores_``.
+        """
+        novelty = self.novelty(X)
+        if not hasattr(self, "calibration_scores_"):
+            raise NotFittedError(f"This {type(self).__name__} is not calibrated; call 'calibrate' with scans "
+                                 "of a familiar stretch first.")
+        return conformal_p_values(novelty, self.calibration_scores_)
 
     @property
     def labels_(self) -> np.ndarray:

@@ -35,7 +35,7 @@ from .clusterer_checks import (check_clusterer_adapt_moves_winner_closer, check_
                                check_clusterer_growth_is_consistent, check_clusterer_in_filter,
                                check_clusterer_initialize, check_clusterer_match, check_clusterer_match_is_pure,
                                check_clusterer_state_round_trip, check_clusterer_winners_equal_match)
-from .detector_checks import (check_detector_deterministic, check_detector_fit_and_novelty,
+from .detector_checks import (check_detector_calibrate, check_detector_deterministic, check_detector_fit_and_novelty,
                               check_detector_novelty_is_pure, check_detector_online,
                               check_detector_rejects_bad_input, check_detector_save_load, installed_detectors)
 from .synapse_checks import (check_synapse_dt, check_synapse_forget_rule, check_synapse_grow_shrink,
@@ -80,6 +80,7 @@ _CHECKS = {
         check_detector_rejects_bad_input,
         check_detector_online,
         check_detector_save_load,
+        check_detector_calibrate,
     ],
 }
 

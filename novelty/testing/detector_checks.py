@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 from sklearn.base import clone
 
+from ..conformal import conformal_p_values, conformal_threshold
 from ..detector import NoveltyDetector
 from ..persistence import load
 from ..registry import detectors
@@ -101,3 +102,24 @@ def check_detector_save_load(d: NoveltyDetector) -> None:
     assert np.array_equal(det.novelty(X), back.novelty(X)), "a loaded model scores identically"
     if det.supports_online:
         assert np.array_equal(det.stream(X[80:]), back.stream(X[80:])), "and learns identically"
+
+
+@_check
+def check_detector_calibrate(d: NoveltyDetector) -> None:
+    X = _rows(d)
+    det = clone(d).fit(X[:80])
+    det.calibrate(X[80:], false_alarm_rate=0.1, source="the checks' rows")
+    familiar = det.novelty(X[80:])
+    assert det.threshold_ == conformal_threshold(familiar, 0.1), "threshold_ is the conformal threshold"
+    assert det.calibration_scores_.size == X.shape[0] - 80 and det.false_alarm_rate_ == 0.1
+    p = det.p_values(X)
+    assert np.array_equal(p, conformal_p_values(det.novelty(X), familiar))
+    assert np.array_equal(det.predict(X) == -1, p <= 0.1), "an alarm exactly where p <= the rate"
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "model.npz"
+        det.save(path)
+        back = load(path)
+    assert back.threshold_ == det.threshold_ and back.calibrated_on_ == det.calibrated_on_, \
+        "a loaded model keeps its calibration"
+    det.fit(X[:80])
+    assert not hasattr(det, "calibration_scores_"), "a refit is a new model: uncalibrated"
