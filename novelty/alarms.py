@@ -95,11 +95,12 @@ class Threshold(Alarm):
     Parameters
     ----------
     threshold : float
-        Novelty above which (strictly) a scan is novel.
+        Novelty above which (strictly) a scan is novel; ``inf`` raises no alarm.
     """
 
     def __init__(self, threshold: float):
-        _check("Threshold", "threshold", threshold, _REAL)
+        if threshold != math.inf:  # +inf: no score is above it (a threshold too few scans calibrated)
+            _check("Threshold", "threshold", threshold, _REAL)
         self.threshold = float(threshold)
 
     def _step(self, novelty: float) -> bool:

@@ -163,9 +163,9 @@ class NoveltyDetector(OutlierMixin, Component):
         fitted model (PyOD's name; higher = more abnormal). Saved with the model.
     threshold_ : float
         The threshold in force (see above).
-    calibration_scores_ : ndarray of shape (n_calibration,)
-        After :meth:`calibrate`: the novelty of the calibration scans, sorted.
-        Saved with the model.
+    familiar_scores_ : ndarray of shape (n_familiar,)
+        After :meth:`calibrate`: the novelty of the familiar scans it was
+        given, sorted. Saved with the model.
     false_alarm_rate_ : float
         After :meth:`calibrate`: the target rate the threshold was set for.
     calibrated_on_ : str
@@ -202,6 +202,11 @@ class NoveltyDetector(OutlierMixin, Component):
 
     def _finish_fit(self, X: np.ndarray) -> None:
         """Called by :meth:`fit` after the last pass, before ``decision_scores_`` are taken."""
+
+    def _threshold_advice(self) -> str | None:
+        """Why ``threshold_``, not calibrated, would not hold on new scans, and how to calibrate; None
+        where it does (said once, by a :class:`~novelty.conformal.CalibrationWarning`, at first use)."""
+        return None
 
     def _first_novelty(self) -> float:
         """Novelty of a first perception, before anything is learned (parameters are valid)."""
@@ -310,18 +315,18 @@ class NoveltyDetector(OutlierMixin, Component):
             )
 
     def _check_calibration(self) -> None:
-        names = ("calibration_scores_", "false_alarm_rate_", "calibrated_on_")
+        names = ("familiar_scores_", "false_alarm_rate_", "calibrated_on_")
         present = [hasattr(self, name) for name in names]
         if not any(present):
             return
         if not all(present):
             raise StateError(f"{type(self).__name__} holds part of a calibration: {', '.join(names)} come "
                              "together or not at all.")
-        scores = check_array_state(self, "calibration_scores_", 1)
+        scores = check_array_state(self, "familiar_scores_", 1)
         if not scores.size or np.any(np.diff(scores) < 0):
-            raise StateError(f"{type(self).__name__}.calibration_scores_ must hold the novelty of at least one "
+            raise StateError(f"{type(self).__name__}.familiar_scores_ must hold the novelty of at least one "
                              "scan, sorted.")
-        self._check_scores(scores, "calibration_scores_")
+        self._check_scores(scores, "familiar_scores_")
         try:
             check_rate(self.false_alarm_rate_, "a model file")
         except ValueError as exc:
@@ -429,8 +434,9 @@ class NoveltyDetector(OutlierMixin, Component):
     def threshold_(self) -> float:
         """The threshold in force: the calibrated one, else ``threshold`` or the contamination quantile."""
         self._check_fitted()
-        if hasattr(self, "calibration_scores_"):
+        if hasattr(self, "familiar_scores_"):
             return self._calibrated_threshold()
+        self._advise()
         contamination = getattr(self, "contamination", "auto")
         if isinstance(contamination, str):  # "auto"
             return float(self.threshold)
@@ -443,10 +449,18 @@ class NoveltyDetector(OutlierMixin, Component):
             )
         return float(np.quantile(self.decision_scores_, 1.0 - contamination))
 
+    def _advise(self) -> None:
+        advice = self._threshold_advice()
+        if advice is not None and vars(self).get("_advised") != advice:
+            vars(self)["_advised"] = advice  # once a detector and advice (not a state change: not counted)
+            warnings.warn(f"{advice} For a false-alarm rate a on new scans, calibrate on familiar scans the "
+                          f"model did not learn: det.calibrate(X_familiar, false_alarm_rate=a).",
+                          CalibrationWarning, stacklevel=4)
+
     def _calibrated_threshold(self) -> float:
         with warnings.catch_warnings():  # calibrate warned once; threshold_ is read at every predict
             warnings.simplefilter("ignore", CalibrationWarning)
-            return conformal_threshold(self.calibration_scores_, self.false_alarm_rate_)
+            return conformal_threshold(self.familiar_scores_, self.false_alarm_rate_)
 
     @_one_at_a_time
     def calibrate(self, X, false_alarm_rate=0.01, *, learn=False, timestamps=None, source=None):
@@ -463,7 +477,7 @@ class NoveltyDetector(OutlierMixin, Component):
         ``1/a - 1`` scans it is infinite (no alarm) and a
         :class:`~novelty.conformal.CalibrationWarning` says so.
 
-        The calibration (``calibration_scores_``, ``false_alarm_rate_``,
+        The calibration (``familiar_scores_``, ``false_alarm_rate_``,
         ``calibrated_on_``) is saved with the model and wins over ``threshold``
         and ``contamination`` until the next :meth:`fit`.
 
@@ -494,10 +508,13 @@ class NoveltyDetector(OutlierMixin, Component):
             if timestamps is not None:
                 raise ValueError("calibrate takes timestamps only with learn=True: frozen scoring has no clock.")
             scores = self.novelty(X)
-        how = "as learned" if learn else "frozen"
-        described = f"{scores.size} scans, scored {how}"
+        return self._calibrate_on(scores, rate, source, learn)
+
+    def _calibrate_on(self, scores: np.ndarray, rate: float, source: str | None, learned: bool):
+        """Take ``scores`` (the novelty of familiar scans, scored as ``learned`` says) as the calibration."""
+        described = f"{scores.size} scans, scored {'as learned' if learned else 'frozen'}"
         conformal_threshold(scores, rate)  # warns now when too few scans promise the rate
-        self.calibration_scores_ = np.sort(scores)
+        self.familiar_scores_ = np.sort(np.asarray(scores, dtype=np.float64))
         self.false_alarm_rate_ = rate
         self.calibrated_on_ = described if source is None else f"{source} ({described})"
         return self
@@ -508,13 +525,13 @@ class NoveltyDetector(OutlierMixin, Component):
         ``(1 + #{calibration scans at least as novel}) / (n + 1)``; a scan
         raises an alarm exactly where its p-value is at most
         ``false_alarm_rate_``. For scores of a stream, use
-        :func:`novelty.conformal.conformal_p_values` with ``calibration_scores_``.
+        :func:`novelty.conformal.conformal_p_values` with ``familiar_scores_``.
         """
         novelty = self.novelty(X)
-        if not hasattr(self, "calibration_scores_"):
+        if not hasattr(self, "familiar_scores_"):
             raise NotFittedError(f"This {type(self).__name__} is not calibrated; call 'calibrate' with scans "
                                  "of a familiar stretch first.")
-        return conformal_p_values(novelty, self.calibration_scores_)
+        return conformal_p_values(novelty, self.familiar_scores_)
 
     @property
     def labels_(self) -> np.ndarray:

@@ -337,6 +337,20 @@ class HabituatingFilter(NoveltyDetector):
         synapse = self.synapse_ if hasattr(self, "synapse_") else build("synapse", self.synapse)
         return synapse.resting_efficacy
 
+    def _threshold_advice(self) -> str | None:
+        # Measured on the Radish logs (learn the first half, score the familiar scans of the second):
+        # both thresholds below flagged most familiar scans (kmeans-stanley 87-100 %).
+        contamination = self.contamination
+        if not isinstance(contamination, str):
+            return (f"threshold_ is the {1 - contamination:g} quantile of the novelty of the training scans, "
+                    "scored after the synapses habituated to those very scans: new scans of the same place "
+                    f"score higher, and far more than {contamination:g} of them can lie above it.")
+        if self.novelty_rule == "mismatch":
+            return (f"threshold={self.threshold:g} meets a novelty whose mismatch term is measured in the "
+                    "spread of the training scans (the match scale sigma): new scans of a familiar place lie "
+                    "farther from every unit than the training scans did, and most can lie above it.")
+        return None
+
     def _novelty_bounds(self) -> tuple[float, float] | None:
         low, high = self.synapse_.efficacy_range(float(self.stimulus))
         if not (np.isfinite(low) and np.isfinite(high)):

@@ -51,7 +51,7 @@ def test_too_few_scans_give_an_infinite_threshold_and_say_how_many_are_needed():
         conformal_threshold(np.zeros(19), 0.05)                # exactly enough: no warning
 
 
-def test_p_values_count_the_calibration_scores_at_least_as_novel():
+def test_p_values_count_the_familiar_scores_at_least_as_novel():
     scores = [0.1, 0.2, 0.2, 0.4]
     # (1 + #{s >= x}) / 5
     assert conformal_p_values([0.5, 0.4, 0.3, 0.2, 0.0], scores).tolist() == [0.2, 0.4, 0.4, 0.8, 1.0]
@@ -108,17 +108,22 @@ def scans(n, seed):
     return np.random.default_rng(seed).uniform(size=(n, 5))
 
 
+def uncalibrated(state: dict) -> dict:
+    """A detector's state (``_state_arrays``) less its calibration."""
+    calibration = ("familiar_scores_", "value:false_alarm_rate_", "value:calibrated_on_")
+    assert all(k in state for k in calibration)
+    return {k: v for k, v in state.items() if k not in calibration}
+
+
 def test_calibrate_scores_frozen_scans_without_learning_them():
     det = novelty.make("hsom", n_rows=3, n_columns=3).fit(scans(100, 0))
     before = _state_arrays(det)
     det.calibrate(scans(60, 1), false_alarm_rate=0.05, source="a second corridor")
-    assert np.array_equal(det.calibration_scores_, np.sort(det.novelty(scans(60, 1))))
+    assert np.array_equal(det.familiar_scores_, np.sort(det.novelty(scans(60, 1))))
     assert det.threshold_ == conformal_threshold(det.novelty(scans(60, 1)), 0.05)
     assert det.false_alarm_rate_ == 0.05
     assert det.calibrated_on_ == "a second corridor (60 scans, scored frozen)"
-    after = _state_arrays(det)
-    for key in [k for k in after if "calibrat" not in k and "false_alarm" not in k]:
-        assert np.array_equal(before[key], after[key]), key
+    _assert_same_state(before, uncalibrated(_state_arrays(det)), "calibrate(learn=False)")
 
 
 def test_calibrate_while_learning_is_the_stream_of_those_scans():
@@ -126,10 +131,9 @@ def test_calibrate_while_learning_is_the_stream_of_those_scans():
     b = novelty.make("hsom", n_rows=3, n_columns=3).fit(scans(100, 0))
     streamed = b.stream(scans(60, 1))
     a.calibrate(scans(60, 1), false_alarm_rate=0.1, learn=True)
-    assert np.array_equal(a.calibration_scores_, np.sort(streamed))
+    assert np.array_equal(a.familiar_scores_, np.sort(streamed))
     assert a.calibrated_on_ == "60 scans, scored as learned"
-    state = {k: v for k, v in _state_arrays(a).items() if "calibrat" not in k and "false_alarm" not in k}
-    _assert_same_state(_state_arrays(b), state, "calibrate(learn=True) learns as stream does")
+    _assert_same_state(_state_arrays(b), uncalibrated(_state_arrays(a)), "calibrate(learn=True) learns as stream does")
 
 
 def test_the_calibrated_threshold_wins_until_the_next_fit():
@@ -137,9 +141,9 @@ def test_the_calibrated_threshold_wins_until_the_next_fit():
     det.calibrate(scans(40, 1), false_alarm_rate=0.05)
     assert det.threshold_ == conformal_threshold(det.novelty(scans(40, 1)), 0.05)
     det.set_params(threshold=0.2, contamination="auto")
-    assert det.threshold_ == det.calibration_scores_[threshold_rank(40, 0.05) - 1]
+    assert det.threshold_ == det.familiar_scores_[threshold_rank(40, 0.05) - 1]
     det.fit(scans(100, 2))
-    assert not hasattr(det, "calibration_scores_") and det.threshold_ == 0.2
+    assert not hasattr(det, "familiar_scores_") and det.threshold_ == 0.2
 
 
 def test_a_saved_calibration_survives_load(tmp_path):
@@ -153,11 +157,11 @@ def test_a_saved_calibration_survives_load(tmp_path):
 
 def test_a_model_file_with_a_damaged_calibration_is_refused(tmp_path):
     det = novelty.make("parzen").fit(scans(100, 0)).calibrate(scans(50, 1), 0.05)
-    for name, value in [("false_alarm_rate_", 1.5), ("calibration_scores_", det.calibration_scores_[::-1].copy()),
+    for name, value in [("false_alarm_rate_", 1.5), ("familiar_scores_", det.familiar_scores_[::-1].copy()),
                         ("calibrated_on_", 3)]:
         bad = novelty.make("parzen").fit(scans(100, 0)).calibrate(scans(50, 1), 0.05)
         setattr(bad, name, value)
-        with pytest.raises(StateError, match=name.rstrip("_") if name != "calibration_scores_" else "sorted"):
+        with pytest.raises(StateError, match=name.rstrip("_") if name != "familiar_scores_" else "sorted"):
             bad._check_state()
     del det.calibrated_on_
     with pytest.raises(StateError, match="together or not at all"):
@@ -187,3 +191,29 @@ def test_too_few_calibration_scans_warn_and_raise_no_alarm():
     with pytest.warns(CalibrationWarning, match="at least 99 scans"):
         det.calibrate(scans(20, 1), false_alarm_rate=0.01)
     assert det.threshold_ == math.inf and not np.any(det.predict(scans(50, 2) * 5) == -1)
+
+
+@pytest.mark.parametrize("name, params, says", [
+    ("kmeans-stanley", {}, "threshold=0.5 meets a novelty whose mismatch term"),
+    ("hsom", {"contamination": 0.05}, "the 0.95 quantile of the novelty of the training scans, scored after"),
+    ("parzen", {"contamination": 0.1}, "scored with themselves in the model"),
+    ("nearest-memory", {"contamination": 0.1}, "scored with themselves in the model"),
+])
+def test_a_threshold_that_does_not_carry_over_says_how_to_calibrate_once(name, params, says):
+    det = novelty.make(name, **params).fit(scans(120, 0))
+    with pytest.warns(CalibrationWarning, match=says) as caught:
+        det.predict(scans(20, 1))
+        det.predict(scans(20, 2))
+    assert len(caught) == 1 and "det.calibrate(X_familiar, false_alarm_rate=a)" in str(caught[0].message)
+    det.calibrate(scans(40, 3), 0.1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        det.predict(scans(20, 1))
+
+
+@pytest.mark.parametrize("name", ["hsom", "parzen", "nearest-memory", "isolation-forest", "gwr-explore"])
+def test_thresholds_that_carry_over_say_nothing(name):
+    det = novelty.make(name).fit(scans(120, 0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        det.predict(scans(20, 1))

@@ -180,6 +180,9 @@ class CalibratedDetector(NoveltyDetector):
     """
 
     supports_online = False
+    #: whether a training scan's own raw score is biased by the scan itself (a density's own
+    #: kernel, a memory's distance 0), so that :meth:`_reference_raw` scores it without it
+    _scores_itself = False
 
     # ------------------------------------------------------------- to implement
     @abstractmethod
@@ -223,6 +226,17 @@ class CalibratedDetector(NoveltyDetector):
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         return self._scale(self._finite_raw(self._raw(X)))
+
+    def _threshold_advice(self) -> str | None:
+        # The scale's reference scores each training scan without itself; a contamination
+        # quantile, as scikit-learn and PyOD define it, is of the training scans scored with it.
+        contamination = getattr(self, "contamination", "auto")
+        if not self._scores_itself or isinstance(contamination, str):
+            return None
+        return (f"threshold_ is the {1 - contamination:g} quantile of the novelty of the training scans scored "
+                f"with themselves in the model, which they match as no new scan does: far more than "
+                f"{contamination:g} of new scans of the same place can lie above it (the default threshold, "
+                f"{self.threshold:g} on a scale calibrated without them, carries over).")
 
     def _finite_raw(self, raw: np.ndarray) -> np.ndarray:
         # The scale maps NaN to a finite value, so a damaged model would pass unnoticed.

@@ -94,6 +94,7 @@ class NearestMemory(CalibratedDetector):
     """
 
     supports_online = True
+    _scores_itself = True  # distance 0 to itself in memory: the scale takes each before it was learned
 
     _parameter_rules = {
         "exclude_recent": Interval(numbers.Integral, 0, None),

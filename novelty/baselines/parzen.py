@@ -96,6 +96,7 @@ class ParzenDetector(CalibratedDetector):
     True
     """
 
+    _scores_itself = True  # a training scan's own kernel: leave-one-out for the scale
     _parameter_rules = {
         # h^2 and the squared distances of scans of norm up to 1e100 over h^2 stay finite floats
         "bandwidth": (Options(("scott", "silverman")), Interval(numbers.Real, 1e-50, 1e150)),

@@ -381,6 +381,7 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
         ``threshold_`` from the scores of :meth:`fit` instead of ``threshold``.
     """
 
+    _scores_itself = True  # its own neighbour: the scale takes the training factors
     _parameter_rules = {
         "n_neighbors": Interval(numbers.Integral, 1, None),
         "metric": Instance((str,), "a metric name"),

@@ -125,11 +125,14 @@ def alarms(det, novelty: np.ndarray) -> np.ndarray | None:
     return (np.asarray(novelty) > threshold).astype(np.int8)
 
 
-def write_novelty(path, novelty: np.ndarray, data, alarm: np.ndarray | None = None) -> None:
-    """One row a scan: ``scan, novelty, alarm`` and the carried columns; ``-`` or ``None`` is stdout."""
+def write_novelty(path, novelty: np.ndarray, data, alarm: np.ndarray | None = None,
+                  extra: dict | None = None) -> None:
+    """One row a scan: ``scan, novelty, alarm``, the ``extra`` columns (``p_value``) and the carried
+    columns; ``-`` or ``None`` is stdout."""
     columns = {"scan": np.arange(novelty.size), "novelty": novelty}
     if alarm is not None:
         columns["alarm"] = alarm
+    columns.update(extra or {})
     columns.update(carried_columns(data))
     if path not in (None, "-") and Path(path).suffix.lower() == ".npz":
         with open(path, "wb") as fh:
@@ -151,7 +154,10 @@ def _write_rows(fh, columns: dict, n: int) -> None:
 
 
 def format_cell(value, exact: bool = False) -> str:
-    """A value as CSV text: floats to 10 digits, or exactly (timestamps: every digit counts)."""
+    """A value as CSV text: floats to 10 digits, or exactly (timestamps: every digit counts); NaN, a value
+    not known when the row was written (an alarm before its threshold was calibrated), as an empty cell."""
     if isinstance(value, (float, np.floating)):
+        if value != value:
+            return ""
         return repr(float(value)) if exact else f"{float(value):.10g}"
     return str(value.item() if hasattr(value, "item") else value)

@@ -12,8 +12,8 @@ import numpy as np
 from .._atomic import write_atomically
 from ._common import UserError, format_cell
 
-__all__ = ["add_recording_options", "recording_rings", "recording_points", "pose_columns", "RowSink",
-           "POINTS_SECTORS"]
+__all__ = ["add_recording_options", "check_recording_options", "recording_scans", "recording_rings",
+           "recording_points", "pose_columns", "RowSink", "POINTS_SECTORS"]
 
 #: the points input's sectors unless --sectors says: the habituating maps were measured on lasers with
 #: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
@@ -61,6 +61,21 @@ def add_recording_options(parser) -> None:
     group.add_argument("--limits", metavar="LOW,HIGH",
                        help="the span cut into sectors, degrees from the front (default: the whole scan; all "
                        "round from the front for a scan all round)")
+
+
+def check_recording_options(args) -> None:
+    """Refuse the options of a scan file that a recording does not take."""
+    if getattr(args, "passes", 1) != 1 or args.bin_length is not None or args.columns or args.preprocess != "none":
+        raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
+                        "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
+
+
+def recording_scans(args, det, report=None):
+    """``(time, x, pose)`` for each scan of the recording ``--data`` as ``det`` reads it: the points input
+    for a detector that reads the robot's pose with each scan (the habituating maps), else the ring."""
+    if getattr(det, "input_layout", None) == "points":
+        return recording_points(args, report)
+    return recording_rings(args, report)
 
 
 def _reduce(text: str):
@@ -158,8 +173,8 @@ def recording_points(args, report=None):
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
     if without and not scored:
-        raise UserError(f"{args.detector} reads the robot's pose with each scan; none of the {without} scans of "
-                        f"{args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
+        raise UserError(f"{getattr(args, 'detector', 'The model')} reads the robot's pose with each scan; none of "
+                        f"the {without} scans of {args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
                         "a CARMEN log).")
     if without and report is not None:
         report.notes.append(f"{without} scans before the first pose left out (the points input places each "

@@ -12,7 +12,8 @@ from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
     write_novelty
-from .recording import RowSink, add_recording_options, pose_columns, recording_points, recording_rings
+from .familiar import StreamCalibration, add_calibration_options, stretch_of
+from .recording import RowSink, add_recording_options, check_recording_options, pose_columns, recording_scans
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 
@@ -75,8 +76,10 @@ def add_parser(subparsers):
     parser.add_argument("--save", metavar="MODEL", help="save the trained detector here (.npz model file)")
     parser.add_argument("--alarm", metavar="POLICY",
                         help="when the alarm column is 1: " + ", ".join(ALARM_FORMS) + " (T defaults to the "
-                        "detector's threshold; k-of-n: K of the last N scans above T; hysteresis: raised "
-                        "above HIGH until below LOW). Default: threshold")
+                        "detector's threshold, or the calibrated one; k-of-n: K of the last N scans above T; "
+                        "hysteresis: raised above HIGH until below LOW). Default: threshold")
+    add_calibration_options(parser, "each of its scans scored as the run scores it, before it is learned; "
+                            "rows before the stretch ends have no alarm yet")
     return parser
 
 
@@ -90,19 +93,48 @@ def run(args) -> int:
     if args.save:
         check_target(args.save)  # a device or a pipe is refused before the scans are read
     det = check_detector(DetectorSpec(args.detector, parse_params(args.param)))
-    alarm = _alarm_policy(det, args.alarm)
+    calibration = _calibration(det, args)
+    alarm = _alarm_policy(det, args.alarm) if calibration is None else calibration
     if args.data == "-":
         n = _run_stream(det, args, alarm)
     elif _is_recording(args.data):
         n = _run_recording(det, args, alarm)
     else:
         n = _run_file(det, args, alarm)
+    if calibration is not None:
+        calibration.finish()  # a stretch that runs to the end of --data
     if args.save:
         det.save(args.save)
     if args.out not in (None, "-"):
         print(f"Wrote the novelty of {n} scans to {args.out}"
               + (f"; model saved to {args.save}" if args.save else "") + ".", file=sys.stderr)
     return 0
+
+
+def _calibration(det, args) -> StreamCalibration | None:
+    """The --calibrate stretch of --data, calibrated as the stream passes it; None without it."""
+    stretch = stretch_of(args)
+    if stretch is None:
+        return None
+    if stretch.path is not None:
+        raise UserError(f"novelty run calibrates on a stretch of --data (A:B seconds or rows:I:J), scored as it "
+                        f"learns; to calibrate a saved model on {stretch.path} without learning it: novelty score "
+                        f"--model MODEL --data {stretch.path} --calibrate {stretch.path} --save MODEL.")
+    if not getattr(det, "supports_online", True):
+        raise UserError(f"{args.detector} learns in batch only: fitted on every scan of --data, it would be "
+                        "calibrated on scans it learned. Save it (--save) and calibrate it with novelty score on "
+                        "scans it did not learn.")
+    return StreamCalibration(det, stretch, args.false_alarm_rate, stretch.describe(args.data), args.alarm,
+                             "novelty run")
+
+
+def _row_alarm(alarm, index: int, time, novelty: float) -> dict:
+    """The alarm columns of one streamed scan: none, the --alarm policy's, or the calibration's."""
+    if alarm is None:
+        return {}
+    if isinstance(alarm, StreamCalibration):
+        return alarm.row(index, time, novelty)
+    return {"alarm": int(alarm.update(novelty))}
 
 
 def _alarm_policy(det, spec: str | None) -> Alarm | None:
@@ -118,7 +150,7 @@ def _alarm_policy(det, spec: str | None) -> Alarm | None:
         raise UserError(f"--alarm: {exc}") from None
 
 
-def _run_file(det, args, alarm: Alarm | None) -> int:
+def _run_file(det, args, alarm: Alarm | StreamCalibration | None) -> int:
     data = read_scans(args)
     timestamps = data.columns.get("time")
     if getattr(det, "supports_online", True):
@@ -129,7 +161,14 @@ def _run_file(det, args, alarm: Alarm | None) -> int:
         print(f"novelty run: {args.detector} learns in batch only: fitted on all the scans, then scored.",
               file=sys.stderr)
         novelty = det.fit(data.X).novelty(data.X)
-    write_novelty(args.out, novelty, data, None if alarm is None else alarm.run(novelty).astype(np.int8))
+    if isinstance(alarm, StreamCalibration):
+        time = None if timestamps is None else np.asarray(timestamps, dtype=np.float64)
+        rows = [alarm.row(i, None if time is None else time[i], float(v)) for i, v in enumerate(novelty)]
+        alarm.finish()
+        write_novelty(args.out, novelty, data, np.array([r["alarm"] for r in rows], dtype=np.float64),
+                      extra={"p_value": np.array([r["p_value"] for r in rows], dtype=np.float64)})
+    else:
+        write_novelty(args.out, novelty, data, None if alarm is None else alarm.run(novelty).astype(np.int8))
     return len(data)
 
 
@@ -140,27 +179,21 @@ def _is_recording(path: str) -> bool:
     return is_recording(path)
 
 
-def _run_recording(det, args, alarm: Alarm | None) -> int:
+def _run_recording(det, args, alarm: Alarm | StreamCalibration | None) -> int:
     """Score and learn a recording's rings as they are read, writing each ring's row at once."""
     # deferred: the readers are loaded only for a recording
     from ..io.report import ReadReport
 
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")
-    if args.passes != 1 or args.bin_length is not None or args.columns or args.preprocess != "none":
-        raise UserError("A recording is read as it streams: no --passes, --bin-length, --columns or "
-                        "--preprocess (its rings are preprocessed as the paper's; --range-threshold sets T).")
+    check_recording_options(args)
     report = ReadReport()
-    # a detector that reads the robot's pose with each scan (the habituating maps) gets the points input
-    read = recording_points if getattr(det, "input_layout", None) == "points" else recording_rings
     with RowSink(args.out, pose=args.pose_topic is not None) as sink:
         try:
-            for n, (time, x, pose) in enumerate(read(args, report)):
+            for n, (time, x, pose) in enumerate(recording_scans(args, det, report)):
                 sink.pose = sink.pose or report.has_poses   # known once the reading has begun
                 novelty = det.score_learn_one(x, time if args.stamps else None)
-                row = {"scan": n, "novelty": novelty}
-                if alarm is not None:
-                    row["alarm"] = int(alarm.update(novelty))
+                row = {"scan": n, "novelty": novelty, **_row_alarm(alarm, n, time, novelty)}
                 sink.write({**row, "time": time, **pose_columns(pose)})
         except (UserError, ValueError, OSError) as exc:
             if not sink.rows:
@@ -176,7 +209,7 @@ def _run_recording(det, args, alarm: Alarm | None) -> int:
     return sink.rows
 
 
-def _run_stream(det, args, alarm: Alarm | None) -> int:
+def _run_stream(det, args, alarm: Alarm | StreamCalibration | None) -> int:
     """Score and learn standard input a line at a time, writing each scan's row at once."""
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot score a stream (--data -).")
@@ -190,9 +223,7 @@ def _run_stream(det, args, alarm: Alarm | None) -> int:
     n = 0
     for x, extras in scans:
         novelty = det.score_learn_one(x, extras.get("time"))
-        row = {"scan": n, "novelty": novelty}
-        if alarm is not None:
-            row["alarm"] = int(alarm.update(novelty))
+        row = {"scan": n, "novelty": novelty, **_row_alarm(alarm, n, extras.get("time"), novelty)}
         row.update(extras)
         if writer is None:
             writer = csv.DictWriter(sys.stdout, fieldnames=list(row), lineterminator="\n")

@@ -111,7 +111,7 @@ def check_detector_calibrate(d: NoveltyDetector) -> None:
     det.calibrate(X[80:], false_alarm_rate=0.1, source="the checks' rows")
     familiar = det.novelty(X[80:])
     assert det.threshold_ == conformal_threshold(familiar, 0.1), "threshold_ is the conformal threshold"
-    assert det.calibration_scores_.size == X.shape[0] - 80 and det.false_alarm_rate_ == 0.1
+    assert det.familiar_scores_.size == X.shape[0] - 80 and det.false_alarm_rate_ == 0.1
     p = det.p_values(X)
     assert np.array_equal(p, conformal_p_values(det.novelty(X), familiar))
     assert np.array_equal(det.predict(X) == -1, p <= 0.1), "an alarm exactly where p <= the rate"
@@ -122,4 +122,4 @@ def check_detector_calibrate(d: NoveltyDetector) -> None:
     assert back.threshold_ == det.threshold_ and back.calibrated_on_ == det.calibrated_on_, \
         "a loaded model keeps its calibration"
     det.fit(X[:80])
-    assert not hasattr(det, "calibration_scores_"), "a refit is a new model: uncalibrated"
+    assert not hasattr(det, "familiar_scores_"), "a refit is a new model: uncalibrated"
