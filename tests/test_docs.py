@@ -9,8 +9,11 @@ is a file of the page: it is written into the folder before the page's other
 blocks run, so they can import it. A block that cannot run (a long benchmark, a
 fragment of a configuration file, a live sensor) says so in an HTML comment on
 the line before it, ``<!-- not run: the reason -->``, and is listed here with
-its reason. The site itself (``docs/conf.py``) is built with warnings as errors
-by CI.
+its reason. A block that reads a data set says which, ``<!-- reads
+radish-carmen-logs/intel-corrected.log.gz from $NOVELTY_DATA_DIR -->``: it runs
+with ``NOVELTY_DATA_DIR`` naming the folder that holds it (as the tests find the
+shared data sets), and is skipped, saying why, where the data are not. The site
+itself (``docs/conf.py``) is built with warnings as errors by CI.
 
 What a block prints is compared with what the page says it prints
 (``tests/printed.py`` gives the forms and the tolerance): a ``print`` line's
@@ -37,9 +40,10 @@ PAGES = [ROOT / "README.md", DOCS / "index.md", *sorted((DOCS / "guide").rglob("
 #: a fenced block, with the HTML comment on the line before it, if any
 FENCE = re.compile(r"(?:^<!-- (?P<note>[^\n]*?) -->\n(?:\n)?)?^```(?P<lang>[^\n`]*)\n(?P<code>.*?)^```\s*$",
                    flags=re.S | re.M)
-#: the notes a block can carry: why it is not run, why its output is not checked, or that it is the
-#: output of the block before it
-NOTE = re.compile(r"(?P<kind>not run|output not checked): (?P<reason>.*)|(?P<output>printed by the block above)")
+#: the notes a block can carry: why it is not run, why its output is not checked, that it is the
+#: output of the block before it, or the data set it reads
+NOTE = re.compile(r"(?P<kind>not run|output not checked): (?P<reason>.*)|(?P<output>printed by the block above)"
+                  r"|reads (?P<reads>\S+) from \$NOVELTY_DATA_DIR")
 RUNNABLE = {"python", "bash"}
 FILE_BLOCK = re.compile(r"# ([\w-]+\.py)\n")
 
@@ -60,6 +64,7 @@ def blocks(page: Path) -> list[dict]:
             continue
         kind = note["kind"] if note else None
         found.append({"page": page, "index": len(found), "lang": m["lang"].strip(), "code": m["code"],
+                      "reads": note["reads"] if note else None,
                       "reason": note["reason"] if kind == "not run" else None,
                       "unchecked": note["reason"] if kind == "output not checked" else None, "printed": None})
     return found
@@ -113,6 +118,14 @@ def folder(tmp_path):
     return tmp_path, env
 
 
+def data_folder(wanted: str) -> Path | None:
+    """The folder holding the data file ``wanted`` (relative): ``$NOVELTY_DATA_DIR``, or the shared data sets
+    beside the repository (a level further up for a checkout in a sub-folder)."""
+    candidates = [Path(os.environ["NOVELTY_DATA_DIR"])] if os.environ.get("NOVELTY_DATA_DIR") else []
+    candidates += [ROOT.parent / "shared" / "datasets", ROOT.parent.parent / "shared" / "datasets"]
+    return next((c for c in candidates if (c / wanted).is_file()), None)
+
+
 def run_block(block: dict, where: Path, env: dict) -> subprocess.CompletedProcess:
     """Run ``block`` in ``where``; a Python block's prints are recorded by line (``done.said``)."""
     for other in blocks(block["page"]):  # the page's files, importable by its blocks
@@ -148,6 +161,12 @@ def output_problems(block: dict, done: subprocess.CompletedProcess) -> list[str]
 @pytest.mark.parametrize("block", RUN, ids=block_id)
 def test_block_runs_as_written_and_prints_what_it_says(block, folder):
     where, env = folder
+    if block["reads"] is not None:
+        found = data_folder(block["reads"])
+        if found is None:
+            pytest.skip(f"{block_id(block)} reads {block['reads']}, which is not on this machine "
+                        "($NOVELTY_DATA_DIR, or shared/datasets beside the repository)")
+        env = {**env, "NOVELTY_DATA_DIR": str(found)}
     done = run_block(block, where, env)
     assert done.returncode == 0, f"{block_id(block)} failed:\n{block['code']}\n--- stderr:\n{done.stderr[-3000:]}"
     problems = output_problems(block, done)
