@@ -77,6 +77,11 @@ class Alarm(ABC):
     def reset(self) -> None:
         """Forget the stream: the alarm is clear and has seen nothing."""
 
+    @property
+    @abstractmethod
+    def level(self) -> float:
+        """The novelty a scan must be above to count towards raising the alarm (for plots and outputs)."""
+
     def update(self, novelty: float) -> bool:
         """Take the novelty of the next scan; return whether the alarm is raised now."""
         if isinstance(novelty, bool) or not isinstance(novelty, numbers.Real) or math.isnan(novelty):
@@ -108,6 +113,10 @@ class Threshold(Alarm):
 
     def reset(self) -> None:
         """A single threshold has no memory."""
+
+    @property
+    def level(self) -> float:
+        return self.threshold
 
     def __repr__(self) -> str:
         return f"Threshold({self.threshold!r})"
@@ -151,6 +160,10 @@ class KOfN(Alarm):
         self._count = 0
         self.of.reset()
 
+    @property
+    def level(self) -> float:
+        return self.of.level
+
     def __repr__(self) -> str:
         return f"KOfN({self.k}, {self.n}, {self.of!r})"
 
@@ -184,6 +197,10 @@ class Hysteresis(Alarm):
     def reset(self) -> None:
         """Clear the alarm."""
         self._raised = False
+
+    @property
+    def level(self) -> float:
+        return self.high
 
     def __repr__(self) -> str:
         return f"Hysteresis(high={self.high!r}, low={self.low!r})"

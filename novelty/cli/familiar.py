@@ -155,8 +155,8 @@ def p_values(det, novelty) -> np.ndarray | None:
 class StreamCalibration:
     """Calibrates a learning detector on a stretch of ``--data`` as the stream passes it, scan by scan.
 
-    :meth:`row` gives each scan's ``alarm`` and ``p_value``: NaN (an empty
-    cell) until the stretch has passed (the threshold is not known when those
+    :meth:`row` gives each scan's ``alarm``, ``threshold`` and ``p_value``: NaN (an
+    empty cell) until the stretch has passed (the threshold is not known when those
     rows are written), then the calibrated threshold's (through the ``--alarm``
     policy).
     """
@@ -177,8 +177,8 @@ class StreamCalibration:
         if self.alarm is None:
             if self.stretch.holds(index, elapsed):
                 self.scores.append(novelty)
-            return {"alarm": math.nan, "p_value": math.nan}
-        return {"alarm": int(self.alarm.update(novelty)),
+            return {"alarm": math.nan, "threshold": math.nan, "p_value": math.nan}
+        return {"alarm": int(self.alarm.update(novelty)), "threshold": self.alarm.level,
                 "p_value": float(conformal_p_values([novelty], self.det.familiar_scores_)[0])}
 
     def finish(self) -> None:

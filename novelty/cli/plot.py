@@ -14,11 +14,14 @@ from ._common import UserError, add_command
 DESCRIPTION = """Plot the novelty along the route.
 
 RESULTS is either the output folder of 'novelty bench' (or its results.jsonl
-or results.csv): one panel a detector, for one task and seed, with the novel
-scans shaded and the alarm threshold dashed; or the output of 'novelty run' /
-'novelty score' (.csv or .npz with a 'novelty' column, and optionally
-'distance', 'y' (1 for a novel scan), 'alarm' and 'run'): the novelty along
-the route, each alarm marked and each run's start drawn. A recording's output
+or results.csv), of either protocol: one panel a detector, for one task and
+seed, with the novel scans (hold-out) or the tracked features' scans
+(exploration) marked and the alarm threshold dashed; or the output of 'novelty
+run' / 'novelty score' (.csv or .npz with a 'novelty' column, and optionally
+'distance', 'y' (1 for a novel scan), 'alarm', 'threshold' and 'run'): the
+novelty along the route, each run's start drawn. The stretches of scans on
+which an alarm was raised are a band along the top of each panel, and the
+legend goes below the panels, where it covers nothing. A recording's output
 (columns 'x' and 'y': the robot's position) is drawn on the robot's path
 too; a file with 'x' but no 'y' has no path, and is drawn along the scans."""
 
@@ -26,6 +29,7 @@ EXAMPLES = [
     "novelty plot novelty.csv --out route.png",
     "novelty run hsom --data intel-corrected.log.gz --out intel.csv && novelty plot intel.csv --out path.png",
     "novelty plot results/quick --task inspection-easy --seed 0 --out easy.png",
+    "novelty plot results/explore --task exploration-open-door --out door.png",
 ]
 
 
@@ -64,7 +68,7 @@ def _bench_folder(path: Path) -> Path | None:
 
 
 #: the columns of a run's output that a plot reads
-_COLUMNS = ("novelty", "distance", "y", "x", "alarm", "run")
+_COLUMNS = ("novelty", "distance", "y", "x", "alarm", "threshold", "run")
 
 
 def _read_run_output(path: Path) -> dict:
@@ -97,6 +101,7 @@ def _read_run_output(path: Path) -> dict:
 
 def _plot_bench(folder: Path, args):
     # deferred: plotting imports matplotlib; `novelty --help` does not
+    from ..bench.exploration.plots import exploration_route_figure
     from ..bench.reports.route import route_figure
     from ..bench.results import ResultsStore
 
@@ -124,36 +129,35 @@ def _plot_bench(folder: Path, args):
         if a is None:
             raise UserError(f"The per-scan novelty of {row['detector']} is missing from {folder}/cells.")
         panels.append((row["detector"], a))
+    if all(row.get("policy") for row in rows):   # the exploration protocol: every scan, in order
+        arrays = dict(zip((row["cell_id"] for row in rows), (a for _, a in panels)))
+        return exploration_route_figure(task, {row["detector"]: [row] for row in rows}, arrays.get)
     return route_figure(f"{task}, seed {seed}: novelty of the test scans", panels)
 
 
 def _plot_path(data: dict, path: Path, plt):
     """The robot's path coloured by novelty, and the novelty scan by scan below it; alarms on both."""
     # deferred: plotting imports matplotlib; `novelty --help` does not
-    from ..bench.reports.route import ALARM, plot_route
+    from ..bench.reports.route import plot_route, route_legend
     from ..io.plotting import plot_path
 
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8.4), gridspec_kw={"height_ratios": [3, 1]})
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 9), gridspec_kw={"height_ratios": [3, 1]},
+                                      layout="constrained")
     placed = ~np.isnan(data["x"]) & ~np.isnan(data["position_y"])
     high = max(1.0, float(np.nanmax(data["novelty"])))
     plot_path(top, data["x"][placed], data["position_y"][placed], data["novelty"][placed], vmax=high)
+    top.get_legend().remove()   # one legend for the figure, below it
     alarm = data.get("alarm")
     if alarm is not None and np.any(alarm[placed] == 1):
         raised = placed & (alarm == 1)
         top.scatter(data["x"][raised], data["position_y"][raised], s=30, facecolors="none",
-                    edgecolors="darkred", linewidths=0.8, zorder=4, label=ALARM)
-    top.legend(fontsize=7, loc="best")
+                    edgecolors="darkred", linewidths=0.8, zorder=4, label="alarm raised (on the path)")
     top.set_title(f"{path.name}: novelty on the robot's path", fontsize=10)
-    along = plot_route(bottom, data["novelty"], None, None, run=data.get("run"),
-                       alarm=None if alarm is None else alarm == 1)
+    along = plot_route(bottom, data["novelty"], None, None, data.get("threshold"), run=data.get("run"),
+                       alarm=alarm)
     bottom.set(xlabel=along, ylabel="novelty")
-    _legend_if_any(bottom)
+    route_legend(fig, [top, bottom])
     return fig
-
-
-def _legend_if_any(ax) -> None:
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7, loc="upper right", ncols=2)
 
 
 def run(args) -> int:
@@ -179,18 +183,17 @@ def _plot(path: Path, args, plt) -> int:
     elif path.is_dir():
         raise UserError(f"{path} is not a benchmark output folder (no results.jsonl).")
     else:
-        from ..bench.reports.route import plot_route
+        from ..bench.reports.route import plot_route, route_legend
 
         data = _read_run_output(path)
         if "x" in data:
             fig = _plot_path(data, path, plt)
         else:
-            fig, ax = plt.subplots(figsize=(9, 3.2))
-            alarm = data.get("alarm")
-            along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"), run=data.get("run"),
-                               alarm=None if alarm is None else alarm == 1)
+            fig, ax = plt.subplots(figsize=(9, 3.6), layout="constrained")
+            along = plot_route(ax, data["novelty"], data.get("y"), data.get("distance"), data.get("threshold"),
+                               run=data.get("run"), alarm=data.get("alarm"))
             ax.set(xlabel=along, ylabel="novelty", title=path.name)
-            _legend_if_any(ax)
+            route_legend(fig, [ax])
     if fig.get_layout_engine() is None:  # the bench figure is laid out as it is drawn
         fig.tight_layout()
     fig.savefig(args.out, dpi=110)

@@ -25,7 +25,7 @@ raised (k of the last n scans, hysteresis). Scans are rows of a CSV
 sensors, and columns named y/label, distance, run, time are carried to the
 output, not used as sensors (a time column gives the synapses real elapsed
 time; with --passes, each pass starts one typical step after the previous
-ended). Writes one row a scan (scan, novelty, alarm, ...) to --out (CSV, or
+ended). Writes one row a scan (scan, novelty, alarm, threshold, ...) to --out (CSV, or
 .npz by extension; default: standard output). A batch-only detector is
 fitted on all the scans, then scores them.
 
@@ -39,7 +39,7 @@ fragments assembled into a whole revolution, its beams placed through its
 mount in the tf tree or --mount, several lasers merged) reduced to --sectors
 sectors seen from the robot's centre (or each ring of sonar Range readings),
 preprocessed as the paper's (1 - min(r, T) / T), scored, learned, and its
-row (scan, novelty, alarm, time, x, y, theta: the base frame's pose at the
+row (scan, novelty, alarm, threshold, time, x, y, theta: the base frame's pose at the
 scan's time) written and flushed at once. A detector that reads the robot's
 pose with each scan (map-explore, habituating-map) gets the points input
 instead: the pose, each sector's nearness and its end point in the world,
@@ -134,7 +134,7 @@ def _row_alarm(alarm, index: int, time, novelty: float) -> dict:
         return {}
     if isinstance(alarm, StreamCalibration):
         return alarm.row(index, time, novelty)
-    return {"alarm": int(alarm.update(novelty))}
+    return {"alarm": int(alarm.update(novelty)), "threshold": alarm.level}
 
 
 def _alarm_policy(det, spec: str | None) -> Alarm | None:
@@ -166,9 +166,12 @@ def _run_file(det, args, alarm: Alarm | StreamCalibration | None) -> int:
         rows = [alarm.row(i, None if time is None else time[i], float(v)) for i, v in enumerate(novelty)]
         alarm.finish()
         write_novelty(args.out, novelty, data, np.array([r["alarm"] for r in rows], dtype=np.float64),
-                      extra={"p_value": np.array([r["p_value"] for r in rows], dtype=np.float64)})
+                      extra={k: np.array([r[k] for r in rows], dtype=np.float64) for k in ("threshold", "p_value")})
+    elif alarm is None:
+        write_novelty(args.out, novelty, data)
     else:
-        write_novelty(args.out, novelty, data, None if alarm is None else alarm.run(novelty).astype(np.int8))
+        write_novelty(args.out, novelty, data, alarm.run(novelty).astype(np.int8),
+                      extra={"threshold": np.full(novelty.size, alarm.level)})
     return len(data)
 
 

@@ -20,9 +20,9 @@ The model is a file written by 'novelty run --save' or detector.save(path).
 Scans are read as 'novelty run' reads them: a CSV or .npz file (the same
 column options), or a robot recording (a CARMEN log, .log or .log.gz; a ROS
 bag, .bag, .db3 or .mcap; the same recording options). The output is one row
-a scan: scan, novelty, alarm (novelty above the model's threshold), p_value
-when the model is calibrated, and the carried columns (a recording's time and
-pose).
+a scan: scan, novelty, alarm (novelty above the model's threshold), threshold,
+p_value when the model is calibrated, and the carried columns (a recording's
+time and pose).
 
 For alarms at a stated rate, --calibrate names a stretch the robot knows
 (seconds or rows of --data, or a recording of its own) and --false-alarm-rate
@@ -102,8 +102,9 @@ def _score_file(det, args, stretch) -> int:
         say_calibration(det, "novelty score")
     threshold = threshold_in_force(det, "novelty score")
     alarm = None if threshold is None else (novelty > threshold).astype(np.int8)
+    extra = {} if threshold is None else {"threshold": np.full(novelty.size, threshold)}
     p = p_values(det, novelty)
-    write_novelty(args.out, novelty, data, alarm, extra={} if p is None else {"p_value": p})
+    write_novelty(args.out, novelty, data, alarm, extra=extra if p is None else {**extra, "p_value": p})
     return len(data)
 
 
@@ -145,7 +146,7 @@ def _score_recording(det, args, stretch) -> int:
         for n, value in enumerate(novelty):
             row = {"scan": n, "novelty": float(value)}
             if threshold is not None:
-                row["alarm"] = int(value > threshold)
+                row.update(alarm=int(value > threshold), threshold=threshold)
             if p is not None:
                 row["p_value"] = float(p[n])
             sink.write({**row, "time": times[n], **pose_columns(poses[n])})

@@ -39,8 +39,19 @@ def test_runs_and_alarms_of_a_run_output_are_drawn_and_named(tmp_path, monkeypat
     drawn = []
     monkeypatch.setattr(figure.Figure, "savefig", lambda fig, *a, **k: drawn.append(fig))
     assert main(["plot", str(tmp_path / "run.csv"), "--out", str(tmp_path / "run.png")]) == 0
-    names = [t.get_text() for t in drawn[0].axes[0].get_legend().get_texts()]
-    assert names == ["novelty", "alarm raised", "run start"]
+    (legend,) = drawn[0].legends   # below the axes: it covers nothing
+    assert drawn[0].axes[0].get_legend() is None
+    assert [t.get_text() for t in legend.get_texts()] == ["novelty", "alarm raised", "run start"]
+
+
+def test_the_threshold_column_of_a_run_is_drawn(tmp_path, monkeypatch):
+    figure = pytest.importorskip("matplotlib.figure", reason="plots need matplotlib (novelty-habituation[plot])")
+    (tmp_path / "run.csv").write_text("scan,novelty,alarm,threshold\n0,1,,\n1,0.5,,\n2,0.9,1,0.7\n3,0.3,0,0.7\n")
+    drawn = []
+    monkeypatch.setattr(figure.Figure, "savefig", lambda fig, *a, **k: drawn.append(fig))
+    assert main(["plot", str(tmp_path / "run.csv"), "--out", str(tmp_path / "run.png")]) == 0
+    (legend,) = drawn[0].legends
+    assert [t.get_text() for t in legend.get_texts()] == ["novelty", "alarm threshold", "alarm raised"]
 
 
 def test_a_path_names_its_start_and_alarms_and_x_without_y_is_drawn_along_the_scans(tmp_path, monkeypatch,
@@ -50,8 +61,27 @@ def test_a_path_names_its_start_and_alarms_and_x_without_y_is_drawn_along_the_sc
     monkeypatch.setattr(figure.Figure, "savefig", lambda fig, *a, **k: drawn.append(fig))
     (tmp_path / "path.csv").write_text("scan,novelty,alarm,x,y\n0,1,1,0,0\n1,0.5,0,1,2\n")
     assert main(["plot", str(tmp_path / "path.csv"), "--out", str(tmp_path / "path.png")]) == 0
-    assert [t.get_text() for t in drawn[0].axes[0].get_legend().get_texts()] == ["start", "alarm raised"]
+    (legend,) = drawn[0].legends
+    assert [t.get_text() for t in legend.get_texts()] == ["start", "alarm raised (on the path)", "novelty",
+                                                          "alarm raised"]
     (tmp_path / "x.csv").write_text("scan,novelty,x\n0,1,0.5\n1,0.5,0.7\n")
     assert main(["plot", str(tmp_path / "x.csv"), "--out", str(tmp_path / "x.png")]) == 0
     assert "has an 'x' column but no 'y'" in capsys.readouterr().err
     assert drawn[1].axes[0].get_xlabel() == "scan"
+
+
+@pytest.mark.parametrize("protocol, task", [("holdout", "inspection-easy"), ("exploration", "exploration-open-door")])
+def test_every_kind_of_bench_folder_is_plotted(protocol, task, tmp_path, monkeypatch):
+    figure = pytest.importorskip("matplotlib.figure", reason="plots need matplotlib (novelty-habituation[plot])")
+    out = tmp_path / protocol
+    assert main(["bench", "--protocol", protocol, "--detector", "hsom n_rows=3 n_columns=3", "--detector",
+                 "nearest-memory", "--task", f"{task} seed=0", "--seeds", "1", "--out", str(out), "--no-plots",
+                 "--quiet", "--no-memory"]) == 0
+    drawn = []
+    monkeypatch.setattr(figure.Figure, "savefig", lambda fig, *a, **k: drawn.append(fig))
+    assert main(["plot", str(out), "--out", str(tmp_path / "p.png")]) == 0
+    (fig,) = drawn
+    assert [ax.get_title(loc="left").split(" (")[0] for ax in fig.axes] == ["hsom[n_rows=3,n_columns=3]",
+                                                                            "nearest-memory"]
+    (legend,) = fig.legends
+    assert "novelty" in [t.get_text() for t in legend.get_texts()]

@@ -24,10 +24,10 @@ from typing import Callable, Sequence
 import numpy as np
 
 from ..reports.figures import grid, pyplot, save, slug
-from ..reports.route import route_legend
+from ..reports.route import route_legend, shade_alarms
 
-__all__ = ["plot_exploration", "plot_exploration_route", "plot_exposure_curves", "plot_learning_curves",
-           "mean_over_seeds"]
+__all__ = ["plot_exploration", "plot_exploration_route", "exploration_route_figure", "plot_exposure_curves",
+           "plot_learning_curves", "mean_over_seeds"]
 
 
 def _cells(rows: Sequence[dict]) -> dict[str, dict[str, list[dict]]]:
@@ -45,7 +45,13 @@ def _seeds(cells: dict[str, list[dict]]) -> str:
 
 
 def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) -> Path | None:
-    """Novelty along the whole exploration, one panel a detector (lowest seed)."""
+    """Novelty along the whole exploration, one panel a detector (lowest seed), saved in ``out``."""
+    fig = exploration_route_figure(task, cells, arrays)
+    return save(fig, out / f"exploration-route-{slug(task)}.png", tight=False)
+
+
+def exploration_route_figure(task: str, cells: dict, arrays: Callable):
+    """The figure of :func:`plot_exploration_route`: each scan after the warm-up above the threshold an alarm."""
     plt = pyplot()
     first = {d: rows[0] for d, rows in cells.items()}
     seed = min(r["seed"] for r in first.values())
@@ -68,15 +74,19 @@ def plot_exploration_route(task: str, cells: dict, arrays: Callable, out: Path) 
                 ax.text(s + 2, 1.02, str(a["environment"][s]), fontsize=6, transform=ax.get_xaxis_transform())
         ax.axvspan(0, starts[int(a["warmup"])] if int(a["warmup"]) < starts.size else x[-1],
                    color="0.9", zorder=0, label="warm-up runs")
-        if np.isfinite(float(a["threshold"])):
-            ax.axhline(float(a["threshold"]), color="k", linestyle="--", linewidth=0.6,
+        threshold = float(a["threshold"])
+        if np.isfinite(threshold):
+            ax.axhline(threshold, color="k", linestyle="--", linewidth=0.6,
                        label="alarm threshold (from the last warm-up run)")
+            after = x >= (starts[int(a["warmup"])] if int(a["warmup"]) < starts.size else x[-1] + 1)
+            shade_alarms(ax, x, after & (a["novelty"] > threshold))
+            ax.set_ylim(top=max(1.0, float(np.max(a["novelty"]))) * 1.12)
         ax.set_title(f"{detector} (seed {row['seed']})", fontsize=8, loc="left")
         ax.set_ylabel("novelty", fontsize=7)
     axes[-1, 0].set_xlabel("scan (the runs in order)")
     fig.suptitle(f"{task}: novelty of every scan before it is learned, seed {seed}", fontsize=10)
     route_legend(fig, axes[:, 0])
-    return save(fig, out / f"exploration-route-{slug(task)}.png", tight=False)
+    return fig
 
 
 def mean_over_seeds(curves: Sequence[np.ndarray]) -> np.ndarray:

@@ -24,8 +24,21 @@ def test_every_mark_of_a_route_is_named_and_runs_are_drawn_along_the_scans():
     assert along == "scan"  # the distance starts again at scan 3: two runs, drawn one after the other
     starts = [line.get_xdata()[0] for line in ax.lines if line.get_label() == route.RUN_START]
     assert starts == [3]
-    raised = next(c for c in ax.collections if c.get_label() == route.ALARM)
-    assert raised.get_offsets()[:, 0].tolist() == [0, 3]
+    (band,) = [c for c in ax.collections if c.get_label() == route.ALARM]
+    # a span half a scan either side of each alarm (scans 0 and 3), along the top of the axes
+    spans = sorted((p.vertices[:, 0].min(), p.vertices[:, 0].max()) for p in band.get_paths())
+    assert spans == [(-0.5, 0.5), (2.5, 3.5)]
+    assert all(p.vertices[:, 1].min() >= 0.9 for p in band.get_paths())   # in axes height: above the novelty
+    assert ax.get_ylim()[1] * 0.93 >= novelty.max()
+    plt.close(fig)
+
+
+def test_a_threshold_known_from_a_scan_on_is_drawn_from_there():
+    fig, ax = plt.subplots()
+    route.plot_route(ax, [0.2, 0.9, 0.1, 0.8], threshold=[np.nan, np.nan, 0.5, 0.5], alarm=[np.nan, np.nan, 0, 1])
+    (line,) = [line for line in ax.lines if line.get_label() == route.THRESHOLD]
+    assert np.isnan(line.get_ydata()[:2]).all() and line.get_ydata()[2:].tolist() == [0.5, 0.5]
+    assert [c.get_label() for c in ax.collections] == [route.ALARM]
     plt.close(fig)
 
 
@@ -44,6 +57,6 @@ def test_a_route_figure_has_one_legend_naming_each_mark_once():
     fig = route.route_figure("t, seed 0", [("a", cell), ("b", {**cell, "resting": np.array(0.0)})])
     (legend,) = fig.legends
     assert [t.get_text() for t in legend.get_texts()] == [route.NOVEL, route.NOVELTY, route.THRESHOLD,
-                                                          route.RESTING]
+                                                          route.RESTING, route.ALARM]  # scan 1 above 0.5
     assert fig.axes[-1].get_xlabel() == "scan"  # a distance equal to the scan's index is no distance
     plt.close(fig)
