@@ -14,7 +14,7 @@ from ..datasets.files import PREPROCESSING
 from ..registry import RegistryError
 
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
-           "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell"]
+           "write_novelty", "add_command", "add_data_options", "data_options", "check_layout", "format_cell"]
 
 
 class UserError(Exception):
@@ -104,25 +104,33 @@ def read_scans(args):
         raise UserError(str(exc)) from None
 
 
+def check_layout(det, data, who: str) -> None:
+    """Refuse a file whose rows are not the input ``det`` reads, in the command line's words.
+
+    The detectors that read the robot's pose with each scan (the habituating
+    maps) read the ``points`` input; a file says it is one by its columns' names.
+    """
+    # deferred: the columns' names of the points input come with novelty.maps, not needed to start
+    from ..datasets.columns import is_points_file
+
+    if getattr(det, "input_layout", None) != "points":
+        return
+    names = list(data.metadata.get("sensor_columns") or [])
+    if not is_points_file(names):
+        shown = ", ".join(names[:4]) + (", ..." if len(names) > 4 else "")
+        raise UserError(f"{who} reads the robot's pose with each scan (the points input): give --data a recording "
+                        "with poses (a CARMEN log, or a bag with --pose-topic), or a CSV/NPZ file of the points "
+                        "input (columns x, y, heading, near_0.., x_0.., y_0..: novelty.io.objects.points."
+                        f"sweep_points); {data.metadata.get('source', 'the file')} has {len(names)} sensor columns "
+                        f"({shown}).")
+
+
 def carried_columns(data) -> dict:
     """The per-scan values a novelty output carries beside the novelty."""
     columns = {name: getattr(data, name) for name in ("y", "distance", "run") if getattr(data, name) is not None}
     if "time" in data.columns:
         columns["time"] = data.columns["time"]
     return columns
-
-
-def alarms(det, novelty: np.ndarray) -> np.ndarray | None:
-    """1 where the novelty is above the detector's threshold in force (as ``predict`` says -1), else 0.
-
-    That is ``threshold_`` (``threshold``, or what ``contamination`` sets), or
-    ``threshold`` for a detector without ``threshold_``; none, no alarms.
-    """
-    threshold = getattr(det, "threshold_", None) if hasattr(type(det), "threshold_") \
-        else getattr(det, "threshold", None)
-    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
-        return None
-    return (np.asarray(novelty) > threshold).astype(np.int8)
 
 
 def write_novelty(path, novelty: np.ndarray, data, alarm: np.ndarray | None = None,

@@ -174,11 +174,22 @@ def recording_points(args, report=None):
         raise UserError(str(exc)) from None
     if without and not scored:
         raise UserError(f"{getattr(args, 'detector', 'The model')} reads the robot's pose with each scan; none of "
-                        f"the {without} scans of {args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
-                        "a CARMEN log).")
+                        f"the {without} scans of {args.data} had one: give --pose-topic (an Odometry, PoseStamped or "
+                        f"tf topic; ODOM in a CARMEN log){_topics_of(args.data)}.")
     if without and report is not None:
         report.notes.append(f"{without} scans before the first pose left out (the points input places each "
                             "echo in the world by the robot's pose)")
+
+
+def _topics_of(path: str) -> str:
+    """``; its topics: ...`` (each with its type) for a bag, to choose a pose topic from; nothing for a log."""
+    # deferred: the readers are loaded only for a recording
+    from ..io.rosbag import Bag, is_bag
+
+    if not is_bag(path):
+        return ""
+    with Bag(path) as bag:
+        return f"; its topics: {bag.listing()}"
 
 
 def pose_columns(pose) -> dict:

@@ -10,8 +10,8 @@ import numpy as np
 from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
-from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
-    write_novelty
+from ._common import UserError, add_command, add_data_options, check_layout, format_cell, one_line, parse_params, \
+    read_scans, write_novelty
 from .familiar import StreamCalibration, add_calibration_options, stretch_of
 from .recording import RowSink, add_recording_options, check_recording_options, pose_columns, recording_scans
 
@@ -152,6 +152,7 @@ def _alarm_policy(det, spec: str | None) -> Alarm | None:
 
 def _run_file(det, args, alarm: Alarm | StreamCalibration | None) -> int:
     data = read_scans(args)
+    check_layout(det, data, args.detector)
     timestamps = data.columns.get("time")
     if getattr(det, "supports_online", True):
         for i in range(args.passes):

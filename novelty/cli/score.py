@@ -10,7 +10,7 @@ import numpy as np
 
 from .. import load
 from .._atomic import check_target
-from ._common import UserError, add_command, add_data_options, read_scans, write_novelty
+from ._common import UserError, add_command, add_data_options, check_layout, read_scans, write_novelty
 from .familiar import add_calibration_options, p_values, say_calibration, stretch_of, threshold_in_force
 from .recording import RowSink, add_recording_options, check_recording_options, pose_columns, recording_scans
 
@@ -87,6 +87,7 @@ def _is_recording(path: str) -> bool:
 
 def _score_file(det, args, stretch) -> int:
     data = read_scans(args)
+    check_layout(det, data, "The model")
     novelty = det.novelty(data.X)
     if stretch is not None:
         if stretch.path is not None:

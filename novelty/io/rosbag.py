@@ -149,9 +149,13 @@ class Bag:
     def __exit__(self, *exc_info):
         self.close()
 
+    def listing(self) -> str:
+        """Every topic with its type, for messages: ``/odom (nav_msgs/msg/Odometry), /scan (...)``."""
+        return ", ".join(f"{t} ({self.types[t]})" for t in sorted(self.types)) or "none"
+
     def check(self, topics: Sequence[str]) -> None:
         """Refuse (:class:`BagError`) a topic the bag does not hold, or of a type not read here."""
-        listing = ", ".join(f"{t} ({self.types[t]})" for t in sorted(self.types)) or "none"
+        listing = self.listing()
         for topic in topics:
             if topic not in self.types:
                 raise BagError(f"{self.path} has no topic {topic!r}; its topics: {listing}.")

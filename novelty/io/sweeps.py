@@ -156,8 +156,7 @@ def bag_scan_topics(bag: Bag, topic) -> list[str]:
         return topics
     scans = [t for t, kind in bag.types.items() if kind in SCAN_TYPES]
     if len(scans) != 1:
-        listing = ", ".join(f"{t} ({k})" for t, k in bag.types.items()) or "none"
-        raise ValueError(f"Name the scans' topic of {bag.path} (topic=, --topic); its topics: {listing}.")
+        raise ValueError(f"Name the scans' topic of {bag.path} (topic=, --topic); its topics: {bag.listing()}.")
     return scans
 
 

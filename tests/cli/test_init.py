@@ -73,14 +73,14 @@ def test_run_then_score(scans, tmp_path, capsys):
     det = novelty.make("hsom", n_rows=4, alpha=1.2)
     expected = det.stream(X)
     table = np.genfromtxt(out, delimiter=",", names=True)
-    assert table.dtype.names == ("scan", "novelty", "alarm", "distance")
+    assert table.dtype.names == ("scan", "novelty", "alarm", "threshold", "distance")
     np.testing.assert_array_equal(table["alarm"], expected > 0.5)
     np.testing.assert_allclose(table["novelty"], expected, rtol=1e-9)
     np.testing.assert_allclose(table["distance"], np.arange(30) * 0.1)
     capsys.readouterr()
     assert main(["score", "--model", str(model), "--data", str(path)]) == 0
     scored = capsys.readouterr().out.splitlines()
-    assert scored[0] == "scan,novelty,alarm,distance" and len(scored) == 31
+    assert scored[0] == "scan,novelty,alarm,threshold,distance" and len(scored) == 31
     np.testing.assert_allclose([float(line.split(",")[1]) for line in scored[1:]], det.novelty(X), rtol=1e-9)
 
 
@@ -90,7 +90,7 @@ def test_run_reads_npz_and_writes_npz(tmp_path):
     assert main(["run", "habituating", "--data", str(tmp_path / "scans.npz"), "--passes", "2",
                  "--out", str(tmp_path / "out.npz")]) == 0
     with np.load(tmp_path / "out.npz") as out:
-        assert set(out.files) == {"scan", "novelty", "alarm", "y"}
+        assert set(out.files) == {"scan", "novelty", "alarm", "threshold", "y"}
         det = novelty.make("habituating")
         det.stream(X)
         np.testing.assert_allclose(out["novelty"], det.stream(X))
@@ -151,11 +151,11 @@ def test_a_simulated_task_csv_runs_through_a_detector(tmp_path):
     task = novelty.datasets.load("paper-a-to-a-star", seed=1)
     assert main(["run", "hsom", "--data", str(task_csv), "--out", str(out)]) == 0
     rows = out.read_text().splitlines()
-    assert rows[0].split(",")[:4] == ["scan", "novelty", "alarm", "y"] and len(rows) == len(task) + 1
+    assert rows[0].split(",")[:5] == ["scan", "novelty", "alarm", "threshold", "y"] and len(rows) == len(task) + 1
     expected = novelty.make("hsom").stream(task.X)
     got = np.array([float(r.split(",")[1]) for r in rows[1:]])
     np.testing.assert_allclose(got, expected, rtol=0, atol=1e-9)
-    assert [int(float(r.split(",")[3])) for r in rows[1:]] == task.y.tolist()
+    assert [int(float(r.split(",")[4])) for r in rows[1:]] == task.y.tolist()
 
 
 @pytest.mark.parametrize("argv, message", [

@@ -24,7 +24,7 @@ def test_a_carmen_log_streams_with_its_poses(tmp_path, capsys):
     assert main(["run", "hsom", "--data", str(path), "--sectors", "2", "--param", "n_rows=2",
                  "--param", "n_columns=2"]) == 0
     (row,) = table(capsys.readouterr().out)
-    assert list(row) == ["scan", "novelty", "alarm", "time", "x", "y", "theta"]
+    assert list(row) == ["scan", "novelty", "alarm", "threshold", "time", "x", "y", "theta"]
     assert (row["novelty"], row["time"], row["x"], row["theta"]) == ("1", "10.5", "0.5", "0.125")
 
 
@@ -94,7 +94,15 @@ def test_a_map_on_a_recording_without_poses_says_where_poses_come_from(tmp_path,
     assert main(["run", "map-explore", "--data", str(bag)]) == 2
     err = capsys.readouterr().err
     assert "map-explore reads the robot's pose with each scan; none of the 40 scans" in err
-    assert "give --pose-topic" in err
+    assert "give --pose-topic" in err and "its topics: /odom (nav_msgs/msg/Odometry), /scan (" in err
+
+
+def test_a_map_given_a_file_that_is_not_the_points_input_is_told_in_options(tmp_path, capsys):
+    np.savez(tmp_path / "ring.npz", X=np.random.default_rng(0).uniform(size=(10, 16)))
+    assert main(["run", "map-explore", "--data", str(tmp_path / "ring.npz")]) == 2
+    err = capsys.readouterr().err
+    assert "give --data a recording with poses (a CARMEN log, or a bag with --pose-topic)" in err
+    assert "has 16 sensor columns (s0, s1, s2, s3, ...)" in err and "inputs=" not in err
 
 
 def test_a_bag_refuses_a_wrong_topic_naming_what_exists(bag, capsys):

@@ -35,8 +35,8 @@ def test_a_ros_export_is_scored_on_its_ranges_with_its_stamps(tmp_path, capsys):
     assert main(["run", "hsom", "--data", str(path), "--columns", "field.ranges*", "--preprocess", "paper",
                  "--param", "n_rows=3"]) == 0
     table = rows(capsys.readouterr().out)
-    assert table[0] == ["scan", "novelty", "alarm", "time"]
-    assert [r[3] for r in table[1:]] == ["1700000000.0", "1700000000.5", "1700000001.0"]
+    assert table[0] == ["scan", "novelty", "alarm", "threshold", "time"]
+    assert [r[4] for r in table[1:]] == ["1700000000.0", "1700000000.5", "1700000001.0"]
     X = preprocess([[1.0, np.inf], [2.0, 3.0], [1.0, np.inf]])
     expected = novelty.make("hsom", n_rows=3).stream(X, timestamps=[0.0, 0.5, 1.0])
     np.testing.assert_allclose([float(r[1]) for r in table[1:]], expected, rtol=1e-9)
@@ -58,9 +58,9 @@ def test_score_takes_the_same_column_options(tmp_path, capsys):
     assert main(["score", "--model", str(model), "--data", str(path), "--columns", "1,2", "--label", "novel",
                  "--time", "when"]) == 0
     table = rows(capsys.readouterr().out)
-    assert table[0] == ["scan", "novelty", "alarm", "y", "time"]
+    assert table[0] == ["scan", "novelty", "alarm", "threshold", "y", "time"]
     np.testing.assert_allclose([float(r[1]) for r in table[1:]], det.novelty([[0.1, 0.2], [0.9, 0.8]]))
-    assert [r[3] for r in table[1:]] == ["0", "1"]
+    assert [r[4] for r in table[1:]] == ["0", "1"] and [r[3] for r in table[1:]] == ["0.5", "0.5"]
 
 
 @pytest.mark.slow

@@ -45,7 +45,7 @@ def test_a_carmen_log_is_scored_frozen_with_its_poses(model, tmp_path, capsys):
     log = write_log(tmp_path / "new.log")
     assert main(["score", "--model", str(model), "--data", str(log), "--sectors", "2"]) == 0
     rows = table(capsys.readouterr().out)
-    assert list(rows[0]) == ["scan", "novelty", "alarm", "time", "x", "y", "theta"]
+    assert list(rows[0]) == ["scan", "novelty", "alarm", "threshold", "time", "x", "y", "theta"]
     expected = novelty.load(model).novelty(rings(log))
     assert [float(r["novelty"]) for r in rows] == pytest.approx(expected, abs=1e-9)
     assert [int(r["alarm"]) for r in rows] == (expected > 0.5).astype(int).tolist()
