@@ -230,6 +230,12 @@ def answers_table(results: Callable[[str], list[dict]]) -> str:
     return "\n".join(lines)
 
 
+def _registered() -> list[str]:
+    from novelty.registry import detectors
+
+    return detectors.names()
+
+
 def count_text() -> str:
     """How many detectors the package registers (plugins and detectors registered at run time aside)."""
     from novelty.registry import detectors
@@ -279,7 +285,10 @@ def learning_text(results: Callable[[str], list[dict]]) -> str:
     ring_low, ring_low_task = _guard_low(detection, no_pose)
     low, low_task = _guard_low(guard, use)
     others = sorted(d for d in {r["detector"] for r in guard} if d != use)
-    most = max(sorted(exploration), key=lambda d: len(_where(exploration[d], "flags")))
+    # an answer is a detector the reader can make: a registered name, not one the benchmark alone runs
+    registered = {r["detector"] for r in results(EXPLORATION)
+                  if r.get("detector_name", r["detector"]) in _registered()}
+    most = max(sorted(registered & set(exploration)), key=lambda d: len(_where(exploration[d], "flags")))
     habituating = [d for d, f in objects.items() if _where(f, "habituates")]
     flagging = [d for d, f in objects.items() if _where(f, "flags")]
 

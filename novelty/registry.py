@@ -129,10 +129,13 @@ class Registry:
     True
     """
 
-    def __init__(self, kind: str, group: str, builtins: Mapping[str, str] | None = None):
+    def __init__(self, kind: str, group: str, builtins: Mapping[str, str] | None = None,
+                 elsewhere: Mapping[str, str] | None = None):
         self.kind = kind
         self.group = group
         self._paths: dict[str, str] = dict(builtins or {})
+        #: names used elsewhere that this registry does not hold, with where (said when one is asked for)
+        self.elsewhere: Mapping[str, str] = MappingProxyType(dict(elsewhere or {}))
         self._loaded: dict[str, Any] = {}
         self._descriptions: dict[str, str] = {}
         self._plugins_read = False
@@ -253,6 +256,8 @@ class Registry:
     def _check_known(self, name: str) -> None:
         if name in self:
             return
+        if name in self.elsewhere:
+            raise UnknownNameError(f"{name!r} is not a registered {self.kind}: {self.elsewhere[name]}")
         known = self.names()
         close = difflib.get_close_matches(str(name), known, n=3, cutoff=0.5)
         hint = f" Did you mean {', '.join(repr(c) for c in close)}?" if close else ""
@@ -297,9 +302,15 @@ synapses = Registry(
     },
 )
 
+#: River's anomaly detectors (:mod:`novelty.bench.river`): names of the benchmark, not of this registry
+RIVER_DETECTORS = ("river-hst", "river-loda", "river-lof")
+
 detectors = Registry(
     "detector",
     group="novelty.detectors",
+    elsewhere={name: ("one of River's anomaly detectors, which 'novelty bench' runs by name beside ours (extra "
+                      "river: novelty bench --detector " + name + " ...); a model file holds arrays and JSON, "
+                      "never a pickled River model, so no registry holds it.") for name in RIVER_DETECTORS},
     builtins={
         "habituating": "novelty.filter:HabituatingFilter",
         "hsom": "novelty.filter:hsom",

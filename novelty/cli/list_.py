@@ -52,4 +52,7 @@ def run(args) -> int:
             print(f"  {name.ljust(width)}  {_describe(registry, name)}{_loop(kind, registry, name)}")
         if not names:
             print("  (none registered)")
+        if registry.elsewhere:
+            print(f"  Not registered, run by 'novelty bench' by name: {', '.join(registry.elsewhere)} (River's "
+                  "anomaly detectors, extra river; no model file holds them).")
     return 0

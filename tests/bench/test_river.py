@@ -39,3 +39,17 @@ def test_a_suite_names_river_detectors_like_any_other():
     with pytest.raises(SuiteError, match="has no parameter"):
         suite_from_dict({"detectors": [{"name": "river-loda", "params": {"trees": 5}}],
                          "tasks": [{"name": "exploration-open-door"}]})
+
+
+def test_the_river_names_are_the_benchmarks_and_said_to_be_no_registered_detector(capsys):
+    import novelty
+    from novelty.bench.river import RIVER_MODELS
+    from novelty.cli import main
+    from novelty.registry import RIVER_DETECTORS, UnknownNameError
+
+    assert set(RIVER_MODELS) == set(RIVER_DETECTORS)
+    with pytest.raises(UnknownNameError, match="'river-loda' is not a registered detector: one of River's anomaly "
+                                               "detectors, which 'novelty bench' runs by name"):
+        novelty.make("river-loda")
+    assert main(["list", "detectors"]) == 0
+    assert "Not registered, run by 'novelty bench' by name: river-hst, river-loda, river-lof" in capsys.readouterr().out
