@@ -10,8 +10,9 @@ results tables (and checked by ``tests/test_tables.py``):
 - ``frozen``, ``learning``, ``paper``, ``long-term``: each answer's evidence in
   sentences.
 
-The detector that answers a question is named once, in :data:`ANSWERS`, with the
-rule that chose it; every figure, rank and count is computed here from the rows
+The detector that answers a question is named once, in :mod:`novelty.answers`
+(which the command line's examples and the quick benchmark's verdict read too),
+and :data:`ANSWERS` here gives the rule that chose it; every figure, rank and count is computed here from the rows
 committed in ``benchmarks/results/`` by the package's own report functions, so
 the README, the guide and the site cannot disagree, and a new run of a suite
 changes every sentence it measures.
@@ -21,6 +22,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Callable
+
+from novelty.answers import ANSWERS as USE
 
 #: the suites the answers are measured on, by what they measure
 DETECTION, EXPLORATION = "detection", "exploration"
@@ -44,10 +47,10 @@ class Answer:
 
 
 ANSWERS = (
-    Answer("frozen", "to learn a clean area, freeze, then flag what differs", "kmeans-stanley",
+    Answer("frozen", "to learn a clean area, freeze, then flag what differs", USE["frozen"],
            "its settings were chosen on the detection suite's selection seeds 5-9, which no table reports"),
     Answer("learning", "a robot that keeps learning: flag a feature at first sight, then let it grow familiar",
-           "map-explore",
+           USE["learning"],
            "chosen by a rule fixed before its run (`benchmarks/selection/learning-answer.md`) against `explore` "
            "and `habituating-map` on seeds 100-104 of the simulated open door, tour and patrol and the six objects "
            "tasks: the one candidate that stays above chance frozen on every hold-out task (seeds 5-9 and 105-109)",
@@ -55,16 +58,16 @@ ANSWERS = (
            "robot's pose with each scan (the `points` input, [the map](objects.md#a-habituating-map-novelty-where-"
            "the-scan-was-taken-ours))"),
     Answer("no-pose", "the same, on a robot that does not know its pose (the sonar ring alone)",
-           "gwr-explore-wang-hsu",
+           USE["no-pose"],
            "chosen by a rule fixed before its run (`benchmarks/selection/learning-answer-no-pose.md`) among the 13 "
            "habituating detectors of the ring, on the same tasks and seeds: the one that stays above chance frozen "
            "on every hold-out task (seeds 5-9 and 105-109), by 0.008",
            "a growing network with the Wang-Hsu long-term synapse, on the sonar ring"),
-    Answer("paper", "the paper's exact behaviour", "hsom",
+    Answer("paper", "the paper's exact behaviour", USE["paper"],
            "Marsland, Nehmzow & Shapiro (2000) with every constant of the paper"),
     Answer("long-term", "long-term habituation (a feature that returns settles lower each time)",
-           "gwr-explore-wang-hsu", "the Wang-Hsu synapse with the exploring network"),
-    Answer("baseline", "a baseline to beat", "parzen", "the reference of the detection suite"),
+           USE["long-term"], "the Wang-Hsu synapse with the exploring network"),
+    Answer("baseline", "a baseline to beat", USE["baseline"], "the reference of the detection suite"),
 )
 BY_KEY = {a.key: a for a in ANSWERS}
 

@@ -15,12 +15,13 @@ from typing import Sequence
 from ..bench.holdout.summary import any_route
 from ..bench.reports.format import format_table, mean_spread, number
 from ..bench.reports.ranking import RANK_BY, rank_detectors
+from ..answers import FROZEN, PAPER
 from ..bench.reports.statistics import statistics_line
 
 __all__ = ["first_table", "columns_in_words", "verdict", "PAPERS_DETECTOR"]
 
 #: the detector of Marsland, Nehmzow & Shapiro (2000), named in the verdict wherever it ran
-PAPERS_DETECTOR = "hsom"
+PAPERS_DETECTOR = PAPER
 
 #: (heading, column of the ranking's records, how it is shown, what it means)
 _COLUMNS = [
@@ -77,8 +78,9 @@ def _ordinal(n: int) -> str:
 
 
 def verdict(rows: Sequence[dict]) -> str:
-    """One line: which detector ranks first, where the paper's detector ranks, and what the ranking allows
-    one to claim (Friedman's test over tasks, or why there is none).
+    """One line: which detector ranks first, where the answer of "Which detector?" for frozen detection
+    (:data:`novelty.answers.FROZEN`) and the paper's detector rank, and what the ranking allows one to
+    claim (Friedman's test over tasks, or why there is none).
 
     The ranks are by mean ROC AUC over tasks; the claim is
     :func:`~novelty.bench.reports.statistics.statistics_line`'s.
@@ -88,6 +90,11 @@ def verdict(rows: Sequence[dict]) -> str:
         return "Verdict: no detector was measured."
     first = ranked[0]
     text = f"Verdict: {first['detector']} ranks first (ROC AUC {number(first[RANK_BY])})"
+    answer = next((r for r in ranked if r["detector"] == FROZEN), None)
+    if answer is not None and answer is not first:
+        text += (f"; {FROZEN}, the answer of \"Which detector?\" to learning a clean area and flagging what "
+                 f"differs (measured on the whole detection suite), ranks {_ordinal(answer['rank'])} "
+                 f"({number(answer[RANK_BY])})")
     paper = next((r for r in ranked if r["detector"] == PAPERS_DETECTOR), None)
     if paper is not None and paper is not first:
         text += (f"; the paper's {PAPERS_DETECTOR} ranks {_ordinal(paper['rank'])} of {len(ranked)} "

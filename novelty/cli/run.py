@@ -10,6 +10,7 @@ import numpy as np
 from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
+from ..answers import FROZEN, LEARNING, NO_POSE, PAPER
 from ._common import UserError, add_command, add_data_options, check_layout, format_cell, one_line, parse_params, \
     read_scans, write_novelty
 from .familiar import StreamCalibration, add_calibration_options, stretch_of
@@ -47,17 +48,19 @@ instead: the pose, each sector's nearness and its end point in the world,
 assembled, base frame, mounts, poses) is said on standard error. A run that
 fails leaves an existing --out as it was, or (midway) keeps the rows written."""
 
+#: the paper's detector on the paper's sonar, and on recordings the answers of "Which detector?"
+#: (novelty.answers): a robot that keeps learning, with its pose or on the ring alone; learn, then freeze
 EXAMPLES = [
-    "novelty run hsom --data scans.csv",
-    "novelty run hsom --data scans.csv --param n_rows=5 --param alpha=1.2 --out novelty.csv",
+    f"novelty run {PAPER} --data scans.csv",
+    f"novelty run {PAPER} --data scans.csv --param n_rows=5 --param alpha=1.2 --out novelty.csv",
     "novelty run habituating --data corridor-a.npz --param clusterer=som --passes 5 --save a.npz",
-    "novelty run hsom --data ranges.csv --columns 'sonar*' --preprocess paper --time stamp",
-    "rostopic echo -p /sonar | novelty run hsom --data - --columns 'field.ranges*' --preprocess paper",
-    "novelty run hsom --data scans.csv --alarm k-of-n:3,5",
-    "novelty run hsom --data run.bag --topic /scan --sectors 16 --pose-topic /odom --out novelty.csv",
-    "novelty run hsom --data intel-corrected.log.gz --sectors 16 --reduce min",
-    "novelty run hsom --data robot.bag --topic /scan_front,/scan_rear --mount /scan_rear=-0.3,0,180",
-    "novelty run map-explore --data run.bag --topic /scan --pose-topic /odom --out novelty.csv",
+    f"novelty run {PAPER} --data ranges.csv --columns 'sonar*' --preprocess paper --time stamp",
+    f"rostopic echo -p /sonar | novelty run {NO_POSE} --data - --columns 'field.ranges*' --preprocess paper",
+    f"novelty run {LEARNING} --data run.bag --topic /scan --pose-topic /odom --out novelty.csv",
+    f"novelty run {NO_POSE} --data intel-corrected.log.gz --sectors 16 --alarm k-of-n:3,5 --out intel.csv",
+    f"novelty run {NO_POSE} --data robot.bag --topic /scan_front,/scan_rear --mount /scan_rear=-0.3,0,180",
+    f"novelty run {NO_POSE} --data patrol.bag --topic /scan --calibrate 600:1200 --false-alarm-rate 0.05",
+    f"novelty run {FROZEN} --data monday.log.gz --save monday.npz",
 ]
 
 

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import load
+from ..answers import PAPER
 from .._atomic import check_target
 from ._common import UserError, add_command, add_data_options, check_layout, read_scans, write_novelty
 from .familiar import add_calibration_options, p_values, say_calibration, stretch_of, threshold_in_force
@@ -30,12 +31,17 @@ the rate: the stretch is scored as everything here is, frozen, and the
 threshold set so that familiar scans raise alarms at most at that rate
 (split-conformal); --save keeps the calibrated model."""
 
+#: a model of the paper's detector on the paper's sonar; on recordings, one of the answer of "Which
+#: detector?" to learning a clean area and flagging what differs (novelty.answers.FROZEN), learned by
+#: 'novelty run {FROZEN} --data monday.log.gz --save monday.npz'
 EXAMPLES = [
-    "novelty score --model hsom.npz --data new-scans.csv",
-    "novelty score --model hsom.npz --data corridor-b.npz --out novelty-b.csv",
-    "novelty score --model km.npz --data tuesday.log.gz --calibrate 0:300 --false-alarm-rate 0.01 --out alarms.csv",
-    "novelty score --model km.npz --data run.bag --topic /scan --calibrate lap2.bag --save km-calibrated.npz",
-    "novelty score --model km.npz --data held-out.csv --calibrate rows:0:200 --false-alarm-rate 0.05",
+    f"novelty score --model {PAPER}.npz --data new-scans.csv",
+    f"novelty score --model {PAPER}.npz --data corridor-b.npz --out novelty-b.csv",
+    "novelty score --model monday.npz --data tuesday.log.gz --calibrate 0:300 --false-alarm-rate 0.01 "
+    "--out alarms.csv",
+    "novelty score --model monday.npz --data run.bag --topic /scan --calibrate lap2.bag --save calibrated.npz",
+    "novelty score --model calibrated.npz --data wednesday.bag --topic /scan --out wednesday.csv",
+    "novelty score --model monday.npz --data held-out.csv --calibrate rows:0:200 --false-alarm-rate 0.05",
 ]
 
 #: rows of a recording scored in one call (the scoring of a batch is one pass over the model)

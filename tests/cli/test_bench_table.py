@@ -53,6 +53,17 @@ def test_the_verdict_names_the_first_the_papers_detector_and_what_may_be_claimed
     assert shown.verdict(alone).startswith("Verdict: hsom ranks first (ROC AUC 0.600). No Friedman test")
 
 
+def test_the_verdict_names_where_the_guides_answer_for_frozen_detection_ranks():
+    # the quick suite's two tasks may rank another first: the verdict tells the reader where the answer
+    # of "Which detector?" stands, so that the terminal and the guides tell one story
+    rows = [cell(d, t, s, auc) for t in ("t1", "t2") for s in (0, 1)
+            for d, auc in (("som-distance", 0.9), ("hsom", 0.6), ("kmeans-stanley", 0.8))]
+    assert shown.verdict(rows).startswith(
+        'Verdict: som-distance ranks first (ROC AUC 0.900); kmeans-stanley, the answer of "Which detector?" to '
+        "learning a clean area and flagging what differs (measured on the whole detection suite), ranks 2nd "
+        "(0.800); the paper's hsom ranks 3rd of 3 (0.600). ")
+
+
 def test_the_quick_suite_has_the_readmes_recommendations_beside_the_papers_detector():
     section = README.read_text(encoding="utf-8").split("## Which detector?", 1)[1]
     table = [row for row in section[section.index("| you want"):].split("\n\n", 1)[0].splitlines()[2:]
