@@ -2,10 +2,16 @@
 
 A child is isolated from the user's working directory and ``PYTHON*``
 variables (:func:`_child`), so that it imports the same numba and novelty as
-its parent and nothing else. Processes that need one module at once (test
-workers, benchmark workers) compile it once: the first holds a lock file
-beside the cache while its child compiles (:func:`one_compiler`), the others
-wait for it and load what it cached.
+its parent and nothing else.
+
+A module is compiled once however many processes need it: the compiling
+child itself holds the module's lock file beside the cache while it compiles
+(:func:`one_compiler`), so that the lock outlives the process that started
+it; a child a finished command left behind keeps it to the end. Any other
+process waits for the lock (:func:`wait_for_compiler`, in its background
+thread) and loads what was cached. Compiling is background work: the children
+run at the lowest priority (``nice`` 19), so that they take only the CPU time
+the commands running beside them leave.
 """
 
 from __future__ import annotations
@@ -22,31 +28,39 @@ try:
 except ImportError:  # Windows: no lock; each process compiles what it does not find cached
     fcntl = None
 
-__all__ = ["spawn", "run_self_check", "one_compiler", "lock_path"]
+__all__ = ["spawn", "run_self_check", "one_compiler", "wait_for_compiler", "lock_path", "NICENESS"]
+
+#: how much a compiling child gives way to other processes (the lowest priority, where ``os.nice`` exists)
+NICENESS = 19
 
 #: what a compiling child runs: ``python -I -c _CHILD count name file ... path...``, ``count``
-#: modules by name and file (file "": a module found on the path), one after another; one
-#: that fails leaves the others to compile
+#: modules by name and file (file "": a module found on the path), one after another, each under
+#: its lock (a module another compiler finished meanwhile is loaded from the cache, not compiled
+#: again); one that fails leaves the others to compile
 _CHILD = """
-import importlib, importlib.util, sys
+import importlib, importlib.util, os, sys
 count = int(sys.argv[1])
 jobs = sys.argv[2:2 + 2 * count]
 sys.path[:0] = sys.argv[2 + 2 * count:]
+if hasattr(os, "nice"):
+    os.nice(%d)
+from novelty._kernels.children import one_compiler
 failed = False
 for name, file in zip(jobs[::2], jobs[1::2]):
     try:
-        if file:
-            spec = importlib.util.spec_from_file_location(name, file)
-            module = importlib.util.module_from_spec(spec)
-            sys.modules[name] = module
-            spec.loader.exec_module(module)
-        else:
-            importlib.import_module(name)
+        with one_compiler(file or importlib.util.find_spec(name).origin):
+            if file:
+                spec = importlib.util.spec_from_file_location(name, file)
+                module = importlib.util.module_from_spec(spec)
+                sys.modules[name] = module
+                spec.loader.exec_module(module)
+            else:
+                importlib.import_module(name)
     except Exception:
         sys.modules.pop(name, None)
         failed = True
 sys.exit(1 if failed else 0)
-"""
+""" % NICENESS
 
 #: what the self-check's child runs: ``python -I -c _PROBE path...`` (:mod:`._probe`)
 _PROBE = "import sys; sys.path[:0] = sys.argv[1:]; from novelty._kernels import _probe; _probe.main()"
@@ -120,7 +134,9 @@ def one_compiler(source: str):
     """Hold the lock of compiling ``source`` (waiting for a process that holds it) while the body
     runs; without a lock when none can be made (Windows, a folder that cannot be written).
 
-    The lock is the operating system's (``flock``): a process that dies lets it go.
+    The lock is the operating system's (``flock``): a process that dies lets it go. A compiling
+    child holds it (the ``_CHILD`` code); a process that spawns one never does, or its child
+    would wait for it.
     """
     try:
         if fcntl is None or not source:
@@ -134,3 +150,10 @@ def one_compiler(source: str):
     with handle:
         fcntl.flock(handle, fcntl.LOCK_EX)
         yield
+
+
+def wait_for_compiler(source: str) -> None:
+    """Return once no process compiles ``source`` (at once when none does): a compiler of another
+    process, or one a finished command left behind, holds its lock to the end."""
+    with one_compiler(source):
+        pass

@@ -10,24 +10,25 @@ background thread has a child process compile the module into the cache
 there; meanwhile the caller runs the reference (:mod:`.handover`), with the
 same results.
 
-**One compiler at a time, and nobody waits for it at exit.** The modules
-asked for queue for one background thread, which compiles them one after
-another: on two cores, five compilers at once took both cores from the work
-they were compiling for. A process that ends while a child compiles does not
-wait for it: the child is a process of its own and finishes writing numba's
-cache; the modules still queued are handed to one last child, which compiles
-them one by one after the process is gone, and the next process loads them
-(``novelty bench --quick`` with an empty cache took 6.3x its warm time when
-five compilers ran at once and the command waited for them at exit, 1.8x
-now: medians of three on a shared two-core machine; it needs none of its
-kernels to be fast, its cells are short).
-The children stay in the caller's process group, so Ctrl-C stops them too
-(nothing is cached then; a later process compiles again).
-:meth:`Compiled.wait` compiles a module that is still queued at once, in a
-child of its own, and blocks until it is ready.
+**One compiler at a time, at the lowest priority, and nobody waits for it
+at exit.** The modules asked for queue for one background thread, which
+compiles them one after another (several compilers at once take the cores
+from the work they compile for), each in a child process at the lowest
+priority (``nice``), so that compiling takes only the CPU time the commands
+running leave. A process that ends while a child compiles does not wait for
+it: the child is a process of its own and finishes writing numba's cache;
+the modules still queued are handed to one last child, which compiles them
+one by one after the process is gone. The children stay in the caller's
+process group, so Ctrl-C stops them too (nothing is cached then; a later
+process compiles again). :meth:`Compiled.wait` compiles a module that is
+still queued at once, in a child of its own, and blocks until it is ready.
 
-Processes that need one module at once compile it once
-(:func:`.children.one_compiler`).
+**A module is compiled once, whoever needs it.** The compiling child holds
+the module's lock (:func:`.children.one_compiler`) until it is cached, so a
+second command started while the first one's compilers are still at work
+waits for them in its background thread (its own work goes on with the
+reference) and loads what they cached, instead of compiling the same modules
+again beside them (the guide's page on performance measures both runs).
 
 Every child runs isolated (``python -I``, in the package's folder): nothing
 in the user's working directory or ``PYTHON*`` variables is imported or read.
@@ -163,9 +164,9 @@ class Compiled:
         try:
             self._resolved(settle=True)
             if self.name not in sys.modules and not self._cached():
-                with children.one_compiler(self._source()):
-                    if not self._cached():  # another process may have compiled it meanwhile
-                        self._compile_in_child()
+                children.wait_for_compiler(self._source())  # another process's compiler, to the end
+                if not self._cached():
+                    self._compile_in_child()  # which holds the lock while it compiles
             self.module = load(self.name, self.file)  # loads what the child cached
         except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
             self.error = exc

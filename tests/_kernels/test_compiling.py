@@ -117,6 +117,33 @@ def test_a_module_another_process_is_compiling_is_waited_for_not_compiled_again(
     sys.modules.pop("novelty_driver_waited", None)
 
 
+@pytest.mark.skipif(not hasattr(os, "nice"), reason="needs flock and nice (POSIX)")
+def test_the_compiling_child_holds_the_modules_lock_to_the_end_at_the_lowest_priority(tmp_path, monkeypatch):
+    """The lock is the compiler's own, not its parent's: a command that ends leaves its compiler holding
+    it, and the next command waits for it instead of compiling the module again beside it."""
+    import fcntl
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setattr(compiling, "_all", [])
+    source, started = tmp_path / "novelty_driver_slow.py", tmp_path / "started"
+    source.write_text(f"import pathlib, time\npathlib.Path({str(started)!r}).touch()\ntime.sleep(3)\n")
+    child = children.spawn([compiling.Compiled("novelty_driver_slow", str(source))])
+    try:
+        deadline = time.monotonic() + 120
+        while not started.exists() and child.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert started.exists(), "the child compiles the module"
+        assert os.getpriority(os.PRIO_PROCESS, child.pid) == children.NICENESS
+        with open(children.lock_path(str(source)), "a") as fh:
+            with pytest.raises(BlockingIOError):
+                fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)   # held by the child while it compiles
+            assert child.wait(120) == 0
+            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)      # and let go when it is done
+    finally:
+        if child.poll() is None:
+            child.kill()
+
+
 def test_read_only_and_strided_inputs():
     X = corridor(300)
     det, ref = novelty.make("hsom"), novelty.make("hsom")
