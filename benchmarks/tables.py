@@ -64,6 +64,8 @@ PROVENANCE = "provenance.json"
 COMMAND = "python benchmarks/tables.py"
 #: the regions of "Which detector?": made from several suites' rows by benchmarks/which_detector.py
 WHICH_DETECTOR = "which-detector"
+#: regions made by a study from its own committed results (``region(name)`` of its script), by key
+STUDIES = {"alarms": ROOT / "studies" / "alarms" / "operating_point.py"}
 
 REGION = re.compile(r"(<!-- generated: (?P<key>[\w.-]+/[\w.-]+) -->\n)(?P<body>.*?)(<!-- end generated -->)",
                     re.S)
@@ -254,18 +256,25 @@ def region_body(key: str, cache: dict | None = None) -> str:
 
     if suite == WHICH_DETECTOR:
         return _which_detector().region(name, rows_of)
+    if suite in STUDIES:
+        return _script(suite, STUDIES[suite]).region(name)
     rows = rows_of(suite)
     return f"{caption(suite, rows)}\n\n{table(suite, name, rows)}\n"
 
 
 def _which_detector():
     """``benchmarks/which_detector.py``, the answers of "Which detector?" (a script's neighbour, not a package)."""
-    if "which_detector" not in sys.modules:
-        spec = importlib.util.spec_from_file_location("which_detector", Path(__file__).with_name("which_detector.py"))
+    return _script("which_detector", Path(__file__).with_name("which_detector.py"))
+
+
+def _script(name: str, path: Path):
+    """The script at ``path`` as module ``name`` (a script, not a package: loaded by its path)."""
+    if name not in sys.modules:
+        spec = importlib.util.spec_from_file_location(name, path)
         module = importlib.util.module_from_spec(spec)
         sys.modules[spec.name] = module  # its dataclasses look their module up
         spec.loader.exec_module(module)
-    return sys.modules["which_detector"]
+    return sys.modules[name]
 
 
 def regenerate(text: str, cache: dict | None = None) -> str:

@@ -142,8 +142,10 @@ def test_every_generated_region_equals_its_committed_results():
 def test_the_documents_generated_regions_name_committed_suites():
     keys = {m.group("key") for path in tables.documents()
             for m in tables.REGION.finditer(path.read_text(encoding="utf-8"))}
-    assert {k.split("/")[0] for k in keys} <= set(COMMITTED) | {tables.WHICH_DETECTOR}
+    assert {k.split("/")[0] for k in keys} <= set(COMMITTED) | {tables.WHICH_DETECTOR} | set(tables.STUDIES)
     assert set(_which_detector().SUITES) <= set(COMMITTED)  # which-detector's regions are made of these
+    # a study's regions are made from the results it commits beside its script
+    assert all(path.is_file() and path.with_name("results.csv").is_file() for path in tables.STUDIES.values())
 
 
 # ---------------------------------------------------------------- the suites now
