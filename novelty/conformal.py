@@ -103,7 +103,7 @@ def fewest_scans(false_alarm_rate: float) -> int:
     return math.ceil(1 / _exact(false_alarm_rate)) - 1
 
 
-def conformal_threshold(scores, false_alarm_rate: float) -> float:
+def conformal_threshold(scores, false_alarm_rate: float, *, warn: bool = True) -> float:
     """The split-conformal threshold of calibration ``scores`` for a false-alarm rate.
 
     Parameters
@@ -112,6 +112,8 @@ def conformal_threshold(scores, false_alarm_rate: float) -> float:
         Novelty of the calibration scans (higher = more novel), finite.
     false_alarm_rate : float in (0, 1)
         The target rate ``a``.
+    warn : bool, default=True
+        Warn when the scores are too few for the rate (a detector warns once, when it is calibrated).
 
     Returns
     -------
@@ -123,6 +125,8 @@ def conformal_threshold(scores, false_alarm_rate: float) -> float:
     s = _scores(scores)
     k = threshold_rank(s.size, rate)
     if k > s.size:
+        if not warn:
+            return math.inf
         warnings.warn(
             f"{s.size} calibration scans cannot promise a false-alarm rate of {rate:g}: the smallest they "
             f"can is 1/{s.size + 1} = {1 / (s.size + 1):.3g}. The threshold is infinite (no scan raises an "

@@ -458,9 +458,8 @@ class NoveltyDetector(OutlierMixin, Component):
                           CalibrationWarning, stacklevel=4)
 
     def _calibrated_threshold(self) -> float:
-        with warnings.catch_warnings():  # calibrate warned once; threshold_ is read at every predict
-            warnings.simplefilter("ignore", CalibrationWarning)
-            return conformal_threshold(self.familiar_scores_, self.false_alarm_rate_)
+        # calibrate warned of too few scans once; threshold_ is read at every predict
+        return conformal_threshold(self.familiar_scores_, self.false_alarm_rate_, warn=False)
 
     @_one_at_a_time
     def calibrate(self, X, false_alarm_rate=0.01, *, learn=False, timestamps=None, source=None):
