@@ -287,7 +287,7 @@ def explore(**params) -> SequenceContext:
     The numbers on seeds 0-4 are in the exploration guide.
 
     It was the answer of "Which detector?" for a robot that keeps learning
-    until the rule of benchmarks/selection/learning-answer.md, which let the
+    until the rule of studies/learning_answer/learning-answer.md, which let the
     detectors of the ``points`` input compete: on that rule's new guard seeds
     105-109 it falls below chance on ``paper-a-to-b`` (0.470), and
     :func:`~novelty.maps.habituating_map.map_explore`, which needs the

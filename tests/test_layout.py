@@ -29,7 +29,7 @@ TEXT = {".py", ".md", ".toml", ".txt", ".rst", ".cfg", ".yml", ".yaml"}
 
 
 def _text_files():
-    for top in ("novelty", "tests", "docs", "benchmarks", "examples"):
+    for top in ("novelty", "tests", "docs", "benchmarks", "studies", "examples"):
         for path in sorted((ROOT / top).rglob("*")):
             rel = path.relative_to(ROOT).parts
             if path.suffix in TEXT and not {"_build", "__pycache__"} & set(rel) and rel[:2] != ("docs", "api"):
@@ -175,9 +175,6 @@ ACROSS = {
     "test_tables.py": "the results tables of the documents against benchmarks/results/ and the suites",
     "test_maps_diagnosis.py": "benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall",
     "test_maps_guard_trace.py": "benchmarks/maps_guard_trace.py: each guard scan traced to its most novel cell",
-    "test_maps_round4.py": "benchmarks/maps_round4.py: the scores of the habituating-map selections",
-    "test_learning_answer.py": "benchmarks/learning_answer.py: the scores and the decision of the learning answer's rule",
-    "test_guard_margins.py": "benchmarks/guard_margins.py: each guard mean's interval over its seeds",
     "test_perf_compare.py": "benchmarks/perf_compare.py: two revisions timed alternately",
     "test_layout.py": "this file: the layout of the repository",
     "test_sklearn_compat.py": "scikit-learn's estimator checks on every registered component",
