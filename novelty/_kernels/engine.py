@@ -306,8 +306,8 @@ def _roomy(a: np.ndarray, square: bool, n: int, capacity: int) -> np.ndarray:
 def _counter_writer(names: tuple[str, ...]) -> Callable:
     """``write(d, values)``: ``d[name] = value`` for the counters' names and values, as one
     unpacking assignment compiled for these names (as :func:`collections.namedtuple` compiles
-    its class): faster for a single scan than ``d.update(zip(names, values))``. The names are quoted as string literals (``repr``), so any name
-    is only ever a key."""
+    its class): faster for a single scan than ``d.update(zip(names, values))``. The names are
+    quoted as string literals (``repr``), so any name is only ever a key."""
     if not names:
         return lambda d, values: None
     targets = "".join(f"d[{name!r}], " for name in names)
