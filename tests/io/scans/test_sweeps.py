@@ -8,15 +8,13 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from novelty.io.ros.messages import LaserScan
-from novelty.io.scans.sweep_rings import laser_ring
-from novelty.io.scans.sweep_rings import RingMaker, sweep_ring
-from novelty.io.ros.messages import Sweep
-from novelty.io.recording.readers import read_sweeps
-from novelty.io.scans.sweeps import scan_sweep
-from novelty.io import Reading
+from novelty.io import Reading, read_sweeps
+from novelty.io.frames.mounts import Mount
+from novelty.io.ros.messages import LaserScan, Sweep
+from novelty.io.scans.sweep_rings import RingMaker, laser_ring, sweep_ring
+from novelty.io.scans.sweeps import SweepMaker, scan_sweep
 
-from ...io.carmen.test_log import LOG
+from ..carmen.test_log import LOG
 
 INF, NAN = math.inf, math.nan
 
@@ -106,7 +104,7 @@ def test_carmen_sweeps(carmen, tmp_path):
 @pytest.fixture(scope="module")
 def bag(tmp_path_factory):
     pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra")
-    from ...io.bag_files import write_bag
+    from ..bag_files import write_bag
 
     return write_bag(tmp_path_factory.mktemp("ros1"), "ros1")
 
@@ -122,3 +120,33 @@ def test_bag_sweeps_are_cleaned_and_share_their_geometry(bag):
     with pytest.raises(ValueError, match="Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 "
                                          "topics; /sonar holds sensor_msgs/msg/Range"):
         next(read_sweeps(bag, Reading(topic="/sonar")))
+
+
+def test_one_message_at_a_time_gives_the_sweeps_a_file_reader_gives(bag):
+    # what a live node does with each message: its mount, then SweepMaker; the bag's reader does the same
+    from novelty.io import read_bag
+    from novelty.io.frames.mounts import parse_mount
+
+    reading = Reading(topic="/scan", mounts="0.3,0.1,90,flipped", fragments=1)
+    offline = list(read_sweeps(bag, reading))
+    _, mount = parse_mount("0.3,0.1,90,flipped")
+    maker = SweepMaker(offline[0].frame)   # the base frame and the poses: a node's own tf lookups
+    live = [maker(scan, mount, sweep.pose, "/scan") for scan, sweep in zip(read_bag(bag, "/scan"), offline)]
+    assert len(live) == len(offline) == 5
+    for a, b in zip(live, offline):
+        assert (a.time, a.frame, a.source, a.pose is b.pose) == (b.time, b.frame, b.source, True)
+        for field in ("origins", "angles", "ranges"):
+            np.testing.assert_array_equal(getattr(a, field), getattr(b, field))
+    assert RingMaker(4)(live[0]).tolist() == RingMaker(4)(offline[0]).tolist()
+
+
+def test_scan_sweep_with_a_mount_is_one_message_of_a_sweep_maker():
+    scan = LaserScan(2.0, np.array([1.0, np.inf, -np.inf]), angle_min=-1.0, angle_increment=1.0, range_min=0.2,
+                     source="/scan")
+    mount = Mount.planar(0.5, -0.25, math.pi / 2)
+    one = scan_sweep(scan, None, "base_link", mount=mount)
+    many = SweepMaker("base_link")(scan, mount, None, "/scan")
+    for field in ("origins", "angles", "ranges"):
+        np.testing.assert_array_equal(getattr(one, field), getattr(many, field))
+    assert one.origins.tolist() == [[0.5, -0.25]] * 3 and one.ranges.tolist() == [1.0, INF, 0.2]
+    np.testing.assert_allclose(one.angles, [-1.0 + math.pi / 2, math.pi / 2, 1.0 + math.pi / 2])
