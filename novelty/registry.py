@@ -33,6 +33,8 @@ from importlib.metadata import entry_points
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
+from ._validation.parameters import unknown_parameters
+
 __all__ = [
     "Registry",
     "RegistryError",
@@ -92,17 +94,9 @@ def valid_parameters(factory: Callable) -> list[str] | None:
 
 def check_parameters(what: str, given: Mapping[str, Any], valid: list[str]) -> None:
     """Raise :class:`InvalidParameterError` naming the valid parameters."""
-    unknown = [name for name in given if name not in valid]
-    if not unknown:
-        return
-    hints = []
-    for name in unknown:
-        close = difflib.get_close_matches(name, valid, n=1)
-        hints.append(f"'{name}'" + (f" (did you mean '{close[0]}'?)" if close else ""))
-    raise InvalidParameterError(
-        f"Unknown parameter{'s' if len(unknown) > 1 else ''} {', '.join(hints)} for {what}. "
-        f"Valid parameters: {', '.join(sorted(valid)) or '(none)'}."
-    )
+    message = unknown_parameters(what, given, valid)
+    if message is not None:
+        raise InvalidParameterError(message)
 
 
 class Registry:

@@ -29,8 +29,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-from ..._validation import Instance, Interval, Options, validate_parameters
-from ...registry import check_parameters
+from ..._validation import Instance, Interval, Options, unknown_parameters, validate_parameters
 from ...sonar.preprocessing import PAPER_THRESHOLD
 from ..frames.mounts import Mount, parse_mount
 from ..ros.decoders import ECHOES
@@ -187,7 +186,7 @@ class Reading:
 
         A key that is not an option is refused, naming the options.
         """
-        check_parameters("Reading", mapping, list(cls.fields()))
+        _check_names(mapping)
         return cls(**mapping)
 
     def to_mapping(self) -> dict[str, Any]:
@@ -210,7 +209,7 @@ class Reading:
 
     def replace(self, **changes) -> "Reading":
         """This reading with ``changes`` (options by name; an unknown one refused, naming the options)."""
-        check_parameters("Reading", changes, list(self.fields()))
+        _check_names(changes)
         return dataclasses.replace(self, **changes)
 
     # --------------------------------------------------------- as the layers take it
@@ -233,6 +232,12 @@ class Reading:
 
 #: the options of the ring that the points input does not read, and their defaults
 RING_ONLY = {"reduce": "min", "limits": None, "front": 0.0, "clip": None, "sensors": None, "max_span": None}
+
+
+def _check_names(given: Mapping) -> None:
+    message = unknown_parameters("Reading", given, list(Reading.fields()))
+    if message is not None:
+        raise ValueError(message)
 
 
 def _refuse(name: str, expected: str, value) -> ValueError:
