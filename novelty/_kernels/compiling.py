@@ -196,7 +196,7 @@ class Compiled:
 
         In a thread of this process numba's compiler holds the GIL for long
         stretches: the main thread, learning with the reference meanwhile, was
-        measured 40x slower. A child that fails leaves no cache; the import in
+        measured many times slower. A child that fails leaves no cache; the import in
         the thread then compiles after all.
         """
         self.child = children.spawn([self])

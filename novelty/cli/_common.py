@@ -29,7 +29,7 @@ def one_line(exc: BaseException) -> str:
 
 def user_errors() -> tuple[type[BaseException], ...]:
     """Exceptions that mean the input was wrong, not the program."""
-    # deferred: the benchmark and the model files import scikit-learn (2-3 s); `novelty --help` does not
+    # deferred: the benchmark and the model files import scikit-learn, slow to import; `novelty --help` does not
     from ..bench.backends import BackendError
     from ..bench.specs import SuiteError
     from ..persistence import ModelFileError
@@ -111,7 +111,7 @@ def check_layout(det, data, who: str) -> None:
     maps) read the ``points`` input; a file says it is one by its columns' names.
     """
     # deferred: the columns' names of the points input come with novelty.maps, not needed to start
-    from ..datasets.columns import is_points_file
+    from ..io.tables.columns import is_points_file
 
     if getattr(det, "input_layout", None) != "points":
         return
@@ -120,7 +120,7 @@ def check_layout(det, data, who: str) -> None:
         shown = ", ".join(names[:4]) + (", ..." if len(names) > 4 else "")
         raise UserError(f"{who} reads the robot's pose with each scan (the points input): give --data a recording "
                         "with poses (a CARMEN log, or a bag with --pose-topic), or a CSV/NPZ file of the points "
-                        "input (columns x, y, heading, near_0.., x_0.., y_0..: novelty.io.objects.points."
+                        "input (columns x, y, heading, near_0.., x_0.., y_0..: novelty.io.scans.points."
                         f"sweep_points); {data.metadata.get('source', 'the file')} has {len(names)} sensor columns "
                         f"({shown}).")
 

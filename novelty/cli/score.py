@@ -13,7 +13,8 @@ from ..answers import PAPER
 from .._atomic import check_target
 from ._common import UserError, add_command, add_data_options, check_layout, read_scans, write_novelty
 from .familiar import add_calibration_options, p_values, say_calibration, stretch_of, threshold_in_force
-from .recording import RowSink, add_recording_options, check_recording_options, pose_columns, recording_scans
+from .recording import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
+                        recording_scans)
 
 DESCRIPTION = """Score scans with a saved model, without learning anything.
 
@@ -72,7 +73,7 @@ def run(args) -> int:
         raise UserError("novelty score reads a file or a recording, not standard input; 'novelty run --data -' "
                         "scores a live stream.")
     det = load(args.model)
-    if _is_recording(args.data):
+    if is_recording(args.data):
         n = _score_recording(det, args, stretch)
     else:
         n = _score_file(det, args, stretch)
@@ -82,13 +83,6 @@ def run(args) -> int:
         print(f"Wrote the novelty of {n} scans to {args.out}"
               + (f"; calibrated model saved to {args.save}" if args.save else "") + ".", file=sys.stderr)
     return 0
-
-
-def _is_recording(path: str) -> bool:
-    # deferred: the readers are loaded only for a recording
-    from ..io.recording import is_recording
-
-    return is_recording(path)
 
 
 def _score_file(det, args, stretch) -> int:
@@ -117,7 +111,7 @@ def _score_file(det, args, stretch) -> int:
 
 def _score_recording(det, args, stretch) -> int:
     """Score a recording's scans frozen (a batch at a time), calibrate, then write a row a scan."""
-    from ..io.report import ReadReport  # deferred: the readers are loaded only for a recording
+    from ..io.bags.report import ReadReport  # deferred: the readers are loaded only for a recording
 
     check_recording_options(args)
     report = ReadReport()
@@ -163,7 +157,7 @@ def _score_recording(det, args, stretch) -> int:
 def _familiar_scans(det, args, path: str) -> np.ndarray:
     """The scans of the familiar file or recording ``path``, read with the options of ``--data``."""
     familiar = argparse.Namespace(**{**vars(args), "data": path})
-    if not _is_recording(path):
+    if not is_recording(path):
         return read_scans(familiar).X
     check_recording_options(familiar)
     scans = [x for _, x, _ in recording_scans(familiar, det)]

@@ -10,7 +10,7 @@ import pytest
 import novelty
 from novelty.cli import main
 from novelty.conformal import conformal_p_values, conformal_threshold
-from novelty.io import read_rings
+from novelty.io import Reading, read_rings
 from novelty.sonar import preprocess
 
 
@@ -29,7 +29,7 @@ def write_log(path, n=60, seed=0):
 
 
 def rings(path):
-    return preprocess(np.array([r.ranges for r in read_rings(path, sectors=2)]))
+    return preprocess(np.array([r.ranges for r in read_rings(path, Reading(sectors=2))]))
 
 
 @pytest.fixture
@@ -124,7 +124,7 @@ def test_an_uncalibrated_threshold_that_does_not_carry_over_says_how_to_calibrat
 def bag(request, tmp_path_factory):
     pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra: pip install "
                         "'novelty-habituation[ros]'")
-    from ..io.bags import write_bag
+    from ..io.bag_files import write_bag
 
     return write_bag(tmp_path_factory.mktemp(request.param), request.param)
 
@@ -135,7 +135,7 @@ def test_a_bag_is_scored_with_the_options_run_reads_it_with(bag, tmp_path, capsy
     assert main(["score", "--model", str(tmp_path / "m.npz"), "--data", str(bag), "--topic", "/scan",
                  "--sectors", "2", "--pose-topic", "/odom"]) == 0
     rows = table(capsys.readouterr().out)
-    expected = det.novelty(preprocess(np.array([r.ranges for r in read_rings(bag, "/scan", sectors=2)])))
+    expected = det.novelty(preprocess(np.array([r.ranges for r in read_rings(bag, Reading(topic="/scan", sectors=2))])))
     assert [float(r["novelty"]) for r in rows] == pytest.approx(expected, abs=1e-9)
     assert [r["x"] for r in rows] == ["1", "1.1", "1.2", "5.95", "5.95"]
     assert main(["score", "--model", str(tmp_path / "m.npz"), "--data", str(bag), "--topic", "/nothing"]) == 2
