@@ -33,6 +33,7 @@ from importlib.metadata import entry_points
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
+from ._messages import unknown_parameters
 
 __all__ = [
     "Registry",
@@ -93,9 +94,6 @@ def valid_parameters(factory: Callable) -> list[str] | None:
 
 def check_parameters(what: str, given: Mapping[str, Any], valid: list[str]) -> None:
     """Raise :class:`InvalidParameterError` naming the valid parameters."""
-    # imported here: novelty._validation needs numpy, and ``import novelty`` loads this module without it
-    from ._validation.parameters import unknown_parameters
-
     message = unknown_parameters(what, given, valid)
     if message is not None:
         raise InvalidParameterError(message)
