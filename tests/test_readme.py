@@ -75,7 +75,7 @@ def test_guide_own_data_commands_run_as_written(tmp_path, monkeypatch):
     assert len(commands) == 2
     for command in commands:
         assert main(shlex.split(command)[1:] + ["--quiet"] * command.startswith("novelty bench")) == 0
-    assert (tmp_path / "novelty.csv").read_text().startswith("scan,novelty,alarm,y,distance,time\n")
+    assert (tmp_path / "novelty.csv").read_text().startswith("scan,novelty,alarm,threshold,y,distance,time\n")
     (tmp_path / "suite.toml").write_text('[[detectors]]\nname = "hsom"\n' + toml[0])
     assert load_suite(tmp_path / "suite.toml").tasks[0].options["path"] == str(tmp_path / "corridor.csv")
 

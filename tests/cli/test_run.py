@@ -74,13 +74,13 @@ def test_stdin_is_scored_a_line_at_a_time_as_the_lines_arrive():
         proc.stdin.write(",".join(str(float(v)) for v in x) + f",{int(i == 3)}\n")
         proc.stdin.flush()
         if i == 0:
-            assert proc.stdout.readline() == "scan,novelty,alarm,y\n"
+            assert proc.stdout.readline() == "scan,novelty,alarm,threshold,y\n"
         got.append(proc.stdout.readline().strip().split(","))
     proc.stdin.close()
     assert proc.wait(timeout=120) == 0 and proc.stdout.read() == ""
     expected = novelty.make("hsom").stream(X)
     np.testing.assert_allclose([float(r[1]) for r in got], expected, rtol=1e-9)
-    assert [r[0] for r in got] == ["0", "1", "2", "3"] and [r[3] for r in got] == ["0", "0", "0", "1"]
+    assert [r[0] for r in got] == ["0", "1", "2", "3"] and [r[4] for r in got] == ["0", "0", "0", "1"]
 
 
 @pytest.mark.slow
