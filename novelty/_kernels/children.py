@@ -9,9 +9,12 @@ child itself holds the module's lock file beside the cache while it compiles
 (:func:`one_compiler`), so that the lock outlives the process that started
 it; a child a finished command left behind keeps it to the end. Any other
 process waits for the lock (:func:`wait_for_compiler`, in its background
-thread) and loads what was cached. Compiling is background work: the children
-run at the lowest priority (``nice`` 19), so that they take only the CPU time
-the commands running beside them leave.
+thread) and loads what was cached. Compiling in the background is work
+nobody waits for: those children run at the lowest priority (``nice`` 19), so
+that they take only the CPU time the commands running beside them leave. A
+child a caller blocks on (:meth:`.compiling.Compiled.wait`) is the caller's
+own work and keeps its priority: at ``nice`` 19 on a busy machine it would
+get almost no CPU time while the caller waits.
 """
 
 from __future__ import annotations
@@ -33,17 +36,17 @@ __all__ = ["spawn", "run_self_check", "one_compiler", "wait_for_compiler", "lock
 #: how much a compiling child gives way to other processes (the lowest priority, where ``os.nice`` exists)
 NICENESS = 19
 
-#: what a compiling child runs: ``python -I -c _CHILD count name file ... path...``, ``count``
-#: modules by name and file (file "": a module found on the path), one after another, each under
-#: its lock (a module another compiler finished meanwhile is loaded from the cache, not compiled
-#: again); one that fails leaves the others to compile
+#: what a compiling child runs: ``python -I -c _CHILD niceness count name file ... path...``,
+#: ``count`` modules by name and file (file "": a module found on the path), one after another, each
+#: under its lock (a module another compiler finished meanwhile is loaded from the cache, not
+#: compiled again), at ``niceness`` more than its parent's; one that fails leaves the others to compile
 _CHILD = """
 import importlib, importlib.util, os, sys
-count = int(sys.argv[1])
-jobs = sys.argv[2:2 + 2 * count]
-sys.path[:0] = sys.argv[2 + 2 * count:]
-if hasattr(os, "nice"):
-    os.nice(%d)
+niceness, count = int(sys.argv[1]), int(sys.argv[2])
+jobs = sys.argv[3:3 + 2 * count]
+sys.path[:0] = sys.argv[3 + 2 * count:]
+if niceness and hasattr(os, "nice"):
+    os.nice(niceness)
 from novelty._kernels.children import one_compiler
 failed = False
 for name, file in zip(jobs[::2], jobs[1::2]):
@@ -60,16 +63,20 @@ for name, file in zip(jobs[::2], jobs[1::2]):
         sys.modules.pop(name, None)
         failed = True
 sys.exit(1 if failed else 0)
-""" % NICENESS
+"""
 
 #: what the self-check's child runs: ``python -I -c _PROBE path...`` (:mod:`._probe`)
 _PROBE = "import sys; sys.path[:0] = sys.argv[1:]; from novelty._kernels import _probe; _probe.main()"
 
 
-def spawn(modules: list):
-    """A child process compiling ``modules`` one after another (a ``subprocess.Popen``), or None."""
+def spawn(modules: list, niceness: int = NICENESS):
+    """A child process compiling ``modules`` one after another (a ``subprocess.Popen``), or None.
+
+    ``niceness`` is how much lower than this process's its priority is: :data:`NICENESS` for
+    work in the background, 0 for a child the caller waits for.
+    """
     jobs = [part for compiled in modules for part in (compiled.name, compiled.file or "")]
-    return _child(_CHILD, [str(len(modules)), *jobs])
+    return _child(_CHILD, [str(niceness), str(len(modules)), *jobs])
 
 
 def run_self_check() -> tuple[bool, str]:

@@ -21,7 +21,9 @@ the modules still queued are handed to one last child, which compiles them
 one by one after the process is gone. The children stay in the caller's
 process group, so Ctrl-C stops them too (nothing is cached then; a later
 process compiles again). :meth:`Compiled.wait` compiles a module that is
-still queued at once, in a child of its own, and blocks until it is ready.
+still queued at once, in a child of its own at the caller's priority (the
+caller blocks on it: it is no longer background work), and blocks until it
+is ready.
 
 **A module is compiled once, whoever needs it.** The compiling child holds
 the module's lock (:func:`.children.one_compiler`) until it is cached, so a
@@ -160,13 +162,14 @@ class Compiled:
         self.name, self.file = where
         return True
 
-    def _compile(self) -> None:
+    def _compile(self, niceness: int = children.NICENESS) -> None:
+        """Load the module, compiled first (in a child at ``niceness``) unless cached."""
         try:
             self._resolved(settle=True)
             if self.name not in sys.modules and not self._cached():
                 children.wait_for_compiler(self._source())  # another process's compiler, to the end
                 if not self._cached():
-                    self._compile_in_child()  # which holds the lock while it compiles
+                    self._compile_in_child(niceness)  # which holds the lock while it compiles
             self.module = load(self.name, self.file)  # loads what the child cached
         except BaseException as exc:  # ImportError, or numba/LLVM failing to compile or load
             self.error = exc
@@ -191,15 +194,16 @@ class Compiled:
         spec = importlib.util.find_spec(self.name)
         return spec.origin if spec is not None and spec.origin else ""
 
-    def _compile_in_child(self) -> None:
-        """Compile in a child process, which leaves the machine code in numba's disk cache.
+    def _compile_in_child(self, niceness: int = children.NICENESS) -> None:
+        """Compile in a child process at ``niceness`` (:func:`.children.spawn`), which leaves the
+        machine code in numba's disk cache.
 
         In a thread of this process numba's compiler holds the GIL for long
         stretches: the main thread, learning with the reference meanwhile, was
         measured many times slower. A child that fails leaves no cache; the import in
         the thread then compiles after all.
         """
-        self.child = children.spawn([self])
+        self.child = children.spawn([self], niceness)
         if self.child is None:
             return
         try:
@@ -210,12 +214,14 @@ class Compiled:
     def wait(self, timeout: float | None = None):
         """The module, compiled (or loaded) now if need be: one still queued for the background
         compiler is taken from the queue and compiled in this thread's own child; None when
-        kernels are unavailable, or not ready within ``timeout`` seconds."""
+        kernels are unavailable, or not ready within ``timeout`` seconds. The caller blocks on
+        a child it starts here, which therefore runs at the caller's priority, not the
+        background's."""
         self.get()
         if self.module is None and not self.failed and self.started:
             owner = self.owner
             if _take(self) or owner is None or not owner.is_alive():
-                self._compile()  # queued, or lost by a compiler that is gone: compiled here
+                self._compile(niceness=0)  # queued, or lost by a compiler that is gone: compiled here
             else:
                 self.done.wait(timeout)
         return self.get()

@@ -117,6 +117,33 @@ def test_a_module_another_process_is_compiling_is_waited_for_not_compiled_again(
     sys.modules.pop("novelty_driver_waited", None)
 
 
+def test_a_module_the_caller_waits_for_is_compiled_at_the_callers_priority(tmp_path, monkeypatch):
+    """Background compilers give way to every command (niceness 19); a child the caller blocks on
+    is the caller's own work, and a busy machine would leave it almost no CPU time at 19."""
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setattr(compiling, "_all", [])
+    source = tmp_path / "novelty_driver_awaited.py"
+    source.write_text("VALUE = 7\n")
+    awaited = compiling.Compiled("novelty_driver_awaited", str(source))
+    blocker = threading.Event()
+    busy = threading.Thread(target=blocker.wait)  # the background compiler, busy with another module
+    busy.start()
+    monkeypatch.setattr(compiling, "_worker", busy)
+    monkeypatch.setattr(compiling, "_queue", [awaited])  # queued behind it
+    awaited.started = awaited.background = True
+    spawned = []
+    monkeypatch.setattr(children, "spawn", lambda modules, niceness=children.NICENESS: spawned.append(
+        ([m.name for m in modules], niceness)))   # no child: the module's file is then loaded as it is
+    monkeypatch.delitem(sys.modules, "novelty_driver_awaited", raising=False)
+    try:
+        assert awaited.wait(timeout=60).VALUE == 7
+    finally:
+        blocker.set()
+        sys.modules.pop("novelty_driver_awaited", None)
+    assert spawned == [(["novelty_driver_awaited"], 0)] and compiling._queue == []
+
+
+@pytest.mark.slow
 @pytest.mark.skipif(not hasattr(os, "nice"), reason="needs flock and nice (POSIX)")
 def test_the_compiling_child_holds_the_modules_lock_to_the_end_at_the_lowest_priority(tmp_path, monkeypatch):
     """The lock is the compiler's own, not its parent's: a command that ends leaves its compiler holding
