@@ -43,6 +43,7 @@ import math
 import numbers
 import threading
 import warnings
+import weakref
 from abc import abstractmethod
 from typing import Any
 
@@ -63,6 +64,12 @@ __all__ = ["NoveltyDetector", "CONTAMINATION"]
 #: The rule for every detector's ``contamination`` parameter (as scikit-learn's and PyOD's).
 CONTAMINATION = (Options(("auto",)), Interval(numbers.Real, 0, 0.5, closed="right"))
 _CONTAMINATION_RULES = {"contamination": CONTAMINATION}
+
+
+#: the advice on its threshold each detector was given (:meth:`NoveltyDetector._advise`), said once a
+#: detector; held here, not in the detector, so that reading ``threshold_`` changes none of its attributes
+_ADVISED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
 
 class _Lock(_thread.RLock):
     """A detector's re-entrant lock, kept in its ``__dict__`` (``_lock``, made on first use).
@@ -451,8 +458,8 @@ class NoveltyDetector(OutlierMixin, Component):
 
     def _advise(self) -> None:
         advice = self._threshold_advice()
-        if advice is not None and vars(self).get("_advised") != advice:
-            vars(self)["_advised"] = advice  # once a detector and advice (not a state change: not counted)
+        if advice is not None and _ADVISED.get(self) != advice:
+            _ADVISED[self] = advice  # once a detector and advice, kept outside it: predict changes no attribute
             warnings.warn(f"{advice} For a false-alarm rate a on new scans, calibrate on familiar scans the "
                           f"model did not learn: det.calibrate(X_familiar, false_alarm_rate=a).",
                           CalibrationWarning, stacklevel=4)
