@@ -48,7 +48,7 @@ from ..data import Dataset
 from .labels import check_labels
 
 __all__ = ["Resampling", "ResampledTask", "resampled", "ADBENCH", "RESAMPLE", "SCALES", "TRAINING",
-           "OPTIONS"]
+           "OPTIONS", "MAX_ROWS", "MAX_VALUES"]
 
 #: the ways a split is drawn for each seed
 RESAMPLE = ("stratified", "shuffled")
@@ -60,6 +60,10 @@ TRAINING = ("contaminated", "clean")
 OPTIONS = ("resample", "test", "min_rows", "max_rows", "scale", "training")
 #: the default test fraction of a drawn split
 DEFAULT_TEST = 0.3
+#: the most rows ``min_rows`` and ``max_rows`` say (ADBench's are 1,000 and 10,000)
+MAX_ROWS = 2**24
+#: the most values (rows x features) a bootstrapped table holds: 2**27 float64, 1 GiB, checked before it is drawn
+MAX_VALUES = 2**27
 
 #: ADBench's unsupervised protocol (Han et al. 2022): a stratified 70/30 split for each seed,
 #: tables bootstrapped to 1,000 rows or subsampled to 10,000, min-max scaled on the
@@ -86,8 +90,8 @@ def _choice(value, allowed: tuple, name: str, default: str) -> str:
 def _count(value, name: str) -> int | None:
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 2:
-        raise ValueError(f"{name} must be a number of rows, at least 2; got {value!r}.")
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 2 <= value <= MAX_ROWS:
+        raise ValueError(f"{name} must be a number of rows, 2 to {MAX_ROWS:,}; got {value!r}.")
     return int(value)
 
 
@@ -142,6 +146,9 @@ class Resampling:
         rng = np.random.default_rng(np.random.SeedSequence([int(seed), _tag(data.name)]))
         n = len(data)
         if self.min_rows is not None and n < self.min_rows:
+            if self.min_rows * data.n_sensors > MAX_VALUES:   # before anything is allocated
+                raise ValueError(f"min_rows={self.min_rows:,} rows of {data.n_sensors} features make "
+                                 f"{self.min_rows * data.n_sensors:,} values; at most {MAX_VALUES:,} are drawn.")
             rows = rng.choice(n, self.min_rows, replace=True)
         elif self.max_rows is not None and n > self.max_rows:
             rows = rng.choice(n, self.max_rows, replace=False)
