@@ -12,8 +12,10 @@ documentation instead (ROS wiki, "Bags/Format/2.0"):
   record (op 4) a connection: the time and offset of each of its messages;
 - a message record (op 2) states its length.
 
-A chunk is inflated only as far as the messages read need, never beyond
-the size it states nor beyond :data:`~novelty.io.caps.MAX_CHUNK_BYTES`; a
+A chunk is inflated once, only as far as the messages read need, never
+beyond the size it states nor beyond :data:`~novelty.io.caps.MAX_CHUNK_BYTES`
+(its messages due after another chunk's, where chunks' times interleave,
+wait, at most :data:`~novelty.io.caps.MAX_HELD_BYTES` of them); a
 message's stated length must lie within its chunk and within the cap its
 reader gives (a longer message's first bytes are read to name the field that
 asks for too much), or the message is refused (:class:`~novelty.io.caps.MessageError`, naming the file,
@@ -30,7 +32,8 @@ from typing import Iterator
 
 import numpy as np
 
-from .caps import Where
+from . import caps
+from .caps import MessageError, Where
 from .chunks import Inflated, Limit
 
 __all__ = ["Bag1", "Connection", "BagFormatError"]
@@ -179,22 +182,22 @@ class Bag1:
         """``(connection, time_ns, number, data)`` of each message of ``topics``, in time order.
 
         ``number`` counts the topic's messages from 1; ``limits[topic]``
-        bounds a message's length (see :data:`Limit`).
+        bounds a message's length (see :data:`Limit`). Each chunk is
+        inflated once: when its first message is due, the messages read of
+        it are taken out together, and those due after another chunk's are
+        held until then, at most :data:`~novelty.io.caps.MAX_HELD_BYTES`.
         """
         wanted = {c.id for c in self.connections.values() if c.topic in topics}
         entries, chunks = self._entries(wanted)
         numbers = dict.fromkeys(topics, 0)
-        current, inflated = -1, None
-        for time, chunk, offset, conn, extent in zip(*(entries[k].tolist() for k in
-                                                      ("time", "chunk", "offset", "conn", "extent"))):
-            connection = self.connections[conn]
-            numbers[connection.topic] += 1
-            where = Where(self.path, connection.topic, numbers[connection.topic])
-            if chunk != current:
-                inflated = None   # the previous chunk's bytes are let go before the next is inflated
-                inflated, current = Inflated(self._fh, *chunks[chunk], where), chunk
-            yield connection, time, where.number, inflated.message(offset, extent, limits[connection.topic],
-                                                                  where)
+        places = []
+        for conn in entries["conn"].tolist():
+            topic = self.connections[conn].topic
+            numbers[topic] += 1
+            places.append(Where(self.path, topic, numbers[topic]))
+        held = _Held(self, entries, chunks, places, limits)
+        for i, (time, conn) in enumerate(zip(entries["time"].tolist(), entries["conn"].tolist())):
+            yield self.connections[conn], time, places[i].number, held.take(i)
 
     def _entries(self, wanted: set[int]):
         """The index of the wanted connections' messages, sorted by time, with each record's room."""
@@ -229,6 +232,51 @@ class Bag1:
         entries = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
         order = np.lexsort((entries["offset"], entries["chunk"], entries["time"]))
         return {k: v[order] for k, v in entries.items()}, chunks
+
+
+class _Held:
+    """The messages of the chunks inflated so far that are not yet due, each chunk inflated once.
+
+    A message's data, or the error reading it gave, waits here from its
+    chunk's inflation until its turn; the bytes waiting are at most
+    :data:`~novelty.io.caps.MAX_HELD_BYTES`.
+    """
+
+    def __init__(self, bag: Bag1, entries: dict, chunks: list, places: list, limits: dict):
+        self.bag, self.chunks, self.places, self.limits = bag, chunks, places, limits
+        self.offsets, self.extents = entries["offset"].tolist(), entries["extent"].tolist()
+        self.chunk_of = entries["chunk"].tolist()
+        self.in_chunk: dict[int, list[int]] = {}   # each chunk's messages, by their place in it
+        for i in np.lexsort((entries["offset"], entries["chunk"])).tolist():
+            self.in_chunk.setdefault(self.chunk_of[i], []).append(i)
+        self.waiting: dict[int, bytes | MessageError] = {}
+        self.bytes = 0
+
+    def take(self, i: int) -> bytes:
+        """Message ``i``'s data (its chunk inflated if it was not yet), or the error reading it gave."""
+        if i not in self.waiting:
+            self._inflate(self.chunk_of[i], i)
+        data = self.waiting.pop(i)
+        if isinstance(data, MessageError):
+            raise data
+        self.bytes -= len(data)
+        return data
+
+    def _inflate(self, chunk: int, due: int) -> None:
+        """Take out the messages read of ``chunk``, message ``due`` the one whose turn it is."""
+        inflated = Inflated(self.bag._fh, *self.chunks[chunk], self.places[due])
+        for j in self.in_chunk.pop(chunk):
+            where = self.places[j]
+            try:
+                data = inflated.message(self.offsets[j], self.extents[j], self.limits[where.topic], where)
+            except MessageError as exc:
+                self.waiting[j] = exc
+                continue
+            self.waiting[j] = data
+            self.bytes += len(data)
+            if self.bytes > caps.MAX_HELD_BYTES:
+                raise where.error("chunk", f"more than {caps.MAX_HELD_BYTES:,} bytes of messages would wait for "
+                                  "their turn, their chunks' times interleaving so (novelty.io.caps.MAX_HELD_BYTES).")
 
 
 def _topic_name(name: str) -> str:

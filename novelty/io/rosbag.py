@@ -7,7 +7,8 @@ stated size is checked first; ROS 2 bags through the optional package
 ``pip install 'novelty-habituation[ros]'``; without it, opening a bag
 raises an ``ImportError`` that says so, and the rest of :mod:`novelty.io`
 works), after :mod:`.ros2_inflation` has checked that no compressed part
-(an MCAP chunk, a compressed message or file) inflates beyond its cap. Every message is decoded from its bytes by :mod:`.decoders`, its
+(an MCAP chunk, a file, the messages of the topics read) inflates beyond
+its cap. Every message is decoded from its bytes by :mod:`.decoders`, its
 sizes checked against :mod:`.caps` first: an error names the file, the
 topic, the message's number on it and the field.
 
@@ -57,7 +58,7 @@ from .caps import MessageError, Where
 from .decoders import decode, largest, peek
 from .messages import LaserScan, Pose, RangeReading, Transform
 from .quaternions import yaw
-from .ros2_inflation import check_inflation
+from .ros2_inflation import StoredBag
 from .clouds import cloud_scan
 
 __all__ = ["BagError", "Bag", "bag_topics", "topic_types", "topic_counts", "read_bag", "bag_messages", "converted",
@@ -121,8 +122,12 @@ class Bag:
             raise BagError(f"{self.path} is not a bag: expected a ROS 1 .bag, a ROS 2 .db3 or .mcap file, or a "
                            "ROS 2 bag folder (with metadata.yaml).")
         self.ros1 = self.path.suffix == ".bag"
+        self._checked: set[str] = set()   # the topics whose messages stored compressed were checked
         if not self.ros1:
-            check_inflation(self.path)   # rosbags inflates without a limit: every compressed part checked first
+            # rosbags inflates without a limit: what opening inflates is checked first, the messages of the
+            # topics read as they are asked for
+            self._stored = StoredBag(self.path)
+            self._stored.check_storage()
         try:
             if self.ros1:
                 self.reader = Bag1(self.path)
@@ -177,6 +182,9 @@ class Bag:
             if self.counts.get(topic, 0) == 0:
                 raise BagError(f"{self.path}: topic {topic} holds no messages.")
         static = {t: t.rstrip("/").endswith("tf_static") for t in topics}
+        if not self.ros1 and not self._checked.issuperset(topics):
+            self._stored.check_messages(topics)
+            self._checked.update(topics)
         for topic, msgtype, record_time, where, data in self._raw(topics):
             msg = decode(msgtype, data, self.ros1, where, topic, static=static[topic], **options)
             yield topic, where, _restamped(msg, msgtype, record_time)

@@ -69,7 +69,6 @@ def test_stated_counts():
         Assembler(fragments=0)
 
 
-@pytest.mark.skip(reason="a reproducer: its fix comes with the readers' layering")  # REPRODUCER
 def test_a_revolution_starting_at_float32_minus_pi_starts_there():
     # a driver's float32 angles: the first fragment's angle_min is float32(-pi), a hair below -pi
     inc = float(np.float32(INC))
@@ -84,7 +83,6 @@ def test_a_revolution_starting_at_float32_minus_pi_starts_there():
     assert out[1].ranges[::180].tolist() == [10.0, 11.0, 12.0, 13.0]
 
 
-@pytest.mark.skip(reason="a reproducer: its fix comes with the readers' layering")  # REPRODUCER
 def test_fragments_spanning_more_than_one_turn_are_not_one_revolution():
     # 8 fragments of 181 degrees, each starting where the one before ended: four turns and more
     scans = [LaserScan(k + 0.01 * f, np.ones(362), math.radians((f * 181 + 180) % 360 - 180), INC)

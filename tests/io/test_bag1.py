@@ -122,7 +122,6 @@ def _read(path):
         yield from bag.messages(["/scan"], {"/scan": (10**6, None)})
 
 
-@pytest.mark.skip(reason="a reproducer: its fix comes with the readers' layering")  # REPRODUCER
 def test_chunks_whose_messages_interleave_in_time_are_each_inflated_once(tmp_path, monkeypatch):
     # two chunks of 40 scans each, their times alternating, a megabyte of other topics' room before each scan
     n, gap = 40, 2**20
@@ -152,3 +151,8 @@ def test_chunks_whose_messages_interleave_in_time_are_each_inflated_once(tmp_pat
     assert read == [(k * 10**9, k) for k in range(1, 2 * n + 1)]   # in time order, numbered so
     chunk_bytes = n * (gap + 200)
     assert sum(inflated) <= 2 * chunk_bytes   # each chunk inflated once (before: from its start at each switch)
+    # the messages taken out before their turn are held within a bound
+    monkeypatch.setattr(caps, "MAX_HELD_BYTES", 1000)
+    with pytest.raises(MessageError, match=r"interleaved.bag, topic /scan, message \d+ \(chunk\): more than 1,000 "
+                                           r"bytes of messages would wait for their turn"):
+        list(_read(path))
