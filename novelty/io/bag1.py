@@ -189,15 +189,10 @@ class Bag1:
         """
         wanted = {c.id for c in self.connections.values() if c.topic in topics}
         entries, chunks = self._entries(wanted)
-        numbers = dict.fromkeys(topics, 0)
-        places = []
-        for conn in entries["conn"].tolist():
-            topic = self.connections[conn].topic
-            numbers[topic] += 1
-            places.append(Where(self.path, topic, numbers[topic]))
-        held = _Held(self, entries, chunks, places, limits)
-        for i, (time, conn) in enumerate(zip(entries["time"].tolist(), entries["conn"].tolist())):
-            yield self.connections[conn], time, places[i].number, held.take(i)
+        held = _Held(self, entries, chunks, limits)
+        for i in range(len(entries["time"])):
+            where = held.where(i)
+            yield self.connections[int(entries["conn"][i])], int(entries["time"][i]), where.number, held.take(i, where)
 
     def _entries(self, wanted: set[int]):
         """The index of the wanted connections' messages, sorted by time, with each record's room."""
@@ -242,33 +237,42 @@ class _Held:
     :data:`~novelty.io.caps.MAX_HELD_BYTES`.
     """
 
-    def __init__(self, bag: Bag1, entries: dict, chunks: list, places: list, limits: dict):
-        self.bag, self.chunks, self.places, self.limits = bag, chunks, places, limits
-        self.offsets, self.extents = entries["offset"].tolist(), entries["extent"].tolist()
-        self.chunk_of = entries["chunk"].tolist()
-        self.in_chunk: dict[int, list[int]] = {}   # each chunk's messages, by their place in it
-        for i in np.lexsort((entries["offset"], entries["chunk"])).tolist():
-            self.in_chunk.setdefault(self.chunk_of[i], []).append(i)
+    def __init__(self, bag: Bag1, entries: dict, chunks: list, limits: dict):
+        self.bag, self.entries, self.chunks, self.limits = bag, entries, chunks, limits
+        # each message's number on its topic, counted in time order
+        self.topic_of = {c: bag.connections[c].topic for c in np.unique(entries["conn"]).tolist()}
+        self.numbers = np.zeros(len(entries["conn"]), np.int64)
+        for topic in set(self.topic_of.values()):
+            mine = np.isin(entries["conn"], [c for c, t in self.topic_of.items() if t == topic])
+            self.numbers[mine] = np.arange(1, int(mine.sum()) + 1)
+        # each chunk's messages, by their place in it
+        order = np.lexsort((entries["offset"], entries["chunk"]))
+        bounds = np.searchsorted(entries["chunk"][order], np.arange(len(chunks) + 1))
+        self.in_chunk = {k: order[bounds[k]:bounds[k + 1]] for k in range(len(chunks))}
         self.waiting: dict[int, bytes | MessageError] = {}
         self.bytes = 0
 
-    def take(self, i: int) -> bytes:
+    def where(self, i: int) -> Where:
+        return Where(self.bag.path, self.topic_of[int(self.entries["conn"][i])], int(self.numbers[i]))
+
+    def take(self, i: int, where: Where) -> bytes:
         """Message ``i``'s data (its chunk inflated if it was not yet), or the error reading it gave."""
         if i not in self.waiting:
-            self._inflate(self.chunk_of[i], i)
+            self._inflate(int(self.entries["chunk"][i]), where)
         data = self.waiting.pop(i)
         if isinstance(data, MessageError):
             raise data
         self.bytes -= len(data)
         return data
 
-    def _inflate(self, chunk: int, due: int) -> None:
-        """Take out the messages read of ``chunk``, message ``due`` the one whose turn it is."""
-        inflated = Inflated(self.bag._fh, *self.chunks[chunk], self.places[due])
-        for j in self.in_chunk.pop(chunk):
-            where = self.places[j]
+    def _inflate(self, chunk: int, due: Where) -> None:
+        """Take out the messages read of ``chunk`` (``due``: the message whose turn it is)."""
+        inflated = Inflated(self.bag._fh, *self.chunks[chunk], due)
+        offsets, extents = self.entries["offset"], self.entries["extent"]
+        for j in self.in_chunk.pop(chunk).tolist():
+            where = self.where(j)
             try:
-                data = inflated.message(self.offsets[j], self.extents[j], self.limits[where.topic], where)
+                data = inflated.message(int(offsets[j]), int(extents[j]), self.limits[where.topic], where)
             except MessageError as exc:
                 self.waiting[j] = exc
                 continue

@@ -496,9 +496,10 @@ def _inflate(blocks, compression: str, size: int, keep: bool = False):
 
     Stops once more than ``size`` bytes came out, so that it never holds
     more than ``size + 1``; gives the inflated bytes (``keep``) or an object
-    whose ``len`` is their number.
+    whose ``len`` is their number (inflated a block at a time, never held).
     """
     out = bytearray() if keep else _Counted()
+    step = size + 1 if keep else _BLOCK
     if compression == "":
         for block in blocks:
             out += block[:size + 1 - len(out)]
@@ -513,9 +514,9 @@ def _inflate(blocks, compression: str, size: int, keep: bool = False):
                     break
             if decompressor.eof:   # a next frame
                 decompressor = new()
-            out += decompressor.decompress(pending, max_length=size + 1 - len(out))
+            out += decompressor.decompress(pending, max_length=min(step, size + 1 - len(out)))
             while len(out) <= size and not decompressor.eof and not decompressor.needs_input:
-                out += decompressor.decompress(b"", max_length=size + 1 - len(out))
+                out += decompressor.decompress(b"", max_length=min(step, size + 1 - len(out)))
             pending = decompressor.unused_data if decompressor.eof else b""
     except Exception as exc:   # zstd and lz4 raise their own kinds for damaged data
         raise _Damaged(f"{type(exc).__name__}: {exc}") from None

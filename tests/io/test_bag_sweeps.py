@@ -11,6 +11,8 @@ import time
 import numpy as np
 import pytest
 
+from novelty.io import caps
+from novelty.io.assembly import LEARN
 from novelty.io.recording import read_rings
 from novelty.io.rosbag import Bag
 from novelty.io.report import ReadReport
@@ -349,3 +351,28 @@ def test_a_topic_that_stops_before_its_fragments_are_learned_holds_the_others_sc
     next(sweeps)
     assert len(read) < 300   # before, the first sweep came after all 1,050 messages were read and held
     assert sum(1 for _ in sweeps) == 49   # the other 49 of /scan_b's 50, merged
+
+
+def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(tmp_path, monkeypatch):
+    # 400 scans stamped alike (a driver's clock stuck at 5 s) and odometry that ends at 1 s: each scan waits
+    # for poses past its time, which never come, while the recording's time stands still
+    angles = np.linspace(-1.0, 1.0, 8)
+    stuck = [(1.0 + k * 0.01, "/scan", SCAN, lambda ts: scan_message(ts, 5.0, "laser", -1.0, angles[1] - angles[0],
+                                                                       np.ones(8))) for k in range(400)]
+    odom = [(t, "/odom", "nav_msgs/msg/Odometry", lambda ts, t=t: odometry(ts, t, path_of(t))) for t in TF_TIMES[:50]]
+    bag = write_robot_bag(tmp_path / "stuck.bag", "ros1", stuck + odom)
+    monkeypatch.setattr(caps, "MAX_WAITING_BEAMS", 80)   # ten scans of 8 beams
+    read = []
+    messages = Bag.messages
+
+    def counted(self, *args, **kwargs):
+        for message in messages(self, *args, **kwargs):
+            read.append(message[0])
+            yield message
+
+    monkeypatch.setattr(Bag, "messages", counted)
+    sweeps = read_sweeps(bag, "/scan", pose_topic="/odom")
+    first = next(sweeps)
+    # the odometry, the messages its fragments are learned from, then ten scans waiting: before, all 450 messages
+    assert len(read) <= 50 + LEARN + 11 and first.pose is None   # its pose never came
+    assert 1 + sum(1 for _ in sweeps) == 400
