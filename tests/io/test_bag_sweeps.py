@@ -332,28 +332,33 @@ def test_a_deep_tf_chain_costs_a_bounded_time_and_is_said(tmp_path):
                              "(novelty.io.caps.MAX_TF_DEPTH).)") for line in report.lines()), report.lines()
 
 
-def test_a_topic_that_stops_before_its_fragments_are_learned_holds_the_others_scans_a_bounded_time(tmp_path,
-                                                                                                  monkeypatch):
-    # /scan_b's 50 messages come in its first 5 s, then no more; /scan_a's scans go on for 100 s
-    a = whole_scans(np.round(np.arange(0.0, 100.0, 0.1), 3), frame="a", n=8, topic="/scan_a")
-    b = whole_scans(np.round(np.arange(0.05, 5.0, 0.1), 3), frame="b", n=8, topic="/scan_b")
-    bag = write_robot_bag(tmp_path / "stops.bag", "ros1", a + b)
-    read = []
+@pytest.fixture
+def read(monkeypatch) -> list:
+    """The topic of each message a bag gives, as it is read."""
+    topics = []
     messages = Bag.messages
 
     def counted(self, *args, **kwargs):
         for message in messages(self, *args, **kwargs):
-            read.append(message[0])
+            topics.append(message[0])
             yield message
 
     monkeypatch.setattr(Bag, "messages", counted)
+    return topics
+
+
+def test_a_topic_that_stops_before_its_fragments_are_learned_holds_the_others_scans_a_bounded_time(tmp_path, read):
+    # /scan_b's 50 messages come in its first 5 s, then no more; /scan_a's scans go on for 100 s
+    a = whole_scans(np.round(np.arange(0.0, 100.0, 0.1), 3), frame="a", n=8, topic="/scan_a")
+    b = whole_scans(np.round(np.arange(0.05, 5.0, 0.1), 3), frame="b", n=8, topic="/scan_b")
+    bag = write_robot_bag(tmp_path / "stops.bag", "ros1", a + b)
     sweeps = read_sweeps(bag, ["/scan_a", "/scan_b"])
     next(sweeps)
     assert len(read) < 300   # before, the first sweep came after all 1,050 messages were read and held
     assert sum(1 for _ in sweeps) == 49   # the other 49 of /scan_b's 50, merged
 
 
-def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(tmp_path, monkeypatch):
+def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(tmp_path, monkeypatch, read):
     # 400 scans stamped alike (a driver's clock stuck at 5 s) and odometry that ends at 1 s: each scan waits
     # for poses past its time, which never come, while the recording's time stands still
     angles = np.linspace(-1.0, 1.0, 8)
@@ -362,15 +367,6 @@ def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(
     odom = [(t, "/odom", "nav_msgs/msg/Odometry", lambda ts, t=t: odometry(ts, t, path_of(t))) for t in TF_TIMES[:50]]
     bag = write_robot_bag(tmp_path / "stuck.bag", "ros1", stuck + odom)
     monkeypatch.setattr(caps, "MAX_WAITING_BEAMS", 80)   # ten scans of 8 beams
-    read = []
-    messages = Bag.messages
-
-    def counted(self, *args, **kwargs):
-        for message in messages(self, *args, **kwargs):
-            read.append(message[0])
-            yield message
-
-    monkeypatch.setattr(Bag, "messages", counted)
     sweeps = read_sweeps(bag, "/scan", pose_topic="/odom")
     first = next(sweeps)
     # the odometry, the messages its fragments are learned from, then ten scans waiting: before, all 450 messages
