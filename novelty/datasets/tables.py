@@ -205,6 +205,8 @@ def _read_npz(path: Path) -> Table:
         _check_npz_sizes(path)
         npz = np.load(path, allow_pickle=False)
     except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+        if str(exc).startswith(str(path)):   # ours: already says what
+            raise
         raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
     with npz:
         arrays = {k: npz[k] for k in npz.files}
