@@ -140,7 +140,7 @@ class AutoencoderFilter(CalibratedDetector):
             )
 
     def _fit_model(self, X: np.ndarray) -> None:
-        # deferred: sklearn.neural_network takes 0.07 s to import, needed only to fit
+        # deferred: sklearn.neural_network is slow to import, needed only to fit
         from sklearn.neural_network import MLPRegressor
 
         hidden = self.hidden_layer_sizes

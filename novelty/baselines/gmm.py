@@ -133,7 +133,7 @@ class GaussianMixtureDetector(CalibratedDetector):
         self.contamination = contamination
 
     def _mixture(self, k: int):
-        # deferred: sklearn.mixture takes 0.4 s to import, needed only to fit
+        # deferred: sklearn.mixture is slow to import, needed only to fit
         from sklearn.mixture import GaussianMixture
 
         return GaussianMixture(n_components=k, covariance_type=self.covariance_type, reg_covar=self.reg_covar,
