@@ -373,3 +373,16 @@ def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(
     # the odometry, the messages its fragments are learned from, then ten scans waiting: before, all 450 messages
     assert len(read) <= 50 + LEARN + 11 and first.pose is None   # its pose never came
     assert 1 + sum(1 for _ in sweeps) == 400
+
+
+def test_a_mount_where_no_laser_is_placed_is_refused(tmp_path):
+    log = tmp_path / "tiny.log"
+    log.write_text("FLASER 4 1.0 2.0 3.0 8.0 0.0 0.0 0.0 0.0 0.0 0.0 10.0 robot 10.0\n")
+    with pytest.raises(ValueError, match=r"tiny.log is a CARMEN log, whose lasers are read as it records them, and "
+                                         r"no mount would be read: give none"):
+        next(read_rings(log, Reading(mounts="0.2,0,0")))
+    sonar = write_robot_bag(tmp_path / "sonar.bag", "ros1", [(t, "/sonar", "sensor_msgs/msg/Range", lambda ts, t=t: _make(
+        ts, "sensor_msgs/msg/Range", header=_header(ts, t, "s0"), min_range=0.1, max_range=5.0, range=1.0))
+        for t in (1.0, 2.0)])
+    with pytest.raises(ValueError, match="/sonar holds sonars' Range readings, and no mount would be read"):
+        next(read_rings(sonar, Reading(mounts="/sonar=0.2,0,0")))
