@@ -226,19 +226,32 @@ print(f"{seconds:.2f}\\t{peak / 1024:.0f}\\t{' '.join(said.split())[:160]}")
 """
 
 
+def _environment(library: Path | None) -> dict:
+    return {**os.environ, "PYTHONPATH": str(library or ROOT)}
+
+
+def _library_read(library: Path | None) -> str:
+    """Where the children import ``novelty`` from (to be sure it is the checkout asked for)."""
+    with tempfile.TemporaryDirectory() as folder:
+        done = subprocess.run([sys.executable, "-c", "import novelty; print(novelty.__file__)"], capture_output=True,
+                              text=True, env=_environment(library), cwd=folder, check=True)
+    return str(Path(done.stdout.strip()).parent)
+
+
 def run_case(case: str, folder: Path, library: Path | None, limit: int, timeout: float) -> tuple:
     """``(file bytes, seconds, peak MB, what it said)`` of one case, read in a limited child process."""
     write, statement = CASES[case]
     path = write(case, folder)
     size = sum(f.stat().st_size for f in ([path] if path.is_file() else path.rglob("*")) if f.is_file())
-    env = {**os.environ, "PYTHONPATH": str(library or ROOT)}
+    env = _environment(library)
 
     def limited():
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
     try:
+        # run in the case's folder: ``python -c`` puts its working directory first on the path
         done = subprocess.run([sys.executable, "-c", CHILD, str(path), statement], capture_output=True, text=True,
-                              env=env, timeout=timeout, preexec_fn=limited)
+                              env=env, cwd=folder, timeout=timeout, preexec_fn=limited)
     except subprocess.TimeoutExpired:
         return size, f">{timeout:.0f}", "", "stopped at the time limit"
     if done.returncode != 0:
@@ -254,6 +267,7 @@ def main(argv=None) -> int:
     parser.add_argument("--limit-gb", type=float, default=4.0, help="address space of a child (GB)")
     parser.add_argument("--timeout", type=float, default=300.0, help="seconds a child may take")
     args = parser.parse_args(argv)
+    print(f"novelty read from {_library_read(args.library)}\n")
     print("| case | file bytes | seconds | peak MB | the reading said |\n| --- | --- | --- | --- | --- |")
     for case in args.cases.split(","):
         with tempfile.TemporaryDirectory() as folder:
