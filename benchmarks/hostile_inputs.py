@@ -9,8 +9,9 @@ Each case writes a small crafted file (with the tests' writers: ``tests/io/craft
 ``tests/io/bag_files.py``, ``tests/io/tables/craft.py``) and reads it through the public API in a
 child process limited to ``--limit-gb`` of address space and ``--timeout`` seconds; the table gives
 each case's file size, what the reading said, its wall time and its peak resident memory (the
-child's ``VmHWM``). ``--library DIR`` reads with the ``novelty`` of another checkout (``git worktree
-add /tmp/before <commit>``), to set a revision's figures beside this one's. Not a unit test: the
+child's ``VmHWM``; of a child stopped at the time limit, its peak so far). ``--library DIR`` reads with
+the ``novelty`` of another checkout (``git archive <commit> novelty | tar -x -C /tmp/before``), to set a
+revision's figures beside this one's. Not a unit test: the
 tests hold each case to its bound (a few seconds, 200 MB); here are the figures.
 
 The cases:
@@ -238,6 +239,12 @@ def _library_read(library: Path | None) -> str:
     return str(Path(done.stdout.strip()).parent)
 
 
+def _peak_mb(pid: int) -> str:
+    """A running process's peak resident memory so far, in MB (its ``VmHWM``)."""
+    status = Path(f"/proc/{pid}/status").read_text().splitlines()
+    return next(f"{int(line.split()[1]) / 1024:.0f}" for line in status if line.startswith("VmHWM"))
+
+
 def run_case(case: str, folder: Path, library: Path | None, limit: int, timeout: float) -> tuple:
     """``(file bytes, seconds, peak MB, what it said)`` of one case, read in a limited child process."""
     write, statement = CASES[case]
@@ -248,15 +255,19 @@ def run_case(case: str, folder: Path, library: Path | None, limit: int, timeout:
     def limited():
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
+    # run in the case's folder: ``python -c`` puts its working directory first on the path
+    child = subprocess.Popen([sys.executable, "-c", CHILD, str(path), statement], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=env, cwd=folder, preexec_fn=limited)
     try:
-        # run in the case's folder: ``python -c`` puts its working directory first on the path
-        done = subprocess.run([sys.executable, "-c", CHILD, str(path), statement], capture_output=True, text=True,
-                              env=env, cwd=folder, timeout=timeout, preexec_fn=limited)
+        out, err = child.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
-        return size, f">{timeout:.0f}", "", "stopped at the time limit"
-    if done.returncode != 0:
-        return size, "", "", f"exit {done.returncode}: {' '.join(done.stderr.split())[-160:]}"
-    seconds, peak, said = done.stdout.strip().splitlines()[-1].split("\t")
+        peak = _peak_mb(child.pid)   # read before the kill: the peak so far
+        child.kill()
+        child.communicate()
+        return size, f">{timeout:.0f}", peak, "stopped at the time limit"
+    if child.returncode != 0:
+        return size, "", "", f"exit {child.returncode}: {' '.join(err.split())[-160:]}"
+    seconds, peak, said = out.strip().splitlines()[-1].split("\t")
     return size, seconds, peak, said
 
 
