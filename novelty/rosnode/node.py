@@ -54,7 +54,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 from .._version import __version__
 from ..io.decoders import DECODED
 from .scoring import LiveScorer, Scored, model_size
-from .setup import build, StartError
+from .setup import StartError, build, warm_up
 
 __all__ = ["Node", "main"]
 
@@ -75,6 +75,8 @@ def main(argv: list[str]) -> int:
     except StartError:
         rospy.signal_shutdown("the node could not start")
         raise
+    rospy.loginfo("novelty: compiling the detector's kernels before subscribing (on a first run, up to a minute)")
+    warm_up(scorer, settings)
     node = Node(scorer, settings, topics)
     rospy.on_shutdown(node.close)
     node.start()
@@ -89,6 +91,7 @@ class Node:
     def __init__(self, scorer: LiveScorer, settings, topics: list[str]):
         self.scorer, self.settings, self.topics = scorer, settings, topics
         self.lock = threading.Lock()             # the scorer: the worker, the services, the diagnostics
+        self.outputs = threading.Lock()          # the publishers, while a master back has them made again
         self.queue: collections.deque = collections.deque()
         self.ready = threading.Condition()
         self.scans_waiting = 0
@@ -96,6 +99,7 @@ class Node:
         self.headers: collections.OrderedDict = collections.OrderedDict()   # a scan's time -> its exact stamp
         self.master_pid = None
         self.closed = False
+        self.simulated = bool(rospy.get_param("/use_sim_time", False))
 
     # -------------------------------------------------------------- set up
     def start(self) -> None:
@@ -139,6 +143,10 @@ class Node:
         """A subscription's callback: the message queued with its arrival times, nothing else."""
         item = (topic, msg._connection_header.get("type", ""), msg._buff, rospy.get_rostime(), time.monotonic())
         scan = topic in self.scorer.reading.assemblers
+        if scan:
+            resumed = self.scorer.stats.scan_arrived(item[-1])
+            if resumed:
+                rospy.logwarn(f"novelty: {resumed}")
         with self.ready:
             self.queue.append(item)
             if scan:
@@ -170,7 +178,8 @@ class Node:
                 rospy.logerr(f"novelty: an internal error, the message left out: {type(exc).__name__}: {exc}")
 
     def _handle(self, item) -> None:
-        cells = self.pub_cells.get_num_connections() > 0
+        with self.outputs:
+            cells = self.pub_cells.get_num_connections() > 0
         with self.lock:
             if item is None:
                 scored = self.scorer.tick(time.monotonic(), cells)
@@ -180,8 +189,9 @@ class Node:
             said, self.scorer.said[:] = list(self.scorer.said), []
         for line in said:
             rospy.logwarn(f"novelty: {line}")
-        for one in scored:
-            self._publish(one)
+        with self.outputs:
+            for one in scored:
+                self._publish(one)
 
     def _take(self, topic, msgtype, data, stamp, clock, cells) -> list[Scored]:
         msgtype = _type_name(msgtype)
@@ -233,17 +243,24 @@ class Node:
     # -------------------------------------------------------------- diagnostics and the master
     def _watch(self) -> None:
         while not self.stopping.wait(1.0):
-            with self.lock:
-                line = self.scorer.stats.check_stopped(time.monotonic(), self.settings.stopped_after)
-                status = self._status()
-            if line:
-                rospy.logwarn(f"novelty: {line}")
-            self._check_master()
             try:
-                self.pub_diagnostics.publish(DiagnosticArray(header=Header(stamp=rospy.get_rostime()),
-                                                             status=[status]))
-            except rospy.ROSException:
+                self._diagnose()
+            except rospy.ROSException:   # shutting down: the topics are closed
                 return
+            except Exception as exc:   # noqa: BLE001 - the diagnostics must outlive what they report
+                self.scorer.stats.faults["internal errors"] += 1
+                rospy.logerr(f"novelty: an internal error in the diagnostics: {type(exc).__name__}: {exc}")
+
+    def _diagnose(self) -> None:
+        """Once a second: the scans stopped?, the master there?, the diagnostics published."""
+        with self.lock:
+            line = self.scorer.stats.check_stopped(time.monotonic(), self.settings.stopped_after)
+            status = self._status()
+        if line:
+            rospy.logwarn(f"novelty: {line}")
+        self._check_master()
+        with self.outputs:
+            self.pub_diagnostics.publish(DiagnosticArray(header=Header(stamp=rospy.get_rostime()), status=[status]))
 
     def _status(self) -> DiagnosticStatus:
         stats, scorer = self.scorer.stats, self.scorer
@@ -252,7 +269,7 @@ class Node:
             ("learning", "yes" if scorer.learning else "frozen"),
             ("model size (values learned)", str(model_size(scorer.detector))),
             ("poses", scorer.reading.report.poses or "not decided yet"),
-            ("clock", "simulated (/clock)" if rospy.get_param("/use_sim_time", False) else "wall"),
+            ("clock", "simulated (/clock)" if self.simulated else "wall"),
         ]
         return DiagnosticStatus(level=level, name=f"novelty: {rospy.get_name()}", message=summary,
                                 hardware_id=rospy.get_name(), values=[KeyValue(k, v) for k, v in values])
@@ -273,8 +290,9 @@ class Node:
                           "the connections made.")
         else:
             rospy.logwarn("novelty: a ROS master is back; the node's topics and services are registered again.")
-            self._unregister()
-            self._register()
+            with self.outputs:
+                self._unregister()
+                self._register()
         self.master_pid = pid
 
     # -------------------------------------------------------------- services

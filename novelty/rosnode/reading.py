@@ -202,6 +202,7 @@ class LiveReading:
         self.rings = None if points else RingMaker(self.sectors, reduce, limits, front)
         self.timeout, self.where = float(timeout), where
         self.skipped: Counter = Counter()
+        self.problems: list[str] = []   # why scans were left out, for the node's log
         self.numbers: Counter = Counter()
         self.newest: dict[str, float] = {}
         self._start()
@@ -268,7 +269,7 @@ class LiveReading:
         out = []
         while self.pending and self.pending[0][0] <= held:
             stamp, _, topic, scan, arrival = self.pending[0]
-            expired = stamp < self.latest_scan - WAIT or clock - arrival >= self.timeout
+            expired = stamp < self.latest_scan - self.timeout or clock - self.last_arrival >= self.timeout
             if not (self._ready(topic, scan, stamp) or expired):
                 break
             heapq.heappop(self.pending)
@@ -320,6 +321,15 @@ class LiveReading:
             return False
 
     def _row(self, topic: str, scan, stamp: float, arrival: float) -> Row | None:
+        """The scan's row; None for a part of several sensors' scan, or a scan skipped (counted, its reason kept)."""
+        try:
+            return self._input(topic, scan, stamp, arrival)
+        except ValueError as exc:   # another geometry mid-stream, a tilted mount: this scan cannot be read
+            self.skipped["its beams cannot make the input"] += 1
+            self.problems.append(f"A scan on {topic} at {stamp:.3f} s cannot be read and is left out: {exc}")
+            return None
+
+    def _input(self, topic: str, scan, stamp: float, arrival: float) -> Row | None:
         pose = self.posing.pose(stamp)
         sweep = self.placing.sweep(topic, scan, pose)
         if self.merger is not None:

@@ -98,10 +98,6 @@ class LiveScorer:
         latest = _latest_stamp(msg)
         if latest is not None and not topic.endswith("tf_static") and self.reading.jumped_back(topic, latest):
             self._jumped(topic, latest)
-        if topic in self.reading.assemblers:
-            resumed = self.stats.scan_arrived(clock)
-            if resumed:
-                self.said.append(resumed)
         return self._scored(self.reading.push(topic, msg, clock), cells)
 
     def tick(self, clock: float, cells: bool = False) -> list[Scored]:
@@ -121,6 +117,9 @@ class LiveScorer:
     def _scored(self, rows: list[Row], cells: bool) -> list[Scored]:
         self.stats.skipped.update(self.reading.skipped)
         self.reading.skipped.clear()
+        for problem in self.reading.problems:
+            self.say("unreadable scan", problem)
+        self.reading.problems.clear()
         out = []
         for row in rows:
             scored = self._score(row, cells)

@@ -244,9 +244,9 @@ PARAMETERS = {
     "detector": _text, "model": _text, "params": _params, "save": _text,
     "scan_topics": _topics, "pose_topic": _text, "base_frame": _text, "fixed_frame": _text, "mounts": _mounts,
     "fragments": _fragments, "echo": _rule(Options(ECHOES)), "tolerance": _rule(Interval(numbers.Real, 0, None)),
-    "sectors": _rule(Interval(numbers.Integral, 1, None, allow_none=True)), "reduce": _reduce, "limits": _limits,
+    "sectors": _rule(Interval(numbers.Integral, 1, None), allow_none=True), "reduce": _reduce, "limits": _limits,
     "front": _rule(Interval(numbers.Real, -360, 360)), "range_threshold": _rule(_POSITIVE), "stamps": _flag,
-    "threshold": _rule(Interval(numbers.Real, None, None, allow_none=True)), "alarm": _alarm, "learning": _flag,
+    "threshold": _rule(Interval(numbers.Real, None, None), allow_none=True), "alarm": _alarm, "learning": _flag,
     "transform_timeout": _rule(_POSITIVE), "queue_size": _rule(Interval(numbers.Integral, 1, None)),
     "stopped_after": _rule(_POSITIVE),
 }

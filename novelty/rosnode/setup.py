@@ -15,17 +15,20 @@ import math
 from pathlib import Path
 from typing import Callable, Mapping
 
+import numpy as np
+
 from .. import load
 from ..alarms import parse_alarm
 from ..bench.spec_checks import check_detector
 from ..bench.specs import DetectorSpec, SuiteError
 from ..persistence import ModelFileError
 from ..registry import RegistryError
+from ..io.messages import LaserScan, Pose
 from .reading import LiveReading
 from .scoring import LiveScorer
 from .settings import Settings, SettingsError
 
-__all__ = ["build", "StartError", "make_detector", "alarm_policy"]
+__all__ = ["build", "StartError", "make_detector", "make_reading", "alarm_policy", "warm_up"]
 
 
 class StartError(Exception):
@@ -47,18 +50,53 @@ def build(params: Mapping, resolve: Callable[[str], str] = lambda name: name,
     detector = fresh()
     alarm = alarm_policy(detector, settings)
     topics = [resolve(t) for t in settings.scan_topics or ("scan",)]
-    reading = LiveReading(
-        topics, points=getattr(detector, "input_layout", None) == "points", sectors=settings.sectors,
-        reduce=settings.reduce, limits=settings.limits_radians, front=math.radians(settings.front),
-        threshold=settings.range_threshold, pose_topic=resolve(settings.pose_topic) if settings.pose_topic else None,
-        base_frame=settings.base_frame or None, fixed_frame=settings.fixed_frame or None,
-        mounts=[_resolved_mount(m, resolve) for m in settings.mounts] or None, fragments=settings.fragments,
-        echo=settings.echo, tolerance=settings.tolerance, timeout=settings.transform_timeout, where=where)
+    reading = make_reading(settings, topics, points=getattr(detector, "input_layout", None) == "points",
+                           pose_topic=resolve(settings.pose_topic) if settings.pose_topic else None,
+                           mounts=[_resolved_mount(m, resolve) for m in settings.mounts] or None, where=where)
     if reading.points and (settings.reduce != "min" or settings.limits is not None or settings.front != 0.0):
         raise StartError("The points input reads each sector's nearest echo over the whole scan, placed in the world "
                          "by the robot's pose: no ~reduce, ~limits or ~front.")
     scorer = LiveScorer(detector, reading, alarm, fresh, stamps=settings.stamps, learning=settings.learning)
     return scorer, settings, reading.topics
+
+
+def make_reading(settings: Settings, topics: list[str], *, points: bool, pose_topic: str | None, mounts,
+                 where: str) -> LiveReading:
+    """The live reading of ``topics`` with the settings' options (``novelty run``'s on a recording)."""
+    return LiveReading(
+        topics, points=points, sectors=settings.sectors, reduce=settings.reduce, limits=settings.limits_radians,
+        front=math.radians(settings.front), threshold=settings.range_threshold, pose_topic=pose_topic,
+        base_frame=settings.base_frame or None, fixed_frame=settings.fixed_frame or None, mounts=mounts,
+        fragments=settings.fragments, echo=settings.echo, tolerance=settings.tolerance,
+        timeout=settings.transform_timeout, where=where)
+
+
+def warm_up(scorer: LiveScorer, settings: Settings) -> None:
+    """Compile what the first scans will run, before any arrives: a made-up scan through copies of the parts.
+
+    The compiled kernels (numba's: the readers', the detector's) are compiled
+    at their first call, seconds on a first run; a node that compiled them at
+    its first scan would drop the scans that came meanwhile. The copies are
+    thrown away; the scorer is untouched. Whatever a made-up scan cannot go
+    through (a model of another number of sectors) is left to the first real one.
+    """
+    beams = 360
+    reading = make_reading(settings, ["/warm_up"], points=scorer.reading.points, pose_topic="/warm_up_pose",
+                           mounts={"/warm_up": "0.1,0,0"}, where="warm-up")
+    ranges = np.where(np.arange(beams) % 9 == 0, np.inf, 1.0 + 0.01 * np.arange(beams))
+    scan = LaserScan(1.0, ranges, -math.pi, 2 * math.pi / beams, 0.05, 30.0, frame="warm_up")
+    rows = reading.push("/warm_up_pose", Pose(0.0, 0.0, 0.0, 0.0), 0.0)
+    rows += reading.push("/warm_up", scan, 0.0) + reading.push("/warm_up_pose", Pose(2.0, 0.1, 0.0, 0.1), 0.0)
+    rows += reading.flush()
+    detector = scorer.fresh()
+    try:
+        for i, row in enumerate(rows * 2):
+            detector.score_learn_one(row.x, float(i) if settings.stamps else None)
+            detector.score_one(row.x)
+            if hasattr(detector, "cell_novelty"):
+                detector.cell_novelty(row.x)
+    except ValueError:   # a loaded model of another input: its first real scan compiles the rest
+        pass
 
 
 def make_detector(settings: Settings) -> Callable[[], object]:

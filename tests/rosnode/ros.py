@@ -5,8 +5,8 @@
 test's folder, and stops it with every process it started (each in a
 session of its own, stopped as a group). The node runs as ``python -m
 novelty.cli node ...`` under this interpreter; bags are played with
-``rosbag play`` and what the node publishes recorded with ``rosbag record``
-and read back with ROS's own ``rosbag`` module.
+``rosbag play`` and what the node publishes collected in the order it is
+published (tests/rosnode/collect.py).
 """
 
 import os
@@ -28,7 +28,6 @@ def missing() -> str | None:
         if shutil.which(tool) is None:
             return f"ROS 1 is not installed ({tool} not on PATH; apt-get install ros-core python3-rospy ...)"
     try:
-        import rosbag  # noqa: F401
         import rospy  # noqa: F401
     except ImportError as exc:
         return f"rospy is not importable here ({exc}; a venv made with --system-site-packages sees Debian's)"
@@ -90,7 +89,9 @@ class Master:
         self.uri = f"http://127.0.0.1:{self.port}/"
         home = folder / "ros_home"
         home.mkdir(parents=True, exist_ok=True)
-        self.env = {**os.environ, "ROS_MASTER_URI": self.uri, "ROS_HOME": str(home), "ROS_LOG_DIR": str(home / "log"),
+        repository = Path(__file__).resolve().parents[2]   # the collector runs as tests.rosnode.collect
+        self.env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(repository), os.environ.get("PYTHONPATH", "")]),
+                    "ROS_MASTER_URI": self.uri, "ROS_HOME": str(home), "ROS_LOG_DIR": str(home / "log"),
                     "ROS_IP": "127.0.0.1", "PYTHONUNBUFFERED": "1"}
         self.env.pop("ROS_HOSTNAME", None)
         self.processes: list[Process] = []
@@ -149,8 +150,9 @@ class Master:
             raise AssertionError(f"{name} ended at start ({process.popen.returncode}): {process.errors()}")
 
     def record(self, out: Path, *topics: str) -> Process:
-        """``rosbag record`` of ``topics`` into ``out``, once it has subscribed to every one."""
-        recorder = self.spawn(["rosbag", "record", "-O", out, *topics, "__name:=recorder"], "record")
+        """Collect what ``topics`` carry into ``out`` (tests/rosnode/collect.py), once subscribed to every one."""
+        recorder = self.spawn([sys.executable, "-m", "tests.rosnode.collect", out, *topics, "__name:=recorder"],
+                              "record")
         self.wait_until(lambda: all(self.subscribed(t, "/recorder") for t in topics), 30, "the recorder to subscribe")
         return recorder
 
@@ -168,11 +170,7 @@ class Master:
 
 
 def recorded(path: Path) -> dict:
-    """The messages of a bag written by ``rosbag record``: ``{topic: [message, ...]}`` in time order."""
-    import rosbag
+    """What :meth:`Master.record` collected: ``{topic: [message, ...]}`` in the order published."""
+    from .collect import read
 
-    out: dict = {}
-    with rosbag.Bag(str(path)) as bag:
-        for topic, msg, _ in bag.read_messages():
-            out.setdefault(topic, []).append(msg)
-    return out
+    return read(path)
