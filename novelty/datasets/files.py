@@ -206,8 +206,9 @@ def files(path, test_path=None, columns=None, label=None, time=None, split=None,
       fraction of the rows);
     - ``resample``: a split drawn for each ``seed``, ``stratified`` or
       ``shuffled``, of ``test`` (default 0.3) tested, the table first
-      bootstrapped to ``min_rows`` or subsampled to ``max_rows``
-      (:mod:`novelty.datasets.resampling`).
+      bootstrapped to ``min_rows`` or subsampled to ``max_rows``; or
+      ``adbench``, ADBench's recipe drawn as its code draws it, the same
+      rows for the same seed (:mod:`novelty.datasets.resampling`).
 
     Whichever the split, ``training="clean"`` drops the novel scans from the
     training part (default ``"contaminated"``: they stay, unlabelled) and
