@@ -185,6 +185,7 @@ ACROSS = {
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
     "fuzz/test_files.py": "hostile save targets, suite files and standard input",
+    "rosnode/test_guide.py": "the live-robot guide's session, run against a real ROS master",
     "io/objects/test_bags.py": "the tasks read from a bag (novelty.io.objects.tasks, novelty.io.tasks) with a laser's mount",
     "_kernels/test_hostile_state.py": "both engines against a hostile state of every pair (choice, state, the drivers)",
 }

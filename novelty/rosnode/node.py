@@ -75,6 +75,8 @@ def main(argv: list[str]) -> int:
     except StartError:
         rospy.signal_shutdown("the node could not start")
         raise
+    if settings.unused:
+        rospy.loginfo(f"novelty: ~model {settings.model} is loaded; {' and '.join(settings.unused)} not used.")
     rospy.loginfo("novelty: compiling the detector's kernels before subscribing (on a first run, up to a minute)")
     warm_up(scorer, settings)
     node = Node(scorer, settings, topics)

@@ -48,7 +48,8 @@ class Settings:
     detector : str
         A registered detector's name (``novelty list detectors``); or
     model : str
-        A saved model (``.npz``) to load at start and continue learning from.
+        A saved model (``.npz``) to load at start and continue learning from; given, ``detector`` and
+        ``params`` are not used (:attr:`unused`).
     params : dict
         The detector's parameters (``novelty run --param``).
     save : str
@@ -135,18 +136,19 @@ class Settings:
         return settings
 
     def _check_together(self) -> None:
-        if bool(self.detector) == bool(self.model):
+        if not self.detector and not self.model:
             raise SettingsError("Give the novelty node ~detector (a registered name: novelty list detectors) or "
-                                "~model (a saved model to continue from), not " + ("both." if self.detector
-                                                                                  else "neither."))
-        if self.model and self.params:
-            raise SettingsError("~params are a new detector's; a loaded ~model keeps its own (give ~detector "
-                                "with ~params, or ~model alone).")
+                                "~model (a saved model to continue from).")
         if self.threshold is not None:
             try:
                 parse_alarm(self.alarm, self.threshold)
             except ValueError as exc:
                 raise SettingsError(f"~alarm: {exc}") from None
+
+    @property
+    def unused(self) -> list[str]:
+        """The parameters a loaded ``~model`` makes unused (a node started again keeps the master's parameters)."""
+        return [f"~{name}" for name in ("detector", "params") if self.model and getattr(self, name)]
 
     @property
     def limits_radians(self) -> tuple[float, float] | None:

@@ -17,7 +17,7 @@ import numpy as np
 from novelty.io.bag1 import Bag1
 from novelty.io.decoders import largest
 
-from ..io.scenes import laser_ranges, quaternion, scan_message, tf_message, transform, write_robot_bag
+from ..io.scenes import WALLS, laser_ranges, quaternion, scan_message, tf_message, transform, write_robot_bag
 
 SCAN = "sensor_msgs/msg/LaserScan"
 TF = "tf2_msgs/msg/TFMessage"
@@ -32,16 +32,16 @@ def pose_at(t: float) -> tuple[float, float, float]:
 
 
 def laser(times, topic="/scan", frame="laser", beams=360, span=2 * math.pi, mount=(0.1, 0.0, 0.0), flipped=False,
-          fragments=1, ranges=None):
-    """A laser's messages at ``times``: whole scans, or each cut in ``fragments`` messages ``1 / (fragments
-    rate)`` apart; ``ranges(t, r)`` may change what it reads."""
+          fragments=1, ranges=None, walls=lambda t: WALLS):
+    """A laser's messages at ``times``: whole scans, or each cut in ``fragments`` messages a millisecond apart;
+    ``ranges(t, r)`` may change what it reads, ``walls(t)`` the room it sees."""
     inc = span / beams
     start = -span / 2
     angles = start + inc * np.arange(beams)
     per = beams // fragments
     out = []
     for t in times:
-        r = laser_ranges(pose_at(t), mount, angles, flipped=flipped)
+        r = laser_ranges(pose_at(t), mount, angles, walls(t), flipped=flipped)
         r = r if ranges is None else ranges(t, r)
         for k in range(fragments):
             tk = round(t + k * 0.001, 6)
@@ -83,3 +83,16 @@ def messages(path):
         limits = {t: (largest(kind), lambda *args: None) for t, kind in bag.topics.items()}
         for connection, time, _, data in bag.messages(list(bag.topics), limits):
             yield connection.topic, connection.msgtype, time * 1e-9, bytes(data)
+
+
+#: a box that appears on the second loop of :func:`two_loops`, half a metre outside the robot's circle
+NEW_BOX = [((3.5, 0.85), (3.8, 0.85)), ((3.8, 0.85), (3.8, 1.15)), ((3.8, 1.15), (3.5, 1.15)), ((3.5, 1.15), (3.5, 0.85))]
+
+
+def two_loops(path, rate=20.0):
+    """Two loops round the room (:data:`LOOP` s each) with a 360-beam laser; on the second, a new box by the way."""
+    times = np.round(1.0 + np.arange(0.0, 2 * LOOP, 1.0 / rate), 6)
+    scans = laser(times, walls=lambda t: WALLS + NEW_BOX if t >= 1.0 + LOOP else WALLS)
+    tf_times = np.round(0.9 + np.arange(0.0, 2 * LOOP + 0.3, 0.02), 6)
+    return write_robot_bag(path, "ros1", scans + odometry_tf(tf_times) + [mounts(0.5, ("laser", (0.1, 0.0, 0.0),
+                                                                                     False))])
