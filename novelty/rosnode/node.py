@@ -328,6 +328,7 @@ class Node:
         with self.ready:
             self.ready.notify_all()
         self.worker.join()
+        print(f"novelty node: {self.scorer.stats.summary()}.", file=sys.stderr)
         if self.settings.save:
             with self.lock:
                 try:

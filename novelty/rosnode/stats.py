@@ -46,11 +46,15 @@ class Stats:
         self.faults: Counter = Counter()
         self.dropped = 0
         self.latencies: deque = deque(maxlen=WINDOW)
+        self.scans = 0                       # scan messages arrived (counted as they arrive, before the queue)
+        self.first_scan: float | None = None
         self.last_scan: float | None = None
         self.stopped = False
 
     def scan_arrived(self, clock: float) -> str | None:
         """Note a scan message at ``clock`` (s); the line to log when it ends a stop."""
+        self.scans += 1
+        self.first_scan = clock if self.first_scan is None else self.first_scan
         was, self.last_scan = self.last_scan, clock
         if self.stopped:
             self.stopped = False
@@ -84,6 +88,16 @@ class Stats:
         if self.stopped:
             return WARN, "scans stopped"
         return OK, f"{self.scored} scans scored"
+
+    def summary(self) -> str:
+        """One line of what the node did: scan messages arrived (over how long), scans scored, skipped, dropped,
+        and the latencies."""
+        latency = self.latency_ms()
+        span = 0.0 if self.first_scan is None else self.last_scan - self.first_scan
+        return (f"{self.scans} scan messages in {span:.2f} s, {self.scored} scans scored, "
+                f"{sum(self.skipped.values())} skipped, {self.dropped} dropped from a full queue"
+                + ("" if latency is None else f"; latency median {latency[0]:.2f} ms, 99th percentile "
+                                              f"{latency[1]:.2f} ms"))
 
     def values(self) -> list[tuple[str, str]]:
         """Key-value pairs for ``DiagnosticStatus.values``: the counts, the latencies."""

@@ -41,3 +41,7 @@ def test_the_values_name_every_count():
         ("messages received on /scan", "3"), ("messages received on /tf", "7"), ("scans scored", "2"),
         ("scans skipped: no pose at its time", "1"), ("scans dropped from a full queue", "4"),
         ("time jumps back", "1"), ("latency median (ms)", "2.00"), ("latency 99th percentile (ms)", "2.00")]
+    for clock in (5.0, 5.5, 6.25):
+        stats.scan_arrived(clock)
+    assert stats.summary() == "3 scan messages in 1.25 s, 2 scans scored, 1 skipped, 4 dropped from a full queue; " \
+                              "latency median 2.00 ms, 99th percentile 2.00 ms"
