@@ -119,7 +119,7 @@ class Node:
         self.pub_novelty = rospy.Publisher("~novelty", Float32, queue_size=100)
         self.pub_stamped = rospy.Publisher("~novelty_stamped", Vector3Stamped, queue_size=100)
         self.pub_alarm = rospy.Publisher("~alarm", Bool, queue_size=100, latch=True)
-        self.pub_cells = rospy.Publisher("~novel_cells", MarkerArray, queue_size=10)
+        self.pub_cells = rospy.Publisher("~novel_cells", MarkerArray, queue_size=100)
         self.pub_diagnostics = rospy.Publisher("/diagnostics", DiagnosticArray, queue_size=10)
         self.services = [rospy.Service("~set_learning", SetBool, self._set_learning),
                          rospy.Service("~save", Trigger, self._save),

@@ -14,6 +14,7 @@ import pytest
 
 import novelty
 from novelty.cli import main
+from novelty.rosnode.setup import build
 
 from .ros import Master, recorded, skip_without_ros
 
@@ -21,7 +22,7 @@ skip_without_ros()
 pytest.importorskip("rosbags", reason="the bags are written with rosbags' writers (the ros extra)")
 
 from ..io.scenes import write_robot_bag  # noqa: E402
-from .bags import laser, mounts, odometry_tf  # noqa: E402
+from .bags import laser, messages, mounts, odometry_tf  # noqa: E402
 
 pytestmark = pytest.mark.slow
 
@@ -61,7 +62,7 @@ def run_node(master, folder, name, bags, *params, play=(), between=None):
     # first 100) are scored in one burst, during which no scan must be dropped
     node = master.node("_queue_size:=500", *params, name=name)
     master.wait_for_node(node, f"/{name}")
-    topics = [f"/{name}/novelty_stamped", f"/{name}/novelty", f"/{name}/alarm", "/diagnostics"]
+    topics = [f"/{name}/novelty_stamped", f"/{name}/novelty", f"/{name}/alarm", f"/{name}/novel_cells", "/diagnostics"]
     recorder = master.record(folder / f"{name}.bag", *topics)
     for i, bag in enumerate(bags):
         master.play(bag, "--wait-for-subscribers", *play)
@@ -110,9 +111,30 @@ def test_the_novelty_published_while_a_bag_plays_is_what_novelty_run_writes(mast
         # the scans it could not score are the ones novelty run left out: before /tf began and in its gap
         left_out = 160 - len(expected["novelty"])
         assert left_out > 3 and status["scans skipped: no pose at its time"] == str(left_out)
+        check_the_cells(got[f"/{name}/novel_cells"], stamped, bag)
     else:
         assert len(expected["novelty"]) == 160 and not any(k.startswith("scans skipped") for k in status)
     assert status["scans dropped from a full queue"] == "0" and float(status["latency median (ms)"]) > 0
+
+
+def check_the_cells(markers, stamped, bag):
+    """Each scan's marker: the cells it hit above the threshold, as the map scored them before learning the scan."""
+    scorer, _, _ = build({"detector": "map-explore"}, lambda name: "/" + name.lstrip("/"))
+    scored = []
+    for topic, msgtype, record, data in messages(bag):
+        scored += scorer.take(topic, msgtype, data, record, record, cells=True)
+    scored += scorer.tick(1e9, cells=True)
+    # the first scan is scored by an empty map: no cells to show
+    assert scored[0].cells is None and len(markers) == len(scored) - 1 == len(stamped) - 1
+    for marker_array, one, published in zip(markers, scored[1:], stamped[1:]):
+        (marker,) = marker_array.markers
+        centres, novelty = one.cells
+        novel = novelty > 0.5
+        assert marker.header.frame_id == "odom" and marker.header.stamp == published.header.stamp
+        assert marker.type == marker.CUBE_LIST and marker.scale.x == 0.2   # map-explore's cells
+        assert [(p.x, p.y) for p in marker.points] == [tuple(c) for c in centres[novel].tolist()]
+        np.testing.assert_array_equal([c.g for c in marker.colors], (1.0 - novelty[novel]).astype(np.float32))
+    assert sum(len(m.markers[0].points) for m in markers) > 0
 
 
 def test_a_node_started_again_with_its_saved_model_goes_on_where_it_stopped(master, tmp_path):

@@ -85,3 +85,29 @@ def test_time_jumping_back_forgets_the_moving_transforms_and_keeps_the_static(tm
     assert not reading.posing.tree.has("odom") and reading.posing.tree.has("laser")
     again = pushed(reading, bag)
     np.testing.assert_array_equal([r.x for r in again], [r.x for r in first])
+
+
+def test_a_point_cloud_and_a_multi_echo_laser_read_as_novelty_run_reads_them(tmp_path):
+    from ..io.bags import _header, _make, write_bag
+
+    cloud_bag = write_bag(tmp_path, "ros1")   # one PointCloud2 on /cloud, flattened all round
+    reading = LiveReading(["/cloud"], sectors=8)
+    rows = pushed(reading, cloud_bag)
+    expected = list(read_rings(cloud_bag, "/cloud", sectors=8))
+    assert len(rows) == len(expected) == 1
+    np.testing.assert_array_equal(rows[0].x, preprocess(expected[0].ranges, 4.0))
+
+    def echoes(ts, t):
+        near = [_make(ts, "sensor_msgs/msg/LaserEcho", echoes=np.array([1.0 + k % 3, 2.5 + t], np.float32))
+                for k in range(8)]
+        return _make(ts, "sensor_msgs/msg/MultiEchoLaserScan", header=_header(ts, t, "laser"), angle_min=-1.0,
+                     angle_max=0.75, angle_increment=0.25, range_min=0.1, range_max=30.0, ranges=near,
+                     intensities=[_make(ts, "sensor_msgs/msg/LaserEcho", echoes=np.array([5.0, 50.0], np.float32))] * 8)
+
+    echo_bag = write_robot_bag(tmp_path / "echoes.bag", "ros1", [
+        (t, "/echoes", "sensor_msgs/msg/MultiEchoLaserScan", lambda ts, t=t: echoes(ts, t)) for t in TIMES[:3]])
+    for echo in ("first", "last", "strongest"):
+        reading = LiveReading(["/echoes"], sectors=2, echo=echo)
+        expected = [r.ranges for r in read_rings(echo_bag, "/echoes", sectors=2, echo=echo)]
+        np.testing.assert_array_equal([r.x for r in pushed(reading, echo_bag)], preprocess(np.array(expected), 4.0))
+    assert expected[0].tolist() != [r.ranges for r in read_rings(echo_bag, "/echoes", sectors=2)][0].tolist()
