@@ -7,7 +7,9 @@
   named in :data:`ACROSS`.
 - No import cycle among novelty's modules, counting the imports inside
   functions too (an import moved into a function hides a cycle from Python,
-  not from a reader), and none among its subpackages.
+  not from a reader), and none among its subpackages, nor among the
+  readers' layers (novelty.io's folders).
+- Each layer of the readers stands on at most four import levels.
 - The library says what it does: no module of ``novelty/`` speaks of a study's
   selections, rounds or seeds (a docstring cites ``studies/<name>/`` instead,
   CHANGELOG.md keeps how the defaults changed) or quotes a timing (the
@@ -16,6 +18,7 @@
 """
 
 import ast
+import importlib.util
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -61,52 +64,15 @@ def test_no_tracker_numbers():
 
 
 # ------------------------------------------------------------------ imports
+# The import graph is read as benchmarks/import_levels.py reads it (that script prints it per layer).
+_spec = importlib.util.spec_from_file_location("import_levels", ROOT / "benchmarks" / "import_levels.py")
+import_levels = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(import_levels)
+
+
 def _modules() -> dict[str, Path]:
     """Every module of the package by dotted name (a package by its own name)."""
-    out = {}
-    for path in sorted(PACKAGE.rglob("*.py")):
-        parts = list(path.relative_to(ROOT).with_suffix("").parts)
-        if parts[-1] == "__init__":
-            parts.pop()
-        out[".".join(parts)] = path
-    return out
-
-
-def _imported(name: str, path: Path, modules) -> set[str]:
-    """The novelty modules ``name`` imports anywhere in its file, in functions too.
-
-    ``from package import submodule`` imports the submodule; ``from module
-    import name`` the module; imports under ``if TYPE_CHECKING:`` are not
-    run and do not count.
-    """
-    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
-    found = set()
-
-    def nearest(target):
-        while target not in modules and "." in target:
-            target = target.rpartition(".")[0]
-        return target if target in modules and target != name else None
-
-    def visit(node):
-        for child in ast.iter_child_nodes(node):
-            if isinstance(child, ast.If) and "TYPE_CHECKING" in ast.unparse(child.test):
-                continue
-            if isinstance(child, ast.Import):
-                found.update(nearest(a.name) for a in child.names if a.name.split(".")[0] == "novelty")
-            elif isinstance(child, ast.ImportFrom):
-                if child.level:
-                    base = package.split(".")[: len(package.split(".")) - child.level + 1]
-                    source = ".".join(base + ([child.module] if child.module else []))
-                else:
-                    source = child.module or ""
-                if source.split(".")[0] == "novelty":
-                    for alias in child.names:
-                        sub = f"{source}.{alias.name}"
-                        found.add(nearest(sub if sub in modules else source))
-            visit(child)
-
-    visit(ast.parse(path.read_text(encoding="utf-8")))
-    return found - {None}
+    return import_levels.modules(PACKAGE)
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
@@ -141,8 +107,7 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 
 def _graph() -> dict[str, set[str]]:
-    modules = _modules()
-    return {name: _imported(name, path, modules) for name, path in modules.items()}
+    return import_levels.graph(PACKAGE)
 
 
 def test_the_cycle_finder():
@@ -172,6 +137,32 @@ def test_no_import_cycle_among_subpackages():
     assert not cycles, f"subpackages that import each other: {cycles}"
 
 
+def test_no_import_cycle_among_the_readers_layers():
+    def layer(module):
+        return ".".join(module.split(".")[:3])
+
+    edges: dict[str, set[str]] = defaultdict(set)
+    for module, imported in _graph().items():
+        if module.startswith("novelty.io."):
+            edges[layer(module)].update(layer(m) for m in imported
+                                        if m.startswith("novelty.io.") and layer(m) != layer(module))
+    cycles = _cycles(edges)
+    assert not cycles, f"layers of novelty.io that import each other: {cycles}"
+
+
+def test_the_levels_of_a_layer_count_its_own_imports_only():
+    edges = {"a": {"b", "x"}, "b": {"c"}, "c": set(), "d": {"c"}}
+    assert import_levels.levels({"a", "b", "c", "d"}, edges) == {"a": 3, "b": 2, "c": 1, "d": 2}
+    assert import_levels.longest_chains({"a", "b", "c", "d"}, edges, {"a": 3, "b": 2, "c": 1, "d": 2}) == [
+        ["a", "b", "c"]]
+
+
+@pytest.mark.parametrize("layer, found", sorted(import_levels.layers(PACKAGE, "novelty.io").items()))
+def test_each_layer_of_the_readers_stands_on_at_most_four_levels(layer, found):
+    assert found["levels"] <= import_levels.MAX_LEVELS, (
+        f"{layer} stands on {found['levels']} levels: {' -> '.join(found['chains'][0])}")
+
+
 # --------------------------------------------------------------- test files
 #: test files that test across modules, not one module each
 ACROSS = {
@@ -188,7 +179,8 @@ ACROSS = {
     "fuzz/test_detectors.py": "every registered detector against hostile input",
     "fuzz/test_files.py": "hostile save targets, suite files and standard input",
     "rosnode/test_guide.py": "the live-robot guide's session, run against a real ROS master",
-    "io/objects/test_bags.py": "the tasks read from a bag (novelty.io.objects.tasks, novelty.io.tasks) with a laser's mount",
+    "tasks/objects/test_bags.py": "the tasks read from a bag (novelty.tasks.objects, novelty.tasks.recordings) with a laser's mount",
+    "tasks/objects/test_points.py": "the points input (novelty.io.scans.points) of the objects tasks' sweeps",
     "_kernels/test_hostile_state.py": "both engines against a hostile state of every pair (choice, state, the drivers)",
 }
 

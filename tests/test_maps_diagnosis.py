@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from novelty.bench.holdout.metrics import roc_auc
-from novelty.io.objects.shapes import Cylinder
+from novelty.tasks.objects.shapes import Cylinder
 from novelty.maps import HabituatingMap
 from novelty.maps.habituating_map import cell_keys
 

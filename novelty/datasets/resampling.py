@@ -53,7 +53,7 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from ..data import Dataset
-from .labels import check_labels
+from ..io.tables.labels import check_labels
 
 __all__ = ["Resampling", "ResampledTask", "resampled", "adbench_split", "ADBENCH", "ADBENCH_DEFAULTS", "RESAMPLE",
            "SCALES", "TRAINING", "OPTIONS"]

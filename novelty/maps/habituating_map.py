@@ -3,7 +3,7 @@
 Marsland, Nehmzow & Shapiro (2000) feed a scan to a clusterer, whose winning
 unit's habituating synapse gives the novelty; learning habituates it. Here
 the clusterer is the world itself, cut into square cells of side ``c``
-(``cell_size``), and a scan (the ``points`` input, :mod:`novelty.maps.points`:
+(``cell_size``), and a scan (the ``points`` input, :mod:`novelty.io.scans.points`:
 the robot's pose and each sector's end point in the world frame) stimulates
 every cell its echoes fall in. Each cell is a unit with a habituating synapse,
 Stanley's (1976) as in the paper (equation 3 of
@@ -109,7 +109,7 @@ median gap between neighbours (a ring of 16 sonars all round: 22.5
 degrees, close to a sonar's cone; a laser's 180 sectors over 180 degrees:
 1 degree, practically its beam; the one gap across the unseen half is
 outvoted). A sector with no echo counts: its end point lies along its
-direction (:mod:`novelty.maps.points`), so dropping it would widen the
+direction (:mod:`novelty.io.scans.points`), so dropping it would widen the
 cones of a scan that sees few echoes, not of one whose sectors are wider.
 The width is at most pi (the option's own bound); a scan with fewer than
 two sectors that point anywhere (an end point off the robot's position)
@@ -145,7 +145,7 @@ from .._component import StateError, check_array_state, check_int_state
 from .._validation import Interval, Options, check_one
 from ..detector import NoveltyDetector
 from ..habituation.stanley import euler_steps
-from .points import split_points
+from ..io.scans.points import split_points
 
 #: The packed offsets of a cell's eight neighbours.
 _NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
@@ -265,7 +265,7 @@ class HabituatingMap(NoveltyDetector):
     [0.0, 0.316]
     """
 
-    #: the rows it reads: the ``points`` input (:mod:`novelty.maps.points`), not any rows
+    #: the rows it reads: the ``points`` input (:mod:`novelty.io.scans.points`), not any rows
     input_layout = "points"
 
     _parameter_rules = {
