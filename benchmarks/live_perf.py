@@ -56,8 +56,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))   # this checkout's novelty, not an installed one
 
 from novelty import __version__  # noqa: E402
-from novelty.io.decoders import largest  # noqa: E402
-from novelty.io.bag1 import Bag1  # noqa: E402
+from novelty.io.ros.decoders import largest  # noqa: E402
+from novelty.io.ros1.bag1 import Bag1  # noqa: E402
 from novelty.rosnode.setup import build, warm_up  # noqa: E402
 
 DETECTORS = ("hsom", "kmeans-stanley", "map-explore")

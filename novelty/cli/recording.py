@@ -20,8 +20,10 @@ from ._common import UserError, format_cell
 __all__ = ["add_recording_options", "recording_reading", "recording_rings", "recording_points", "pose_columns",
            "RowSink", "POINTS_SECTORS"]
 
-#: the points input's sectors unless --sectors says: the habituating maps were measured on lasers with
-#: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
+
+
+#: the points input's sectors unless --sectors says: novelty.io.scans.points.POINTS_SECTORS, written out so
+#: that the command line starts without the readers (tests/cli/test_recording.py checks they agree)
 POINTS_SECTORS = 180
 
 

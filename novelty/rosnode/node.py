@@ -52,7 +52,7 @@ from std_srvs.srv import SetBool, SetBoolResponse, Trigger, TriggerResponse
 from visualization_msgs.msg import Marker, MarkerArray
 
 from .._version import __version__
-from ..io.decoders import DECODED
+from ..io.ros.decoders import DECODED
 from .scoring import LiveScorer, Scored, model_size
 from .setup import StartError, build, warm_up
 

@@ -1,15 +1,15 @@
 """Live messages read as a bag's are read: one message at a time in, whole scans' inputs out.
 
-``novelty run`` reads a bag through :func:`novelty.io.bag_sweeps.bag_sweeps`:
+``novelty run`` reads a bag through :func:`novelty.io.recording.bag_sweeps.bag_sweeps`,
+which feeds each message to a :class:`~novelty.io.recording.streaming.SweepStream`:
 fragments assembled, each sensor placed through its mount in the tf tree,
-the robot's pose looked up at each scan's time, several sensors merged, then
-each sweep reduced to the paper's ring or to the ``points`` input. A live
-node has the same messages, as they arrive; :class:`LiveReading` takes them
-one at a time (their bytes, decoded by the bag reader's own decoders) and
-gives the same inputs, through the same pieces (:class:`~novelty.io.assembly.Assembler`,
-:class:`~novelty.io.tf.TfBuffer`, the bag reader's placing of sensors,
-:class:`~novelty.io.merge.Merger`, :class:`~novelty.io.sweeps.RingMaker`,
-:func:`~novelty.io.objects.points.sweep_points`).
+the robot's pose looked up at each scan's time, several sensors merged; each
+sweep is then reduced to the paper's ring (:class:`~novelty.io.scans.sweep_rings.RingMaker`)
+or to the ``points`` input (:func:`~novelty.io.scans.points.sweep_points`),
+as a :class:`~novelty.io.recording.reading.Reading` says. A live node has the
+same messages, as they arrive; :class:`LiveReading` takes them one at a time
+(their bytes, decoded by the bag reader's own decoders) and gives the same
+inputs through the same stream.
 
 What a bag reader knows before it reads a scan, a live one learns as the
 messages come:
@@ -23,45 +23,42 @@ messages come:
 - **waiting**: a scan is held until what it needs has arrived (its sensor's
   place in the tree at the first scan of a sensor; its pose, for the
   ``points`` input: the transforms past its time, so that the pose is
-  interpolated, not extrapolated), or until a scan :data:`~novelty.io.bag_sweeps.WAIT`
-  seconds younger has arrived (the bag reader's rule), or until it has waited
-  ``timeout`` seconds of the node's clock (a stream that stopped). Held scans
-  leave in time order, as the bag reader's do.
+  interpolated, not extrapolated), or until a scan ``timeout`` seconds
+  younger has arrived (the bag reader's rule, with its
+  :data:`~novelty.io.recording.streaming.WAIT`), or until no scan has come
+  for ``timeout`` seconds of the node's clock (a stream that stopped: then a
+  scanner still learning its pattern of fragments learns it from what it
+  holds). Held scans leave in time order, as the bag reader's do.
 
 A scan whose pose never came is skipped for the ``points`` input and
-counted; a ring does not need one. :attr:`skipped` counts every scan left
-out, by reason.
+counted; a ring does not need one. :attr:`LiveReading.skipped` counts every
+scan left out, by reason.
 """
 
 from __future__ import annotations
 
-import heapq
-import itertools
 import math
 from collections import Counter
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..io.assembly import Assembler
-from ..io.bag_sweeps import WAIT, _Placing
-from ..io.caps import Where
-from ..io.decoders import decode, largest
-from ..io.merge import Merger
-from ..io.messages import LaserScan, Pose, Transform
-from ..io.objects.points import sweep_points
-from ..io.posing import Posing
-from ..io.report import ReadReport
-from ..io.sweeps import RingMaker, mount_options
-from ..io.tf import TfBuffer, TfError
+from ..io.bags.report import ReadReport
+from ..io.frames.posing import Posing
+from ..io.frames.tf import TfBuffer, TfError
+from ..io.recording.reading import Reading
+from ..io.recording.streaming import WAIT, SweepStream
+from ..io.ros.caps import Where
+from ..io.ros.decoders import decode, largest
+from ..io.ros.messages import Pose, Transform
+from ..io.scans.points import sweep_points
+from ..io.scans.sweep_rings import RingMaker
 from ..sonar.preprocessing import preprocess
 
-__all__ = ["LiveReading", "LivePosing", "Row", "TF_TOPICS", "POINTS_SECTORS"]
+__all__ = ["LiveReading", "LivePosing", "Row", "TF_TOPICS"]
 
 #: The transforms' topics a node follows (tf2's).
 TF_TOPICS = ("/tf", "/tf_static")
-#: The points input's sectors unless given (as ``novelty run``'s): one a beam for a sensor of fewer.
-POINTS_SECTORS = 180
 _WORLD, _ROBOT = "pose source", "robot"
 
 
@@ -78,7 +75,7 @@ class Row:
 
 
 class LivePosing(Posing):
-    """:class:`~novelty.io.posing.Posing` learnt from live transforms instead of a bag's look-ahead.
+    """:class:`~novelty.io.frames.posing.Posing` learnt from live transforms instead of a bag's look-ahead.
 
     The tree is fed as the messages arrive; the base frame and the source of
     the poses are decided once the tree can tell (:meth:`decide`), or when
@@ -175,31 +172,30 @@ class LiveReading:
 
     Parameters
     ----------
-    scan_topics : list of str
-        The scans' topics (LaserScan, MultiEchoLaserScan, PointCloud2); several are merged.
-    points : bool
-        Give the ``points`` input (a detector that reads the robot's pose with each scan), else the ring.
-    sectors, reduce, limits, front, threshold
-        As ``novelty run`` on a recording (``limits`` and ``front`` in radians, ``threshold`` the paper's T).
-    pose_topic, base_frame, fixed_frame, mounts, fragments, echo, tolerance
-        As ``novelty run`` on a bag; ``fixed_frame`` the frame of the poses (default: the tree's root).
-    timeout : float
-        Seconds of the node's clock a scan waits at most for its transforms.
+    reading : Reading
+        How the scans are read (``novelty run``'s options on a recording): its ``topic`` the scans'
+        topics, its ``inputs`` the ring or the ``points`` input.
+    fixed_frame : str, optional
+        The frame of the poses (default: the root of the base frame's tree, as ``novelty run``'s).
+    one_a_beam : bool, default=False
+        For the points input, at most one sector a beam (``reading.sectors`` were not given).
+    timeout : float, default=WAIT
+        Seconds of the scans' time a scan waits for its pose, and of the node's clock after the scans
+        stop before the held ones are read without what they wait for.
     where : str
         Names the source in the errors of messages that cannot be read (the node's name).
     """
 
-    def __init__(self, scan_topics, *, points: bool = False, sectors: int | None = None, reduce="min",
-                 limits=None, front: float = 0.0, threshold: float = 4.0, pose_topic: str | None = None,
-                 base_frame: str | None = None, fixed_frame: str | None = None, mounts=None, fragments="auto",
-                 echo: str = "first", tolerance: float = 0.1, timeout: float = WAIT, where: str = "live"):
-        self.scan_topics, self.points, self.threshold = list(scan_topics), points, threshold
+    def __init__(self, reading: Reading, *, fixed_frame: str | None = None, one_a_beam: bool = False,
+                 timeout: float = WAIT, where: str = "live"):
+        topics = reading.topics
+        self.reading, self.scan_topics = reading, [topics] if isinstance(topics, str) else list(topics)
+        self.points, self.threshold = reading.inputs == "points", reading.threshold
+        self.sectors = None if self.points and one_a_beam else reading.sectors
         self.report = ReadReport()
-        self.posing = LivePosing(pose_topic, base_frame, fixed_frame, self.report)
-        self.placing = _Placing(self.posing, mount_options(mounts), self.report)
-        self.options = dict(fragments=fragments, tolerance=tolerance, echo=echo)
-        self.sectors = sectors if sectors is not None or points else 16
-        self.rings = None if points else RingMaker(self.sectors, reduce, limits, front)
+        self.posing = LivePosing(reading.pose_topic, reading.base_frame, fixed_frame, self.report)
+        self.rings = None if self.points else RingMaker(reading.sectors, reading.reduce, reading.limits,
+                                                        reading.front, reading.clip)
         self.timeout, self.where = float(timeout), where
         self.skipped: Counter = Counter()
         self.problems: list[str] = []   # why scans were left out, for the node's log
@@ -208,11 +204,7 @@ class LiveReading:
         self._start()
 
     def _start(self) -> None:
-        fragments, tolerance = self.options["fragments"], self.options["tolerance"]
-        self.assemblers = {t: Assembler(fragments, t) for t in self.scan_topics}
-        self.merger = Merger(self.scan_topics, tolerance) if len(self.scan_topics) > 1 else None
-        self.pending: list = []   # a heap of (stamp, count, topic, scan, arrival)
-        self.counter = itertools.count()
+        self.stream = _LiveStream(self)
         self.latest_scan = -math.inf
         self.last_arrival = math.inf   # the node's clock at the last scan message
 
@@ -221,6 +213,10 @@ class LiveReading:
         """Every topic to follow: the scans', the transforms', the pose topic."""
         return self.scan_topics + list(TF_TOPICS) + self.posing.topics
 
+    @property
+    def assemblers(self) -> dict:
+        return self.stream.assemblers
+
     # -------------------------------------------------------------- messages in
     def decode(self, topic: str, msgtype: str, data: bytes, arrival: float):
         """A message's bytes (ROS 1 serialization) decoded as a bag's are; a zero stamp takes ``arrival``."""
@@ -228,91 +224,125 @@ class LiveReading:
         where = Where(self.where, topic, self.numbers[topic])
         if len(data) > largest(msgtype):
             raise where.error("length", f"{len(data):,} bytes; at most {largest(msgtype):,} are read for its type "
-                              "(novelty.io.caps).")
+                              "(novelty.io.ros.caps).")
         msg = decode(msgtype, data, True, where, topic, static=topic.rstrip("/").endswith("tf_static"),
-                     echo=self.options["echo"])
+                     echo=self.reading.echo)
         return _restamped(msg, arrival)
 
     def push(self, topic: str, msg, clock: float) -> list[Row]:
-        """Take one decoded message; the rows of the scans it lets go. ``clock``: the node's time now (s)."""
+        """Take one decoded message; the rows of the scans it lets go. ``clock``: the node's clock now (s)."""
         if isinstance(msg, (list, Pose)):
             self.posing.feed(msg)
             return self.release(clock)
-        if topic not in self.assemblers:
+        if topic not in self.stream.assemblers:
             raise ValueError(f"{topic} is not a scan topic of this reading ({', '.join(self.scan_topics)}).")
-        if isinstance(msg, tuple):   # a point cloud (stamp, frame, points): whole as it comes
-            assembler = self.assemblers[topic]
-            assembler.messages += 1
-            assembler.scans += 1
-            self._hold(topic, msg[0], msg, clock)
-            stamp = msg[0]
-        elif isinstance(msg, LaserScan):
-            for whole in self.assemblers[topic].push(msg):
-                self._hold(topic, whole.stamp, whole, clock)
-            stamp = msg.stamp
-        else:
-            raise ValueError(f"{topic}: a scan topic's messages are LaserScan, MultiEchoLaserScan or PointCloud2; "
-                             f"got a {type(msg).__name__}.")
+        self.stream.arrival = clock
+        self.stream.push(topic, msg)
+        stamp = msg[0] if isinstance(msg, tuple) else msg.stamp
         self.latest_scan, self.last_arrival = max(self.latest_scan, stamp), clock
         return self.release(clock)
-
-    def _hold(self, topic, stamp, scan, clock) -> None:
-        heapq.heappush(self.pending, (stamp, next(self.counter), topic, scan, clock))
 
     # -------------------------------------------------------------- rows out
     def release(self, clock: float) -> list[Row]:
         """The rows of the held scans that may go now (see the module docstring), in time order."""
-        if clock - self.last_arrival >= self.timeout:
+        stalled = clock - self.last_arrival >= self.timeout
+        if stalled:
             self._decide_patterns()
-        learning = [a.holding_since for a in self.assemblers.values() if a.per_revolution is None]
-        held = min(learning, default=math.inf)
+        return self._rows(self.stream.release(self.latest_scan, stalled))
+
+    def flush(self) -> list[Row]:
+        """Every held scan's row, whatever it waits for (the stream has ended)."""
+        self.stream.arrival = -math.inf
+        return self._rows(self.stream.flush())
+
+    def _decide_patterns(self) -> None:
+        """The scanners still learning their pattern of fragments learn it from what they hold: the scans stopped."""
+        self.stream.arrival = self.last_arrival
+        for topic, assembler in self.stream.assemblers.items():
+            if assembler.per_revolution is None and assembler.holding_since < math.inf:
+                for whole in assembler.flush():
+                    self.stream.hold(topic, whole.stamp, whole)
+
+    def _rows(self, sweeps: list) -> list[Row]:
         out = []
-        while self.pending and self.pending[0][0] <= held:
-            stamp, _, topic, scan, arrival = self.pending[0]
-            expired = stamp < self.latest_scan - self.timeout or clock - self.last_arrival >= self.timeout
-            if not (self._ready(topic, scan, stamp) or expired):
-                break
-            heapq.heappop(self.pending)
-            if not self.posing.decided:
-                self._decided(final=True)
-            row = self._row(topic, scan, stamp, arrival)
+        for sweep, arrival in sweeps:
+            row = self._row(sweep, arrival)
             if row is not None:
                 out.append(row)
         return out
 
-    def _decide_patterns(self) -> None:
-        """The scanners still learning their pattern of fragments learn it from what they hold: the scans stopped."""
-        for topic, assembler in self.assemblers.items():
-            if assembler.per_revolution is None and assembler.holding_since < math.inf:
-                for whole in assembler.flush():
-                    self._hold(topic, whole.stamp, whole, self.last_arrival)
+    def _row(self, sweep, arrival: float) -> Row | None:
+        """The sweep's row for the detector; None for a scan skipped (counted, its reason kept)."""
+        try:
+            if not self.points:
+                return Row(sweep.time, preprocess(self.rings(sweep), self.threshold), sweep.pose, sweep, arrival)
+            if sweep.pose is None:
+                self.skipped["no pose at its time"] += 1
+                return None
+            if self.sectors is None:
+                self.sectors = min(self.reading.sectors, len(sweep.ranges))
+            return Row(sweep.time, sweep_points([sweep], self.sectors, self.threshold)[0], sweep.pose, sweep,
+                       arrival)
+        except ValueError as exc:   # another geometry mid-stream: its beams cannot fill the sectors
+            self._cannot(sweep.source, sweep.time, exc)
+            return None
 
-    def flush(self) -> list[Row]:
-        """Every held scan's row, whatever it waits for (the stream has ended)."""
-        for topic, assembler in self.assemblers.items():
-            for whole in assembler.flush():
-                self._hold(topic, whole.stamp, whole, -math.inf)
-        return self.release(math.inf)
+    def _cannot(self, topic: str, stamp: float, exc: Exception) -> None:
+        self.skipped["its beams cannot make the input"] += 1
+        self.problems.append(f"A scan on {topic} at {stamp:.3f} s cannot be read and is left out: {exc}")
 
-    def _decided(self, final: bool = False) -> bool:
-        """Whether the base frame and the poses' source are decided (deciding them if the tree can tell)."""
-        if not self.posing.decided and self.posing.decide(final):
-            self.placing.base = self.posing.base
-        return self.posing.decided
+    # -------------------------------------------------------------- faults
+    def jumped_back(self, topic: str, stamp: float) -> bool:
+        """Whether ``stamp`` lies more than the timeout before the newest on ``topic`` (a loop, a reset)."""
+        newest = self.newest.get(topic, -math.inf)
+        self.newest[topic] = max(newest, stamp) if stamp >= newest - self.timeout else stamp
+        return stamp < newest - self.timeout
 
-    def _ready(self, topic: str, scan, stamp: float) -> bool:
-        """Whether what the scan needs has arrived: the tree's answers, its sensor's place, its pose."""
-        if not self._decided():
+    def restart(self) -> int:
+        """Forget the held scans, the moving transforms and the scanners' patterns (time jumped back).
+
+        Returns the number of held scans dropped (counted in :attr:`skipped`).
+        """
+        dropped = len(self.stream.pending)
+        if dropped:
+            self.skipped["held when time jumped back"] += dropped
+        self.posing.forget()
+        self.newest.clear()
+        self._start()
+        return dropped
+
+
+class _LiveStream(SweepStream):
+    """A :class:`~novelty.io.recording.streaming.SweepStream` whose scans wait for what a live reading learns late.
+
+    A held scan waits until the base frame and the poses' source are decided
+    (:meth:`LivePosing.decide`), its sensor can be placed (the tree joins its
+    frame to the base frame, or a mount is given), and, for the points input
+    only, its pose is ready. Each sweep comes with the node's clock when the
+    message that completed its scan arrived; a scan that cannot be placed
+    (a mount tilted out of the floor plane) is left out and counted.
+    """
+
+    def __init__(self, live: LiveReading):
+        super().__init__(live.scan_topics, live.reading, live.posing, live.report, live.timeout)
+        self.live = live
+        self.arrival = math.nan              # the clock of the message being pushed
+        self.arrivals: dict[int, float] = {}
+
+    def hold(self, topic: str, stamp: float, scan) -> None:
+        self.arrivals[id(scan)] = self.arrival
+        super().hold(topic, stamp, scan)
+
+    def ready(self, topic: str, scan, stamp: float) -> bool:
+        if not self.live.posing.decide():
             return False
         if topic not in self.placing.fixed and not self._placeable(topic, scan):
             return False
-        return not self.points or self.posing.ready(stamp)
+        return not self.live.points or self.posing.ready(stamp)
 
     def _placeable(self, topic: str, scan) -> bool:
-        frame = scan[1] if isinstance(scan, tuple) else scan.frame
-        base = self.posing.base
-        if self.placing.mounts.get(topic, self.placing.mounts.get(None)) is not None or not frame or \
-                frame == base or not base:
+        frame, base = scan[1] if isinstance(scan, tuple) else scan.frame, self.posing.base
+        if self.placing.given(topic) is not None or not frame or frame == base or not base:
             return True
         try:
             self.posing.probe.lookup(base, frame, 0.0)
@@ -320,50 +350,16 @@ class LiveReading:
         except TfError:
             return False
 
-    def _row(self, topic: str, scan, stamp: float, arrival: float) -> Row | None:
-        """The scan's row; None for a part of several sensors' scan, or a scan skipped (counted, its reason kept)."""
+    def sweep(self, topic: str, scan, stamp: float):
+        """The sweep and its arrival, or None (a part of several sensors' scan, or a scan left out)."""
+        arrival = self.arrivals.pop(id(scan), math.nan)
+        self.live.posing.decide(final=True)   # at the latest when a scan must go
         try:
-            return self._input(topic, scan, stamp, arrival)
-        except ValueError as exc:   # another geometry mid-stream, a tilted mount: this scan cannot be read
-            self.skipped["its beams cannot make the input"] += 1
-            self.problems.append(f"A scan on {topic} at {stamp:.3f} s cannot be read and is left out: {exc}")
+            sweep = super().sweep(topic, scan, stamp)
+        except ValueError as exc:
+            self.live._cannot(topic, stamp, exc)
             return None
-
-    def _input(self, topic: str, scan, stamp: float, arrival: float) -> Row | None:
-        pose = self.posing.pose(stamp)
-        sweep = self.placing.sweep(topic, scan, pose)
-        if self.merger is not None:
-            sweep = self.merger.push(topic, sweep)
-            if sweep is None:
-                return None
-        if not self.points:
-            return Row(sweep.time, preprocess(self.rings(sweep), self.threshold), sweep.pose, sweep, arrival)
-        if sweep.pose is None:
-            self.skipped["no pose at its time"] += 1
-            return None
-        if self.sectors is None:
-            self.sectors = min(POINTS_SECTORS, len(sweep.ranges))
-        return Row(sweep.time, sweep_points([sweep], self.sectors, self.threshold)[0], sweep.pose, sweep, arrival)
-
-    # -------------------------------------------------------------- faults
-    def jumped_back(self, topic: str, stamp: float) -> bool:
-        """Whether ``stamp`` lies more than :data:`WAIT` seconds before the newest on ``topic`` (a loop, a reset)."""
-        newest = self.newest.get(topic, -math.inf)
-        self.newest[topic] = max(newest, stamp) if stamp >= newest - WAIT else stamp
-        return stamp < newest - WAIT
-
-    def restart(self) -> int:
-        """Forget the held scans, the moving transforms and the scanners' patterns (time jumped back).
-
-        Returns the number of held scans dropped (counted in :attr:`skipped`).
-        """
-        dropped = len(self.pending)
-        if dropped:
-            self.skipped["held when time jumped back"] += dropped
-        self.posing.forget()
-        self.newest.clear()
-        self._start()
-        return dropped
+        return None if sweep is None else (sweep, arrival)
 
 
 def _restamped(msg, arrival: float):

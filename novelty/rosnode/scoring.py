@@ -8,7 +8,7 @@ with ``stamps``), through an alarm policy of :mod:`novelty.alarms`. It
 keeps the counts the diagnostics report (:class:`~novelty.rosnode.stats.Stats`),
 and the faults it met, each said once (:attr:`LiveScorer.said`), none fatal:
 
-- a message that cannot be read (a size beyond :mod:`novelty.io.caps`, a
+- a message that cannot be read (a size beyond :mod:`novelty.io.ros.caps`, a
   truncated message, a pose that is not finite): left out, counted;
 - time that jumps back on a topic (a bag played in a loop, ``/clock`` reset):
   the held scans, the moving transforms and the scanners' patterns are

@@ -23,9 +23,9 @@ from typing import Any, Mapping
 
 from .._validation import Bounds, Interval, Options
 from ..alarms import parse_alarm
-from ..io.decoders import ECHOES
-from ..io.mounts import parse_mount
-from ..io.scans import REDUCTIONS
+from ..io.frames.mounts import parse_mount
+from ..io.ros.decoders import ECHOES
+from ..io.scans.sectors import REDUCTIONS
 from ..sonar.preprocessing import PAPER_THRESHOLD
 
 __all__ = ["Settings", "SettingsError", "PARAMETERS"]

@@ -23,12 +23,14 @@ from ..bench.spec_checks import check_detector
 from ..bench.specs import DetectorSpec, SuiteError
 from ..persistence import ModelFileError
 from ..registry import RegistryError
-from ..io.messages import LaserScan, Pose
+from ..io.recording.reading import Reading
+from ..io.ros.messages import LaserScan, Pose
+from ..io.scans.points import POINTS_SECTORS
 from .reading import LiveReading
 from .scoring import LiveScorer
 from .settings import Settings, SettingsError
 
-__all__ = ["build", "StartError", "make_detector", "make_reading", "alarm_policy", "warm_up"]
+__all__ = ["build", "StartError", "make_detector", "make_reading", "reading_options", "alarm_policy", "warm_up"]
 
 
 class StartError(Exception):
@@ -49,26 +51,37 @@ def build(params: Mapping, resolve: Callable[[str], str] = lambda name: name,
     fresh = make_detector(settings)
     detector = fresh()
     alarm = alarm_policy(detector, settings)
-    topics = [resolve(t) for t in settings.scan_topics or ("scan",)]
-    reading = make_reading(settings, topics, points=getattr(detector, "input_layout", None) == "points",
-                           pose_topic=resolve(settings.pose_topic) if settings.pose_topic else None,
-                           mounts=[_resolved_mount(m, resolve) for m in settings.mounts] or None, where=where)
-    if reading.points and (settings.reduce != "min" or settings.limits is not None or settings.front != 0.0):
-        raise StartError("The points input reads each sector's nearest echo over the whole scan, placed in the world "
-                         "by the robot's pose: no ~reduce, ~limits or ~front.")
+    inputs = "points" if getattr(detector, "input_layout", None) == "points" else "ring"
+    reading = make_reading(settings, inputs, resolve, where)
     scorer = LiveScorer(detector, reading, alarm, fresh, stamps=settings.stamps, learning=settings.learning)
     return scorer, settings, reading.topics
 
 
-def make_reading(settings: Settings, topics: list[str], *, points: bool, pose_topic: str | None, mounts,
-                 where: str) -> LiveReading:
-    """The live reading of ``topics`` with the settings' options (``novelty run``'s on a recording)."""
-    return LiveReading(
-        topics, points=points, sectors=settings.sectors, reduce=settings.reduce, limits=settings.limits_radians,
-        front=math.radians(settings.front), threshold=settings.range_threshold, pose_topic=pose_topic,
-        base_frame=settings.base_frame or None, fixed_frame=settings.fixed_frame or None, mounts=mounts,
-        fragments=settings.fragments, echo=settings.echo, tolerance=settings.tolerance,
-        timeout=settings.transform_timeout, where=where)
+def reading_options(settings: Settings, inputs: str, resolve: Callable[[str], str] = lambda name: name) -> Reading:
+    """The :class:`~novelty.io.recording.reading.Reading` of the node's parameters, as ``novelty run``'s options
+    make one for a recording: topics resolved, degrees in radians, the points input's sectors 180 unless given."""
+    topics = [resolve(t) for t in settings.scan_topics or ("scan",)]
+    sectors = settings.sectors or (POINTS_SECTORS if inputs == "points" else 16)
+    try:
+        return Reading(topic=topics if len(topics) > 1 else topics[0],
+                       pose_topic=resolve(settings.pose_topic) if settings.pose_topic else None,
+                       base_frame=settings.base_frame or None,
+                       mounts=[_resolved_mount(m, resolve) for m in settings.mounts] or None,
+                       fragments=settings.fragments, echo=settings.echo, tolerance=settings.tolerance, sectors=sectors,
+                       reduce=settings.reduce, limits=settings.limits_radians, front=math.radians(settings.front),
+                       threshold=settings.range_threshold, inputs=inputs, stamps=settings.stamps)
+    except ValueError as exc:
+        if inputs == "points" and "apply to the ring only" in str(exc):
+            raise StartError("The points input reads each sector's nearest echo over the whole scan, placed in the "
+                             "world by the robot's pose: no ~reduce, ~limits or ~front.") from None
+        raise StartError(str(exc)) from None
+
+
+def make_reading(settings: Settings, inputs: str, resolve: Callable[[str], str] = lambda name: name,
+                 where: str = "novelty node") -> LiveReading:
+    """The live reading the node's parameters say."""
+    return LiveReading(reading_options(settings, inputs, resolve), fixed_frame=settings.fixed_frame or None,
+                       one_a_beam=settings.sectors is None, timeout=settings.transform_timeout, where=where)
 
 
 def warm_up(scorer: LiveScorer, settings: Settings) -> None:
@@ -81,8 +94,9 @@ def warm_up(scorer: LiveScorer, settings: Settings) -> None:
     through (a model of another number of sectors) is left to the first real one.
     """
     beams = 360
-    reading = make_reading(settings, ["/warm_up"], points=scorer.reading.points, pose_topic="/warm_up_pose",
-                           mounts={"/warm_up": "0.1,0,0"}, where="warm-up")
+    options = scorer.reading.reading.replace(topic="/warm_up", pose_topic="/warm_up_pose", mounts="0.1,0,0",
+                                             fragments=1)
+    reading = LiveReading(options, one_a_beam=scorer.reading.sectors is None, where="warm-up")
     ranges = np.where(np.arange(beams) % 9 == 0, np.inf, 1.0 + 0.01 * np.arange(beams))
     scan = LaserScan(1.0, ranges, -math.pi, 2 * math.pi / beams, 0.05, 30.0, frame="warm_up")
     rows = reading.push("/warm_up_pose", Pose(0.0, 0.0, 0.0, 0.0), 0.0)

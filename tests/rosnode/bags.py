@@ -14,8 +14,8 @@ import math
 
 import numpy as np
 
-from novelty.io.bag1 import Bag1
-from novelty.io.decoders import largest
+from novelty.io.ros1.bag1 import Bag1
+from novelty.io.ros.decoders import largest
 
 from ..io.scenes import WALLS, laser_ranges, quaternion, scan_message, tf_message, transform, write_robot_bag
 

@@ -139,8 +139,8 @@ def _check_the_session(where: Path, bag: Path, tmp_path: Path) -> None:
     assert len(rings) == 20
     scans = [(record, data) for topic, _, record, data in messages(bag) if topic == "/scan"]
     first = int(np.argmin([abs(record - float(rings[0]["time"])) for record, _ in scans]))
-    from novelty.io.decoders import decode
-    from novelty.io.caps import Where
+    from novelty.io.ros.decoders import decode
+    from novelty.io.ros.caps import Where
 
     ranges = np.array([decode("sensor_msgs/msg/LaserScan", data, True, Where("bag", "/scan", i), "/scan").ranges
                        for i, (_, data) in enumerate(scans[first:first + 20])])

@@ -5,9 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.recording import read_rings
-from novelty.io.sweeps import read_sweeps
-from novelty.io.objects.points import sweep_points
+from novelty.io import Reading, read_rings, read_sweeps
+from novelty.io.scans.points import sweep_points
 from novelty.rosnode.reading import LiveReading
 from novelty.sonar import preprocess
 
@@ -17,6 +16,8 @@ from ..io.scenes import odometry, quaternion, tf_message, transform, write_robot
 from .bags import laser, messages, mounts, odometry_tf, pose_at  # noqa: E402
 
 TIMES = np.round(1.0 + np.arange(0.0, 3.0, 0.1), 6)
+#: one laser on /scan read as the points input, as novelty run reads it for a map
+POINTS = Reading(topic="/scan", sectors=180, inputs="points")
 TF_TIMES = np.round(0.95 + np.arange(0.0, 3.2, 0.02), 6)
 
 
@@ -35,20 +36,20 @@ def test_two_lasers_merged_as_novelty_run_merges_them(tmp_path):
                                                               mount=front[1]) +
                           laser(np.round(TIMES + 0.013, 6), "/rear", "rear", span=math.radians(200), mount=rear[1],
                                 flipped=True) + odometry_tf(TF_TIMES) + [mounts(0.5, front, rear)])
-    expected = list(read_rings(bag, ["/front", "/rear"], sectors=16))
-    reading = LiveReading(["/front", "/rear"], sectors=16)
+    expected = list(read_rings(bag, Reading(topic=["/front", "/rear"])))
+    reading = LiveReading(Reading(topic=["/front", "/rear"]))
     rows = pushed(reading, bag)
     assert len(rows) == len(expected) == 30
     np.testing.assert_array_equal([r.x for r in rows], preprocess(np.array([e.ranges for e in expected]), 4.0))
     np.testing.assert_array_equal([r.time for r in rows], [e.time for e in expected])
-    assert reading.merger.merged == 30 and "upside down" in reading.report.mounts["/rear"]
+    assert reading.stream.merger.merged == 30 and "upside down" in reading.report.mounts["/rear"]
 
 
 def test_poses_from_an_odometry_topic(tmp_path):
     odom = [(t, "/odom", "nav_msgs/msg/Odometry", lambda ts, t=t: odometry(ts, t, pose_at(t))) for t in TF_TIMES]
     bag = write_robot_bag(tmp_path / "odom.bag", "ros1", laser(TIMES, mount=(0.0, 0.0, 0.0)) + odom)
-    expected = list(read_sweeps(bag, "/scan", pose_topic="/odom"))
-    reading = LiveReading(["/scan"], points=True, pose_topic="/odom")
+    expected = list(read_sweeps(bag, Reading(topic="/scan", pose_topic="/odom")))
+    reading = LiveReading(Reading(topic="/scan", pose_topic="/odom", sectors=180, inputs="points"))
     rows = pushed(reading, bag)
     np.testing.assert_array_equal([r.x for r in rows], sweep_points(expected, 180, 4.0))
     assert reading.report.poses == "from /odom, interpolated at each scan's time"
@@ -65,11 +66,11 @@ def test_the_base_footprint_where_the_tree_has_no_base_link_and_a_fixed_frame_gi
         (t, "/tf", "tf2_msgs/msg/TFMessage", lambda ts, t=t: tree(ts, t)) for t in TF_TIMES] + [
         (0.5, "/tf_static", "tf2_msgs/msg/TFMessage", lambda ts: tf_message(ts, [
             transform(ts, 0.5, "base_footprint", "laser", (0.1, 0.0, 0.2))]))])
-    in_map = LiveReading(["/scan"], points=True)
+    in_map = LiveReading(POINTS)
     rows = pushed(in_map, bag)
     assert in_map.report.base_frame == "base_footprint" and "fallback" in in_map.report.base_reason
-    np.testing.assert_array_equal([r.x for r in rows], sweep_points(list(read_sweeps(bag, "/scan")), 180, 4.0))
-    in_odom = LiveReading(["/scan"], points=True, fixed_frame="odom")
+    np.testing.assert_array_equal([r.x for r in rows], sweep_points(list(read_sweeps(bag, Reading(topic="/scan"))), 180, 4.0))
+    in_odom = LiveReading(POINTS, fixed_frame="odom")
     poses = np.array([r.pose for r in pushed(in_odom, bag)])
     # the poses in odom are the robot's on its circle (interpolated linearly between samples 20 ms apart)
     np.testing.assert_allclose(poses[:, :2], [pose_at(r.time)[:2] for r in rows], atol=1e-4)
@@ -78,7 +79,7 @@ def test_the_base_footprint_where_the_tree_has_no_base_link_and_a_fixed_frame_gi
 def test_time_jumping_back_forgets_the_moving_transforms_and_keeps_the_static(tmp_path):
     bag = write_robot_bag(tmp_path / "robot.bag", "ros1", laser(TIMES) + odometry_tf(TF_TIMES) + [
         mounts(0.5, ("laser", (0.1, 0.0, 0.0), False))])
-    reading = LiveReading(["/scan"], points=True)
+    reading = LiveReading(POINTS)
     first = pushed(reading, bag)
     assert reading.jumped_back("/tf", 3.0) is False and reading.jumped_back("/tf", 0.9) is True
     reading.restart()
@@ -88,12 +89,12 @@ def test_time_jumping_back_forgets_the_moving_transforms_and_keeps_the_static(tm
 
 
 def test_a_point_cloud_and_a_multi_echo_laser_read_as_novelty_run_reads_them(tmp_path):
-    from ..io.bags import _header, _make, write_bag
+    from ..io.bag_files import _header, _make, write_bag
 
     cloud_bag = write_bag(tmp_path, "ros1")   # one PointCloud2 on /cloud, flattened all round
-    reading = LiveReading(["/cloud"], sectors=8)
+    reading = LiveReading(Reading(topic="/cloud", sectors=8))
     rows = pushed(reading, cloud_bag)
-    expected = list(read_rings(cloud_bag, "/cloud", sectors=8))
+    expected = list(read_rings(cloud_bag, Reading(topic="/cloud", sectors=8)))
     assert len(rows) == len(expected) == 1
     np.testing.assert_array_equal(rows[0].x, preprocess(expected[0].ranges, 4.0))
 
@@ -107,7 +108,8 @@ def test_a_point_cloud_and_a_multi_echo_laser_read_as_novelty_run_reads_them(tmp
     echo_bag = write_robot_bag(tmp_path / "echoes.bag", "ros1", [
         (t, "/echoes", "sensor_msgs/msg/MultiEchoLaserScan", lambda ts, t=t: echoes(ts, t)) for t in TIMES[:3]])
     for echo in ("first", "last", "strongest"):
-        reading = LiveReading(["/echoes"], sectors=2, echo=echo)
-        expected = [r.ranges for r in read_rings(echo_bag, "/echoes", sectors=2, echo=echo)]
+        options = Reading(topic="/echoes", sectors=2, echo=echo)
+        reading = LiveReading(options)
+        expected = [r.ranges for r in read_rings(echo_bag, options)]
         np.testing.assert_array_equal([r.x for r in pushed(reading, echo_bag)], preprocess(np.array(expected), 4.0))
-    assert expected[0].tolist() != [r.ranges for r in read_rings(echo_bag, "/echoes", sectors=2)][0].tolist()
+    assert expected[0].tolist() != [r.ranges for r in read_rings(echo_bag, Reading(topic="/echoes", sectors=2))][0].tolist()

@@ -50,10 +50,13 @@ from ...sonar.preprocessing import preprocess
 from .sectors import sector_index
 from .sweep_rings import RingMaker
 
-__all__ = ["POSE_COLUMNS", "points_columns", "split_points", "check_points", "ring_points", "sweep_points"]
+__all__ = ["POSE_COLUMNS", "POINTS_SECTORS", "points_columns", "split_points", "check_points", "ring_points", "sweep_points"]
 
 #: The pose's columns, first in every row.
 POSE_COLUMNS = ("x", "y", "heading")
+#: A recording's sectors of the points input unless given: the habituating maps were measured on lasers with
+#: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
+POINTS_SECTORS = 180
 
 
 def points_columns(n_sectors: int) -> list[str]:
