@@ -152,7 +152,7 @@ def recording_points(args, report=None):
     The input of the detectors that read the robot's pose with each scan
     (the habituating maps, :mod:`novelty.io.scans.points`): the pose, each
     sector's nearness and its end point in the world frame
-    (:func:`novelty.io.scans.points.sweep_points`), :data:`POINTS_SECTORS`
+    (:class:`novelty.io.scans.points.PointsMaker`), :data:`POINTS_SECTORS`
     sectors unless ``--sectors`` says (one a beam for a sensor of fewer).
     Scans before the pose source's first message are left out, and
     ``report`` says how many; a recording with no pose at all is an error
@@ -160,20 +160,20 @@ def recording_points(args, report=None):
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording.readers import read_sweeps
-    from ..io.scans.points import sweep_points
+    from ..io.scans.points import PointsMaker
 
     reading = recording_reading(args, "points")
-    sectors = args.sectors
+    points = None if args.sectors is None else PointsMaker(args.sectors, reading.threshold)
     without, scored = 0, 0
     try:
         for sweep in read_sweeps(args.data, reading, report=report):
             if sweep.pose is None:
                 without += 1
                 continue
-            if sectors is None:
-                sectors = min(reading.sectors, len(sweep.ranges))
+            if points is None:
+                points = PointsMaker(min(reading.sectors, len(sweep.ranges)), reading.threshold)
             scored += 1
-            yield sweep.time, sweep_points([sweep], sectors, reading.threshold)[0], sweep.pose
+            yield sweep.time, points(sweep), sweep.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
     if without and not scored:

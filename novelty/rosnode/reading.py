@@ -5,7 +5,7 @@ which feeds each message to a :class:`~novelty.io.recording.streaming.SweepStrea
 fragments assembled, each sensor placed through its mount in the tf tree,
 the robot's pose looked up at each scan's time, several sensors merged; each
 sweep is then reduced to the paper's ring (:class:`~novelty.io.scans.sweep_rings.RingMaker`)
-or to the ``points`` input (:func:`~novelty.io.scans.points.sweep_points`),
+or to the ``points`` input (:class:`~novelty.io.scans.points.PointsMaker`),
 as a :class:`~novelty.io.recording.reading.Reading` says. A live node has the
 same messages, as they arrive; :class:`LiveReading` takes them one at a time
 (their bytes, decoded by the bag reader's own decoders) and gives the same
@@ -51,7 +51,7 @@ from ..io.recording.streaming import WAIT, SweepStream
 from ..io.ros.caps import Where
 from ..io.ros.decoders import decode, largest
 from ..io.ros.messages import Pose, Transform
-from ..io.scans.points import sweep_points
+from ..io.scans.points import PointsMaker
 from ..io.scans.sweep_rings import RingMaker
 from ..sonar.preprocessing import preprocess
 
@@ -196,6 +196,7 @@ class LiveReading:
         self.posing = LivePosing(reading.pose_topic, reading.base_frame, fixed_frame, self.report)
         self.rings = None if self.points else RingMaker(reading.sectors, reading.reduce, reading.limits,
                                                         reading.front, reading.clip)
+        self.points_maker = None   # its sectors known at the first sweep when they are one a beam
         self.timeout, self.where = float(timeout), where
         self.skipped: Counter = Counter()
         self.problems: list[str] = []   # why scans were left out, for the node's log
@@ -279,10 +280,10 @@ class LiveReading:
             if sweep.pose is None:
                 self.skipped["no pose at its time"] += 1
                 return None
-            if self.sectors is None:
-                self.sectors = min(self.reading.sectors, len(sweep.ranges))
-            return Row(sweep.time, sweep_points([sweep], self.sectors, self.threshold)[0], sweep.pose, sweep,
-                       arrival)
+            if self.points_maker is None:
+                self.sectors = self.sectors or min(self.reading.sectors, len(sweep.ranges))
+                self.points_maker = PointsMaker(self.sectors, self.threshold)
+            return Row(sweep.time, self.points_maker(sweep), sweep.pose, sweep, arrival)
         except ValueError as exc:   # another geometry mid-stream: its beams cannot fill the sectors
             self._cannot(sweep.source, sweep.time, exc)
             return None
