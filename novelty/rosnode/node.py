@@ -214,7 +214,7 @@ class Node:
     # -------------------------------------------------------------- out
     def _publish(self, one: Scored) -> None:
         sec, nsec = self.headers.get(one.time) or _split(one.time)
-        header = Header(stamp=genpy.Time(sec, nsec), frame_id=one.row.sweep.frame or one.row.sweep.source)
+        header = Header(stamp=genpy.Time(sec, nsec), frame_id=one.row.frame)
         threshold = _threshold(self.scorer)
         try:
             self.pub_novelty.publish(Float32(one.novelty))

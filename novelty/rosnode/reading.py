@@ -50,8 +50,9 @@ from ..io.recording.reading import Reading
 from ..io.recording.streaming import WAIT, SweepStream
 from ..io.ros.caps import Where
 from ..io.ros.decoders import decode, largest
-from ..io.ros.messages import Pose, Transform
+from ..io.ros.messages import Pose, RangeReading, Transform
 from ..io.scans.points import PointsMaker
+from ..io.scans.sonar_rings import SonarRings
 from ..io.scans.sweep_rings import RingMaker
 from ..sonar.preprocessing import preprocess
 
@@ -64,13 +65,19 @@ _WORLD, _ROBOT = "pose source", "robot"
 
 @dataclass(frozen=True, eq=False)
 class Row:
-    """One whole scan's input: its time, the row for the detector, the robot's pose (or None), its sweep."""
+    """One whole scan's input: its time, the row for the detector, the robot's pose (or None), what it was read from.
+
+    ``ranges`` are the scan's beams as read (cleaned: NaN where a beam gave no
+    information) or a sonar ring's; ``frame`` the frame its ring is seen from
+    (the base frame); ``arrival`` the node's clock when the message that
+    completed the scan arrived.
+    """
 
     time: float
     x: np.ndarray
     pose: np.ndarray | None
-    sweep: object
-    #: the node's clock when the message that completed the scan arrived
+    ranges: np.ndarray
+    frame: str = ""
     arrival: float = math.nan
 
 
@@ -206,6 +213,7 @@ class LiveReading:
 
     def _start(self) -> None:
         self.stream = _LiveStream(self)
+        self.sonars = None
         self.latest_scan = -math.inf
         self.last_arrival = math.inf   # the node's clock at the last scan message
 
@@ -237,6 +245,9 @@ class LiveReading:
             return self.release(clock)
         if topic not in self.stream.assemblers:
             raise ValueError(f"{topic} is not a scan topic of this reading ({', '.join(self.scan_topics)}).")
+        if isinstance(msg, RangeReading):
+            self.latest_scan, self.last_arrival = max(self.latest_scan, msg.stamp), clock
+            return self._sonar(topic, msg, clock)
         self.stream.arrival = clock
         self.stream.push(topic, msg)
         stamp = msg[0] if isinstance(msg, tuple) else msg.stamp
@@ -276,14 +287,15 @@ class LiveReading:
         """The sweep's row for the detector; None for a scan skipped (counted, its reason kept)."""
         try:
             if not self.points:
-                return Row(sweep.time, preprocess(self.rings(sweep), self.threshold), sweep.pose, sweep, arrival)
+                return Row(sweep.time, preprocess(self.rings(sweep), self.threshold), sweep.pose, sweep.ranges,
+                           sweep.frame, arrival)
             if sweep.pose is None:
                 self.skipped["no pose at its time"] += 1
                 return None
             if self.points_maker is None:
                 self.sectors = self.sectors or min(self.reading.sectors, len(sweep.ranges))
                 self.points_maker = PointsMaker(self.sectors, self.threshold)
-            return Row(sweep.time, self.points_maker(sweep), sweep.pose, sweep, arrival)
+            return Row(sweep.time, self.points_maker(sweep), sweep.pose, sweep.ranges, sweep.frame, arrival)
         except ValueError as exc:   # another geometry mid-stream: its beams cannot fill the sectors
             self._cannot(sweep.source, sweep.time, exc)
             return None
@@ -291,6 +303,45 @@ class LiveReading:
     def _cannot(self, topic: str, stamp: float, exc: Exception) -> None:
         self.skipped["its beams cannot make the input"] += 1
         self.problems.append(f"A scan on {topic} at {stamp:.3f} s cannot be read and is left out: {exc}")
+
+    # -------------------------------------------------------------- sonars
+    def _sonar(self, topic: str, reading: RangeReading, clock: float) -> list[Row]:
+        """A sonar's reading into its ring, as a bag's are gathered (one topic a sonar, or sonars told by frame)."""
+        if self.points:
+            self.skipped["a sonar's reading: no points input"] += 1
+            self.problems.append(f"{topic} carries sonar readings, which make the paper's ring, not the points input "
+                                 "a map reads: give the map a laser's topic.")
+            return []
+        by_topic = len(self.scan_topics) > 1   # one topic a sonar, named by its topic; else told apart by frame
+        if by_topic or not reading.sensor:
+            reading = replace(reading, sensor=topic)
+        gather = self.sonars
+        if gather is None:
+            gather = self.sonars = SonarRings(self.reading.sonar_order, self.reading.max_span)
+        rings = []
+        if gather.order is None and any(r.sensor == reading.sensor for r in gather.held):
+            # every sensor met: in the order of their mounts where tf places them all, else by topic or by name
+            order = self._mounting_angles(gather.held) or (self.scan_topics if by_topic else None)
+            if order is not None:
+                rings += gather.decide(order)
+        rings += gather.push(reading)
+        frame = self.posing.base or ""
+        return [Row(time, preprocess(ranges, self.threshold), self.posing.pose(time), ranges, frame, clock)
+                for time, ranges in rings]
+
+    def _mounting_angles(self, held) -> dict | None:
+        """Each sonar's mounting angle from the front, where the tf tree places every sonar's frame (as a bag's)."""
+        base = self.posing.base or self.posing._base()
+        frames = {r.sensor: r.frame for r in held}
+        placed = {}
+        for sensor, frame in frames.items():
+            try:
+                placed[sensor] = self.posing.probe.lookup(base, frame, 0.0).planar[2] % (2 * math.pi)
+            except TfError:
+                return None
+        self.report.notes.append("sonars in the order of their mounting angles from tf: " + ", ".join(
+            f"{s} {math.degrees(a):.0f} deg" for s, a in sorted(placed.items(), key=lambda kv: kv[1])))
+        return placed
 
     # -------------------------------------------------------------- faults
     def jumped_back(self, topic: str, stamp: float) -> bool:

@@ -139,7 +139,7 @@ class LiveScorer:
             self.stats.skipped["refused by the detector"] += 1
             self.say("refused", f"A scan at {row.time:.3f} s was refused by the detector and left out: {exc}")
             return None
-        if np.isnan(row.sweep.ranges).any():
+        if np.isnan(row.ranges).any():
             self.stats.faults["scans with beams without information (NaN)"] += 1
             self.say("nan", f"The scan at {row.time:.3f} s has beams without information (NaN): they are left out "
                       "of their sectors, as the readers leave them out.")

@@ -55,8 +55,9 @@ class Settings:
     save : str
         Where the model is saved, atomically: on shutdown and by the ``~save`` service ("" none).
     scan_topics : list of str
-        The scans' topics; empty: the node's relative topic ``scan`` (remap it: ``scan:=/front/scan``).
-        Several LaserScan topics are merged into one scan, as ``novelty run --topic a,b`` merges them.
+        The scans' topics (LaserScan, MultiEchoLaserScan, PointCloud2 or sonars' Range); empty: the node's
+        relative topic ``scan`` (remap it: ``scan:=/front/scan``). Several lasers are merged into one scan,
+        several Range topics are one sonar each, as ``novelty run --topic a,b`` reads them.
     pose_topic : str
         Poses from an Odometry or PoseStamped topic instead of tf ("" tf).
     base_frame, fixed_frame : str

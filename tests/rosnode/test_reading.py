@@ -113,3 +113,29 @@ def test_a_point_cloud_and_a_multi_echo_laser_read_as_novelty_run_reads_them(tmp
         expected = [r.ranges for r in read_rings(echo_bag, options)]
         np.testing.assert_array_equal([r.x for r in pushed(reading, echo_bag)], preprocess(np.array(expected), 4.0))
     assert expected[0].tolist() != [r.ranges for r in read_rings(echo_bag, Reading(topic="/echoes", sectors=2))][0].tolist()
+
+
+def test_sonars_gathered_into_rings_in_the_order_of_their_mounts_as_novelty_run_gathers_them(tmp_path):
+    from ..io.bag_files import _header, _make, write_sonar_topics
+
+    # three sonars on one topic whose frame names say nothing of where they point: left, front, right
+    angles = {"sonar_a": math.pi / 2, "sonar_b": 0.0, "sonar_c": -math.pi / 2}
+    messages = [mounts(0.5, *[(f, (0.1 * math.cos(a), 0.1 * math.sin(a), a), False) for f, a in angles.items()])]
+    for t in TIMES[:6]:
+        for j, frame in enumerate(angles):
+            messages.append((t + 0.01 * j, "/sonar", "sensor_msgs/msg/Range", lambda ts, t=t, j=j, frame=frame: _make(
+                ts, "sensor_msgs/msg/Range", header=_header(ts, t + 0.01 * j, frame), field_of_view=0.5,
+                min_range=0.05, max_range=10.0, range=1.0 + j + t)))
+    bag = write_robot_bag(tmp_path / "sonars.bag", "ros1", messages)
+    reading = LiveReading(Reading(topic="/sonar"))
+    rows = pushed(reading, bag)
+    expected = list(read_rings(bag, Reading(topic="/sonar")))
+    assert len(rows) == len(expected) == 6
+    np.testing.assert_array_equal([r.x for r in rows], preprocess(np.array([e.ranges for e in expected]), 4.0))
+    assert rows[0].ranges.tolist() == [2.0 + 1.0, 1.0 + 1.0, 3.0 + 1.0]   # c (right), b (front), a (left)
+    assert "sonar_c -90 deg" not in reading.report.notes[0] and "sonar_c 270 deg" in reading.report.notes[0]
+    # one topic a sonar, without frames: named by their topics, in that order
+    two = write_sonar_topics(tmp_path / "two.bag")
+    options = Reading(topic=["/front", "/back"])
+    np.testing.assert_array_equal([r.ranges for r in pushed(LiveReading(options), two)],
+                                  [r.ranges for r in read_rings(two, options)])
