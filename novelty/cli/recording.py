@@ -154,9 +154,10 @@ def recording_points(args, report=None):
     sector's nearness and its end point in the world frame
     (:class:`novelty.io.scans.points.PointsMaker`), :data:`POINTS_SECTORS`
     sectors unless ``--sectors`` says (one a beam for a sensor of fewer).
-    Scans before the pose source's first message are left out, and
-    ``report`` says how many; a recording with no pose at all is an error
-    that says where poses come from.
+    Scans without a pose at their time (before the pose source's first
+    message, or after its last) are left out, and ``report`` says how
+    many; a recording with no pose at all is an error that says where
+    poses come from.
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording.readers import read_sweeps
@@ -181,8 +182,8 @@ def recording_points(args, report=None):
                         f"{args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
                         "a CARMEN log).")
     if without and report is not None:
-        report.notes.append(f"{without} scans before the first pose left out (the points input places each "
-                            "echo in the world by the robot's pose)")
+        report.notes.append(f"{without} scans without a pose at their time left out (before the first pose or after "
+                            "the last; the points input places each echo in the world by the robot's pose)")
 
 
 def pose_columns(pose) -> dict:
