@@ -23,9 +23,16 @@ its novelty being published, median and 99th percentile (the scans of the
 node; the rate sustained, the highest achieved with every scan arrived and
 scored and none dropped.
 
-The peer, measured in the same run: the same bag's messages fed to the
+The peers, measured in the same run: the same bag's messages fed to the
 node's scorer in one process, without ROS (what each scan costs to read and
-score, the same code), its time per scan (median and 99th percentile).
+score, the same code), its time per scan (median and 99th percentile); and
+``novelty run`` on the same bag (in this process, the median of
+``--repeats`` runs' wall times, the first of which compiles the kernels),
+in scans a second.
+
+``--out`` (default ``benchmarks/results/live-perf``) receives ``runs.csv``
+(one row a detector and rate), ``summary.md`` (the tables the guide shows)
+and ``provenance.json``.
 
 The targets: ``map-explore`` on a 360-beam laser at 40 Hz with no drops and
 a 99th-percentile latency under 25 ms; the ring detectors at 200 Hz. Not a
@@ -35,7 +42,9 @@ unit test: the numbers depend on the machine and on what else it is doing.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
+import io
 import json
 import math
 import os
@@ -56,6 +65,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))   # this checkout's novelty, not an installed one
 
 from novelty import __version__  # noqa: E402
+from novelty.cli import main as cli_main  # noqa: E402
 from novelty.io.ros.decoders import largest  # noqa: E402
 from novelty.io.ros1.bag1 import Bag1  # noqa: E402
 from novelty.rosnode.setup import build, warm_up  # noqa: E402
@@ -148,6 +158,22 @@ def in_process(bag: Path, detector: str) -> tuple[float, float, int]:
     return float(p50), float(p99), scored
 
 
+def offline(bag: Path, detector: str, repeats: int) -> tuple[float, int]:
+    """``novelty run``'s scans a second on the bag (the median of ``repeats`` runs), and the scans it scored."""
+    walls = []
+    with tempfile.TemporaryDirectory() as folder:
+        out = Path(folder) / "rows.npz"
+        for _ in range(repeats):
+            start = time.perf_counter()
+            with contextlib.redirect_stderr(io.StringIO()):
+                if cli_main(["run", detector, "--data", str(bag), "--fragments", "1", "--out", str(out)]) != 0:
+                    raise RuntimeError(f"novelty run {detector} failed")
+            walls.append(time.perf_counter() - start)
+        with np.load(out) as rows:
+            scored = len(rows["novelty"])
+    return scored / float(np.median(walls)), scored
+
+
 # ------------------------------------------------------------------ the node on a master
 class Session:
     """A roscore of its own on a free loopback port, and the processes started against it."""
@@ -221,6 +247,7 @@ def main(argv=None) -> int:
     parser.add_argument("--seconds", type=float, default=20.0, help="the bag's length (s; default 20)")
     parser.add_argument("--rates", default="1,5,10,20,max", help="play rates (default 1,5,10,20,max)")
     parser.add_argument("--detectors", default=",".join(DETECTORS))
+    parser.add_argument("--repeats", type=int, default=3, help="novelty run's runs a detector (default 3)")
     parser.add_argument("--core", type=int, default=0, help="the core the node is pinned to (default 0; -1: none)")
     parser.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "live-perf"))
     args = parser.parse_args(argv)
@@ -242,6 +269,11 @@ def main(argv=None) -> int:
                              "skipped": 0, "dropped": 0, "played_s": math.nan, "achieved_hz": math.nan,
                              "latency_median_ms": p50, "latency_p99_ms": p99})
                 print(f"{detector:16s} in process: {p50:.2f} / {p99:.2f} ms a scan", flush=True)
+                rate, scored = offline(bag, detector, args.repeats)
+                rows.append({"detector": detector, "rate": "novelty run", "scans": scans, "arrived": scans,
+                             "scored": scored, "skipped": 0, "dropped": 0, "played_s": math.nan,
+                             "achieved_hz": rate, "latency_median_ms": math.nan, "latency_p99_ms": math.nan})
+                print(f"{detector:16s} novelty run: {rate:.0f} scans/s", flush=True)
                 for rate in args.rates.split(","):
                     row = {"detector": detector, "rate": rate, "scans": scans, **session.run(bag, detector, rate, core)}
                     rows.append(row)
@@ -258,7 +290,8 @@ def main(argv=None) -> int:
 
 def write(out: Path, rows: list[dict], args) -> None:
     out.mkdir(parents=True, exist_ok=True)
-    with open(out / "results.csv", "w", newline="") as fh:
+    # runs.csv, not results.csv: benchmarks/results/*/results.csv are the suites' rows (benchmarks/tables.py)
+    with open(out / "runs.csv", "w", newline="") as fh:
         writer = csv.DictWriter(fh, fieldnames=list(rows[0]), lineterminator="\n")
         writer.writeheader()
         for row in rows:
@@ -271,15 +304,18 @@ def write(out: Path, rows: list[dict], args) -> None:
                   "cpus": os.cpu_count(), "load_average_at_end": [round(v, 2) for v in load],
                   "node_pinned_to_core": args.core}
     (out / "provenance.json").write_text(json.dumps(provenance, indent=2) + "\n")
+    def shown(value, form):
+        return "" if math.isnan(value) else format(value, form)
+
     lines = ["| detector | rate | arrived | scored | dropped | achieved (Hz) | latency median (ms) | latency p99 (ms) |",
              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     for r in rows:
-        achieved = "" if math.isnan(r["achieved_hz"]) else f"{r['achieved_hz']:.0f}"
         lines.append(f"| `{r['detector']}` | {r['rate']} | {r['arrived']}/{r['scans']} | {r['scored']} | {r['dropped']} | "
-                     f"{achieved} | {r['latency_median_ms']:.2f} | {r['latency_p99_ms']:.2f} |")
+                     f"{shown(r['achieved_hz'], '.0f')} | {shown(r['latency_median_ms'], '.2f')} | "
+                     f"{shown(r['latency_p99_ms'], '.2f')} |")
     lines += ["", "| detector | sustained without drops (Hz) | target | met |", "| --- | --- | --- | --- |"]
     for detector in dict.fromkeys(r["detector"] for r in rows):
-        mine = [r for r in rows if r["detector"] == detector and r["rate"] != "in-process"]
+        mine = [r for r in rows if r["detector"] == detector and r["rate"] not in ("in-process", "novelty run")]
         rate, p99 = TARGETS.get(detector, (math.nan, None))
         at = [r for r in mine if r["achieved_hz"] >= rate * 0.95 and r["dropped"] == 0 and r["scored"] == r["scans"]]
         met = bool(at) and (p99 is None or min(r["latency_p99_ms"] for r in at) < p99)
