@@ -178,6 +178,7 @@ ACROSS = {
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
     "fuzz/test_files.py": "hostile save targets, suite files and standard input",
+    "rosnode/test_guide.py": "the live-robot guide's session, run against a real ROS master",
     "tasks/objects/test_bags.py": "the tasks read from a bag (novelty.tasks.objects, novelty.tasks.recordings) with a laser's mount",
     "tasks/objects/test_points.py": "the points input (novelty.io.scans.points) of the objects tasks' sweeps",
     "_kernels/test_hostile_state.py": "both engines against a hostile state of every pair (choice, state, the drivers)",

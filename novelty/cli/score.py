@@ -11,7 +11,7 @@ import numpy as np
 from .. import load
 from ..answers import PAPER
 from .._atomic import check_target
-from ._common import UserError, add_command, add_data_options, check_layout, read_scans, write_novelty
+from ._common import UserError, add_command, add_data_options, check_layout, check_outputs, read_scans, write_novelty
 from .familiar import add_calibration_options, p_values, say_calibration, stretch_of, threshold_in_force
 from .recording import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
                         recording_scans)
@@ -62,9 +62,11 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
+    stretch = stretch_of(args)
+    check_outputs([("--model", args.model), ("--data", args.data), ("--calibrate", stretch and stretch.path)],
+                  [("--out", args.out), ("--save", args.save)])
     if not Path(args.model).is_file():
         raise UserError(f"Model file not found: {args.model}")
-    stretch = stretch_of(args)
     if args.save:
         if stretch is None:
             raise UserError("--save writes the calibrated model: give --calibrate too (novelty score learns nothing).")

@@ -85,3 +85,17 @@ def test_every_kind_of_bench_folder_is_plotted(protocol, task, tmp_path, monkeyp
                                                                             "nearest-memory"]
     (legend,) = fig.legends
     assert "novelty" in [t.get_text() for t in legend.get_texts()]
+
+
+def test_a_plot_never_replaces_what_it_reads(tmp_path, capsys):
+    run_output = tmp_path / "novelty.csv"
+    run_output.write_text("scan,novelty\n0,0.5\n1,0.25\n")
+    folder = tmp_path / "bench"
+    (folder / "cells").mkdir(parents=True)
+    (folder / "results.jsonl").write_text("{}\n")
+    for results, out in ((run_output, run_output), (folder, folder / "results.jsonl"),
+                         (folder / "results.jsonl", folder / "cells" / "a.npz")):
+        assert main(["plot", str(results), "--out", str(out)]) == 2
+        assert "RESULTS names" in capsys.readouterr().err
+    assert run_output.read_text() == "scan,novelty\n0,0.5\n1,0.25\n" and (folder / "results.jsonl").read_text() == "{}\n"
+    assert not (folder / "cells" / "a.npz").exists()

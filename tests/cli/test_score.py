@@ -1,5 +1,6 @@
 """``novelty score``: a saved model scores files and recordings (CARMEN logs, ROS bags) frozen, and
-calibrates its threshold on a familiar stretch for a stated false-alarm rate."""
+calibrates its threshold on a familiar stretch for a stated false-alarm rate; its outputs never
+replace the model or the scans it reads."""
 
 import csv
 import io
@@ -140,3 +141,22 @@ def test_a_bag_is_scored_with_the_options_run_reads_it_with(bag, tmp_path, capsy
     assert [r["x"] for r in rows] == ["1", "1.1", "1.2", "5.95", "5.95"]
     assert main(["score", "--model", str(tmp_path / "m.npz"), "--data", str(bag), "--topic", "/nothing"]) == 2
     assert "/scan" in capsys.readouterr().err   # the bag's topics are listed
+
+
+def test_an_output_naming_the_model_or_the_data_is_refused_before_anything_is_read(tmp_path, capsys):
+    data = tmp_path / "scans.csv"
+    data.write_text("a,b\n0.1,0.2\n0.3,0.4\n")
+    model = tmp_path / "m.npz"
+    assert main(["run", "hsom", "--data", str(data), "--param", "n_rows=2", "--save", str(model)]) == 0
+    saved = model.read_bytes()
+    capsys.readouterr()
+    for option, target in (("--model", model), ("--data", data)):
+        assert main(["score", "--model", str(model), "--data", str(data), "--out", str(target)]) == 2
+        captured = capsys.readouterr()
+        assert f"--out {target} is the file {option} names" in captured.err and captured.out == ""
+    for _, target in (("--model", model), ("--data", data), ("--calibrate", data)):
+        assert main(["score", "--model", str(model), "--data", str(data), "--calibrate", str(data),
+                     "--save", str(target)]) == 2
+        assert f"--save {target} is the file" in capsys.readouterr().err
+    assert model.read_bytes() == saved and data.read_text() == "a,b\n0.1,0.2\n0.3,0.4\n"
+    assert np.load(model, allow_pickle=False).files   # still a model file
