@@ -29,7 +29,8 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-from ..._validation import Instance, Interval, Options, unknown_parameters, validate_parameters
+from ..._keywords import unknown_parameters
+from ..._validation import Instance, Interval, Options, validate_parameters
 from ...sonar.preprocessing import PAPER_THRESHOLD
 from ..frames.mounts import Mount, parse_mount
 from ..ros.decoders import ECHOES
