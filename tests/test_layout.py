@@ -198,3 +198,43 @@ def test_every_test_file_is_named_after_the_module_it_tests():
             stray.append(rel.as_posix())
     assert not stray, f"test files not named after a module of the package (or listed in ACROSS): {stray}"
 
+
+
+# ------------------------------------------------------------- the house, as the guides draw it
+#: the pages that name the package's folders and modules
+HOUSE_PAGES = ("docs/guide/layout.md", "docs/guide/engine.md")
+#: a path of the repository written in a page: under one of its top folders, a folder or a module
+PATH = re.compile(r"(?<![\w./<-])((?:novelty|tests|studies|benchmarks|docs|examples)/[\w./-]*)")
+
+
+def _named_paths(page: str) -> set[str]:
+    found = set()
+    for match in PATH.finditer((ROOT / page).read_text(encoding="utf-8")):
+        path = match.group(1).rstrip(".,:;")
+        if not path.endswith("/") and "." not in path.rsplit("/", 1)[-1]:
+            continue   # neither a folder (written with its slash) nor a file: a module path in prose
+        found.add(path)
+    return found
+
+
+def test_the_path_pattern_finds_folders_and_files_not_placeholders():
+    text = "in `novelty/io/<format>/`, `novelty/io/scans/` and novelty/io/scans/sweeps.py, tests/io/, novelty.io"
+    assert {m.group(1) for m in PATH.finditer(text)} == {"novelty/io/", "novelty/io/scans/",
+                                                          "novelty/io/scans/sweeps.py", "tests/io/"}
+
+
+@pytest.mark.parametrize("page", HOUSE_PAGES)
+def test_every_folder_and_module_a_guide_names_exists(page):
+    missing = sorted(path for path in _named_paths(page) if not (ROOT / path).exists())
+    assert _named_paths(page), f"{page} names no path"
+    assert not missing, f"{page} names paths that do not exist: {missing}"
+
+
+def test_the_house_names_every_folder_of_the_package_and_of_the_readers():
+    named = _named_paths("docs/guide/layout.md")
+    text = (ROOT / "docs/guide/layout.md").read_text(encoding="utf-8")
+    folders = sorted(p.relative_to(ROOT).as_posix() + "/" for p in PACKAGE.iterdir()
+                     if (p / "__init__.py").exists())
+    readers = sorted(p.name + "/" for p in (PACKAGE / "io").iterdir() if (p / "__init__.py").exists())
+    assert not [f for f in folders if f not in named and f.split("/", 1)[1] not in text], folders
+    assert not [r for r in readers if f"  {r}" not in text], readers

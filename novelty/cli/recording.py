@@ -130,7 +130,7 @@ def recording_reading(args, inputs: str = "ring"):
 def recording_rings(args, report=None):
     """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes.
 
-    ``report`` (a :class:`novelty.io.bags.report.ReadReport`) is filled as the reading goes.
+    ``report`` (a :class:`novelty.io.bags.read_report.ReadReport`) is filled as the reading goes.
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording.readers import read_rings

@@ -143,7 +143,7 @@ def _is_recording(path: str) -> bool:
 def _run_recording(det, args, alarm: Alarm | None) -> int:
     """Score and learn a recording's rings as they are read, writing each ring's row at once."""
     # deferred: the readers are loaded only for a recording
-    from ..io.bags.report import ReadReport
+    from ..io.bags.read_report import ReadReport
 
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")

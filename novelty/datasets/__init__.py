@@ -16,7 +16,7 @@ Built in:
   ``inspection-hard`` (``seed=0, n_novelties=2, train_runs=3, test_runs=1,
   length=15.0``);
 - exploration tasks, runs in order with every scan's tracked feature and its
-  exposure count (:mod:`novelty.datasets.exploration`): ``exploration-tour``,
+  exposure count (:mod:`novelty.tasks.exploration`): ``exploration-tour``,
   ``exploration-open-door``, ``exploration-patrol``, ``exploration-irregular``,
   ``exploration-return``, ``exploration-moving``; from the Radish robot logs
   (:mod:`novelty.tasks.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
@@ -33,7 +33,7 @@ Built in:
   ``uci-sonar-mines``;
 - the user's own scans, a CSV or NPZ file: ``files`` (``path=``, with
   ``columns``, ``label``, ``time``, and ``train_rows``, ``split`` or
-  ``test_path``; see :mod:`novelty.datasets.files`).
+  ``test_path``; see :mod:`novelty.tasks.files`).
 
 ``registry`` is :data:`novelty.registry.datasets`, beside the registries of
 the other kinds of component.

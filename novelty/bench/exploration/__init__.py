@@ -11,8 +11,8 @@ One place for everything of this protocol:
 - :mod:`~novelty.bench.exploration.plots`: novelty along the exploration,
   exposure curves, learning curves.
 
-The tasks it runs on are datasets (:mod:`novelty.datasets.exploration`,
-built with :func:`novelty.exploration.from_runs` from recorded runs). The
+The tasks it runs on are datasets (:mod:`novelty.tasks.exploration`,
+built with :func:`novelty.tasks.exploration.from_runs` from recorded runs). The
 harness reads the protocol through :data:`PROTOCOL`.
 """
 

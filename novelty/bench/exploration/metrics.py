@@ -2,7 +2,7 @@
 
 Every function takes the novelty of every scan of an exploration, in order
 (each scored before it was learned), and the labels of
-:mod:`novelty.datasets.exploration`: the run of each scan, its tracked
+:mod:`novelty.tasks.exploration`: the run of each scan, its tracked
 ``feature`` (``""`` for a familiar scan) and its ``exposure`` count (0 at
 the feature's first encounter). Warm-up runs (``run < warmup``) are never
 scored. Definitions:

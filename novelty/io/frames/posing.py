@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from ..ros.messages import Pose, Transform
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..bags.rosbag import POSE_TYPES, TF_TYPES, Bag
 from .tf import TfBuffer, TfError
 

@@ -28,7 +28,7 @@ import itertools
 import math
 from typing import Iterator
 
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..bags.rosbag import Bag
 from ..frames.mounts import Mount
 from ..frames.posing import Posing

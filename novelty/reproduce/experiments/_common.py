@@ -15,7 +15,7 @@ from typing import TextIO
 import numpy as np
 
 import novelty
-from novelty._children import isolated_children
+from novelty._safe_path import isolated_children
 from novelty._progress import Steps
 from novelty.reproduce.figures import pyplot  # noqa: F401  (the experiments' figures)
 from novelty.sonar import simulate

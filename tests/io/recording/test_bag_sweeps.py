@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from novelty.io.recording.readers import read_rings
-from novelty.io.bags.report import ReadReport
+from novelty.io.bags.read_report import ReadReport
 from novelty.io.recording.readers import read_sweeps
 from novelty.io.frames.tf import TfError
 from novelty.io import Reading

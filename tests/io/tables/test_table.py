@@ -95,7 +95,7 @@ def test_an_npz_array_declaring_more_than_it_holds_is_refused_before_allocation(
 def test_an_odds_mat_file_reads_x_and_its_column_of_labels(tmp_path):
     from scipy.io import savemat
 
-    from novelty.datasets.files import read_scans
+    from novelty.tasks.files import read_scans
 
     X = np.arange(12.0).reshape(6, 2)
     savemat(tmp_path / "odds.mat", {"X": X, "y": np.array([[0], [0], [1], [0], [1], [0]], dtype=float)})

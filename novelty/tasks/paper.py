@@ -13,7 +13,7 @@ The tasks follow the paper's experiments: learn A, then meet a change.
 from __future__ import annotations
 
 from ..sonar.simulate import simulate
-from ..sonar.tasks import make_task
+from .simulated import make_task
 from .inputs import with_inputs
 
 __all__ = ["paper_a", "paper_a_star", "paper_b", "paper_c", "paper_control",

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from novelty.data import Dataset
-from novelty.datasets.resampling import ADBENCH, Resampling, resampled
+from novelty.tasks.resampling import ADBENCH, Resampling, resampled
 
 
 @pytest.fixture
