@@ -88,6 +88,7 @@ MOVED: dict[str, tuple[str, ...]] = {
     "novelty.sonar.tasks": ("novelty.tasks.simulated",),
     "novelty.sonar.inspection": ("novelty.tasks.inspection",),
     "novelty._children": ("novelty._safe_path",),
+    "novelty.cli.recording": ("novelty.cli.recording_options",),
     # tables of scans
     "novelty.datasets.tables": ("novelty.io.tables.table",),
     "novelty.datasets.columns": ("novelty.io.tables.columns",),

@@ -22,7 +22,7 @@ The registries are one module although it is long: the :class:`Registry`
 class, the four registries made from it and the two helpers over them are
 the one place a name becomes a component, and the built-in names read best
 beside the rules that look them up; the datasets' and tasks' names are
-their builders' table (:data:`novelty.tasks.table.TASKS`), beside them.
+their builders' table (:data:`novelty.tasks.registered.TASKS`), beside them.
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 from ._keywords import unknown_parameters
-from .tasks.table import TASKS
+from .tasks.registered import TASKS
 
 __all__ = [
     "Registry",
@@ -317,6 +317,7 @@ detectors = Registry(
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",
         "som-distance": "novelty.baselines.som_distance:SOMDistance",
         "nearest-memory": "novelty.baselines.nearest_memory:NearestMemory",
+        "knn": "novelty.baselines.knn:KNNDetector",
         "context": "novelty.context:SequenceContext",
         "parzen": "novelty.baselines.parzen:ParzenDetector",
         "isolation-forest": "novelty.baselines.sklearn_outlier:IsolationForestDetector",
@@ -327,7 +328,7 @@ detectors = Registry(
     },
 )
 
-#: datasets and tasks (:mod:`novelty.datasets`); their built-ins are :data:`novelty.tasks.table.TASKS`
+#: datasets and tasks (:mod:`novelty.datasets`); their built-ins are :data:`novelty.tasks.registered.TASKS`
 datasets = Registry("dataset", group="novelty.datasets", builtins=TASKS)
 
 #: the registries by the kind they hold

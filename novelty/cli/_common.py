@@ -1,4 +1,8 @@
-"""What the commands share: the parser, user errors, parameters, scan files."""
+"""What the commands share: the parser, user errors, parameters, scan files.
+
+Shares its name with ``novelty/reproduce/experiments/_common.py``: a package's private helpers,
+shared by its modules, are its _common.
+"""
 
 from __future__ import annotations
 
@@ -29,7 +33,7 @@ def one_line(exc: BaseException) -> str:
 
 def user_errors() -> tuple[type[BaseException], ...]:
     """Exceptions that mean the input was wrong, not the program."""
-    # deferred: the benchmark and the model files import scikit-learn (2-3 s); `novelty --help` does not
+    # deferred: the benchmark and the model files import scikit-learn, slow to import; `novelty --help` does not
     from ..bench.backends import BackendError
     from ..bench.specs import SuiteError
     from ..persistence import ModelFileError

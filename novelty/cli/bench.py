@@ -1,4 +1,8 @@
-"""``novelty bench``: run a benchmark suite and print what a reader needs first (the rest in summary.md)."""
+"""``novelty bench``: run a benchmark suite and print what a reader needs first (the rest in summary.md).
+
+Shares its name with ``novelty/bench/``: the benchmark, and the command that runs it (a command's
+module is named after the command).
+"""
 
 from __future__ import annotations
 
@@ -63,8 +67,8 @@ def add_parser(subparsers):
                         help="output folder (default: ./novelty-bench)")
     parser.add_argument("--quick", action="store_true",
                         help="the embedded default suite: the recommended detectors, the paper's and "
-                        "baselines, 10 x 2 tasks x 2 seeds; about two minutes of CPU the first time (numba "
-                        "compiles and caches its kernels), 15-20 s after")
+                        "baselines, 10 x 2 tasks x 2 seeds; slower the first time, as numba "
+                        "compiles and caches its kernels")
     parser.add_argument("--detector", action="append", metavar="'NAME [k=v ...]'",
                         help="a detector with its parameters (repeatable; replaces the suite's)")
     parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",

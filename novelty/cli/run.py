@@ -12,7 +12,7 @@ from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
 from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
     write_novelty
-from .recording import RowSink, add_recording_options, pose_columns, recording_points, recording_rings
+from .recording_options import RowSink, add_recording_options, pose_columns, recording_points, recording_rings
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
 

@@ -14,6 +14,9 @@ One place for everything of this protocol:
 The tasks it runs on are datasets (:mod:`novelty.tasks.exploration`,
 built with :func:`novelty.tasks.exploration.from_runs` from recorded runs). The
 harness reads the protocol through :data:`PROTOCOL`.
+
+Shares its name with ``novelty/tasks/exploration/``: the exploration protocol lives in the benchmark
+beside the hold-out protocol, its tasks among the tasks.
 """
 
 from ..protocol import Protocol

@@ -64,6 +64,10 @@ scored. Definitions:
   familiar scans of the same run;
 - **integrated novelty per run**: the paper's Table 1 measure,
   ``sum (novelty - resting)`` over each run (Marsland et al., 2000).
+
+Shares its name with ``novelty/bench/holdout/metrics.py``, ``novelty/metrics.py``: each benchmark
+protocol's package holds its own metrics, plots and summary; novelty/metrics.py is the users' ROC
+AUC of novelty scores.
 """
 
 from __future__ import annotations

@@ -4,7 +4,7 @@ Every way into a recording takes the same options: the readers
 (:func:`novelty.io.read_rings`, :func:`~novelty.io.read_sweeps`,
 :func:`~novelty.io.read_recording`), the task of a user's recordings
 (``recording``, :func:`novelty.tasks.recordings.recording_task`), ``novelty
-run --data run.bag`` (:mod:`novelty.cli.recording` builds one from the
+run --data run.bag`` (:mod:`novelty.cli.recording_options` builds one from the
 command line) and a live node (from its parameters,
 :meth:`Reading.from_mapping`). A :class:`Reading` says which messages are
 the scans and where the poses come from, how a bag's scans become whole

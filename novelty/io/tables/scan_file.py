@@ -108,7 +108,7 @@ def sensors_to_scans(X: np.ndarray, preprocess=None, threshold: float | None = N
         place = where(i, k) if where is not None else f"scan {i}, sensor {k}"
         raise ValueError(f"{place}: expected {expected}, got {value}{hint}.")
     if paper:
-        # imported here: novelty.sonar loads the whole simulator (0.1 s), which every start of the
+        # imported here: novelty.sonar loads the whole simulator, which every start of the
         # command line would otherwise pay
         from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess as paper_preprocess
 

@@ -1,4 +1,8 @@
-"""What every experiment shares: its result, corridor A's six trials, tables, a process pool."""
+"""What every experiment shares: its result, corridor A's six trials, tables, a process pool.
+
+Shares its name with ``novelty/cli/_common.py``: a package's private helpers, shared by its modules,
+are its _common.
+"""
 
 from __future__ import annotations
 
@@ -95,7 +99,7 @@ def traversal(environment, seed: int, run: int, options: tuple = ()) -> np.ndarr
 
 
 def span(seeds) -> str:
-    """``"0-9"`` for seeds 0 to 9."""
+    """``"0-9"`` for ``range(10)``."""
     seeds = list(seeds)
     return f"{seeds[0]}-{seeds[-1]}" if len(seeds) > 1 else str(seeds[0])
 

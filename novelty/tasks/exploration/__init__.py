@@ -11,6 +11,9 @@
 
 They are evaluated by the benchmark's exploration protocol
 (:mod:`novelty.bench.exploration`).
+
+Shares its name with ``novelty/bench/exploration/``: the exploration protocol lives in the benchmark
+beside the hold-out protocol, its tasks among the tasks.
 """
 
 from .recurrence import irregular, moving, returning
