@@ -19,6 +19,8 @@ efficacy (:mod:`novelty._filter.efficacy_range`) and the single-scan protocol
 One module although over 300 lines: the class is about 310 of them, the
 estimator's one job (parameters, fit, learn and score, the novelty rules),
 which a split would only scatter across files a reader must hold together.
+``filter.py`` beside ``_filter/``: the estimator users import by this name
+(``novelty.filter.HabituatingFilter``), its private parts in the folder.
 """
 
 from __future__ import annotations
