@@ -30,10 +30,10 @@ from dataclasses import replace
 import numpy as np
 
 from ..data import Dataset
-from .exploration.runs import from_runs
-from ..sonar.preprocessing import PAPER_THRESHOLD
 from ..io.recording.readers import read_recording
 from ..io.recording.reading import Reading
+from ..sonar.preprocessing import PAPER_THRESHOLD
+from .exploration.runs import from_runs
 
 __all__ = ["leader_places", "place_visits", "revisit_task", "finite_positions"]
 

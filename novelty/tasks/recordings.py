@@ -27,11 +27,11 @@ from typing import Sequence
 import numpy as np
 
 from ..data import Dataset
-from .exploration.runs import from_runs
-from .places import finite_positions
 from ..io.recording.readers import read_recording, read_sweeps
 from ..io.recording.reading import Reading, reading_given, reading_of, takes_reading_options
 from ..io.scans.points import points_columns, sweep_points
+from .exploration.runs import from_runs
+from .places import finite_positions
 
 __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
            "recording_task"]

@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..inspection import DIFFICULTIES, generate_corridor
 from ..inputs import with_inputs
+from ..inspection import DIFFICULTIES, generate_corridor
 from .runs import Leg, simulate_exploration
 from .tours import place_object, with_items
 

@@ -45,8 +45,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..inspection import DIFFICULTIES, CorridorPlan, generate_corridor
 from ..inputs import with_inputs
+from ..inspection import DIFFICULTIES, CorridorPlan, generate_corridor
 from .runs import FAMILIAR, Leg, exposures, from_runs, simulate_exploration  # noqa: F401  (read from here too)
 
 __all__ = ["Leg", "simulate_exploration", "from_runs", "exposures", "paper_tour", "open_door",

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from novelty.io.ros.messages import Transform
 from novelty.io.frames.tf import Placement, TfBuffer, TfError
+from novelty.io.ros.messages import Transform
 
 QUARTER = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4))   # 90 degrees about z
 

@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.recording.readers import read_rings
-from novelty.io.bags.read_report import ReadReport
-from novelty.io.recording.readers import read_sweeps
-from novelty.io.frames.tf import TfError
 from novelty.io import Reading
+from novelty.io.bags.read_report import ReadReport
+from novelty.io.frames.tf import TfError
+from novelty.io.recording.readers import read_rings
+from novelty.io.recording.readers import read_sweeps
 
 pytest.importorskip("rosbags", reason="the bags are written with rosbags' writers (the ros extra)")
 

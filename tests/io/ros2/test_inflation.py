@@ -9,10 +9,10 @@ import pytest
 pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra: pip install "
                     "'novelty-habituation[ros]'")
 
-from novelty.io.ros import caps
-from novelty.io.ros2 import inflation as ros2_inflation  # noqa: E402
-from novelty.io.ros.caps import MessageError  # noqa: E402
 from novelty.io.bags.rosbag import Bag, read_bag  # noqa: E402
+from novelty.io.ros import caps
+from novelty.io.ros.caps import MessageError  # noqa: E402
+from novelty.io.ros2 import inflation as ros2_inflation  # noqa: E402
 from novelty.io.ros2.inflation import MCAP_MAGIC, _zstd  # noqa: E402
 
 from ...io.bag_files import write_bag  # noqa: E402

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
+from novelty.registry import build
 from novelty.tasks.exploration import irregular, moving, returning
 from novelty.tasks.exploration.recurrence import _irregular_schedule
-from novelty.registry import build
 
 SHORT = 8.0  # a short corridor keeps the simulation fast
 
