@@ -34,7 +34,7 @@ from importlib.metadata import entry_points
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
-from ._keywords import unknown_parameters
+from ._messages import unknown_parameters
 from .tasks.registered import TASKS
 
 __all__ = [

@@ -16,7 +16,9 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters"]
+from .._messages import unknown_parameters
+
+__all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters", "unknown_parameters"]
 
 
 @dataclass(frozen=True)
@@ -180,4 +182,5 @@ def _stable(rule, kind: type) -> bool:
         return True
     return kind in _IMMUTABLE and all(type(alt) in (Interval, Options, Instance, Bounds)
                                       for alt in alternatives)
+
 

@@ -29,7 +29,7 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-from ..._keywords import unknown_parameters
+from ..._messages import unknown_parameters
 from ..._validation import Instance, Interval, Options, validate_parameters
 from ...sonar.preprocessing import PAPER_THRESHOLD
 from ..frames.mounts import Mount, parse_mount

@@ -1,7 +1,8 @@
-"""Names a caller gave that a component does not take, refused with the close ones: one message for the project.
+"""Messages shared by the registry and the checks, in a module of the standard library only.
 
-Kept apart from :mod:`novelty._validation` (which imports numpy) so that the
-registries, imported by ``import novelty``, stay light.
+``import novelty`` loads the registry, which must not pull in numpy; the
+checks of :mod:`novelty._validation` need numpy. The refusal of unknown
+parameter names is worded once, here, for both.
 """
 
 from __future__ import annotations
