@@ -15,6 +15,12 @@
   CHANGELOG.md keeps how the defaults changed) or quotes a timing (the
   performance guide keeps them); and a study reads the library through its
   public names only.
+- Private names stay with their owner: no module outside the habituating
+  filter (``novelty/filter.py``, ``novelty/_filter/``) uses the filter's
+  private names, and no private name is imported from outside the package that
+  holds it.
+- A module name used twice in ``novelty/`` says why, in the module and in
+  :data:`SHARED_NAMES`.
 """
 
 import ast
@@ -433,3 +439,182 @@ def test_no_module_name_is_used_twice_without_a_reason():
     silent = [p.relative_to(PACKAGE).as_posix() for name in shared for p in shared[name]
               if "shares its name" not in (ast.get_docstring(ast.parse(p.read_text(encoding="utf-8"))) or "").lower()]
     assert not silent, f"modules whose docstring does not say why they share their name: {silent}"
+
+
+# ------------------------------------------------------------- private names stay with their owner
+#: the habituating filter: its class's module and its private parts' folder
+FILTER = (PACKAGE / "filter.py", PACKAGE / "_filter")
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _library_files(*skip: Path):
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "__pycache__" not in path.parts and not any(path == s or s in path.parents for s in skip):
+            yield path
+
+
+def _filter_files():
+    return [FILTER[0], *sorted(FILTER[1].glob("*.py"))]
+
+
+def filter_private_names() -> set[str]:
+    """The habituating filter's own private names: those its class defines that none of its base
+    classes has (``_learn_raw``, ``_combine``, ...), and those its modules keep in its ``__dict__``
+    (``vars(filter)["_engine"]``, ``self._calibration = ...``)."""
+    from novelty.filter import HabituatingFilter
+
+    names = {name for name in vars(HabituatingFilter) if _private(name)
+             and not any(hasattr(base, name) for base in HabituatingFilter.__mro__[1:])}
+    for path in _filter_files():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            key = None
+            if isinstance(node, ast.Subscript) and _is_vars(node.value):
+                key = node.slice
+            elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and _is_vars(node.func.value)
+                  and node.args):
+                key = node.args[0]   # vars(x).get("_name"), .pop, .setdefault
+            elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+                key = ast.Constant(node.attr)
+            if isinstance(key, ast.Constant) and isinstance(key.value, str) and _private(key.value):
+                names.add(key.value)
+    return names
+
+
+def _is_vars(node) -> bool:
+    return isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "vars"
+
+
+def private_uses(path: Path, names: set[str]) -> list[str]:
+    """Where ``path`` reaches one of ``names`` on another object than its own (``self`` and
+    ``cls`` are a class's own): ``x._name``, ``vars(x)["_name"]``, ``getattr(x, "_name")``."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        name = None
+        if isinstance(node, ast.Attribute) and node.attr in names:
+            if not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls")):
+                name = node.attr
+        elif isinstance(node, ast.Subscript) and _is_vars(node.value):
+            name = getattr(node.slice, "value", None)
+        elif isinstance(node, ast.Call) and node.args:
+            reach = ((isinstance(node.func, ast.Attribute) and _is_vars(node.func.value))
+                     or (isinstance(node.func, ast.Name) and node.func.id in ("getattr", "setattr", "hasattr",
+                                                                               "delattr")))
+            if reach:
+                first = node.args[0] if _is_vars(getattr(node.func, "value", None)) else (
+                    node.args[1] if len(node.args) > 1 else None)
+                name = getattr(first, "value", None)
+        if isinstance(name, str) and name in names:
+            where = path.relative_to(ROOT).as_posix() if ROOT in path.parents else path.name
+            found.append(f"{where}:{node.lineno} {name}")
+    return found
+
+
+def test_the_filter_private_name_finder(tmp_path):
+    names = filter_private_names()
+    assert {"_engine", "_calibration", "_parts_changed", "_parts_seen", "_learn_raw", "_combine",
+            "_novelty_of", "_calibration_rule", "_current_engine"} <= names
+    assert not {"_learn", "_novelty", "_start", "_check_state", "_rebuild_scratch"} & names  # the detector's hooks
+    module = tmp_path / "module.py"
+    module.write_text('def f(det):\n    det._combine(1)\n    vars(det)["_engine"] = 2\n    getattr(det, "_engine")\n'
+                      'class E:\n    def g(self):\n        self._parts_seen = ()\n')
+    assert sorted(use.split(" ")[1] for use in private_uses(module, names)) == ["_combine", "_engine", "_engine"]
+
+
+def test_no_module_outside_the_filter_uses_its_private_names():
+    names = filter_private_names()
+    outside = [use for path in _library_files(*FILTER) for use in private_uses(path, names)]
+    outside += [use for top in ("studies", "benchmarks", "examples") for path in sorted((ROOT / top).rglob("*.py"))
+                for use in private_uses(path, names)]
+    assert not outside, f"the habituating filter's private names used outside it (give them an owner): {outside}"
+
+
+def _package_of(name: str, modules: dict[str, Path]) -> str:
+    return name if modules[name].name == "__init__.py" else name.rpartition(".")[0]
+
+
+def private_imports(modules: dict[str, Path]) -> list[str]:
+    """Imports of a private name (a module or an object whose name starts with ``_``) from outside
+    the package that holds it. A private name is its package's, for its modules and its
+    subpackages' (``novelty._kernels`` is the whole library's; ``novelty.habituation._schedule``
+    is ``novelty.habituation``'s; ``_lock_of`` of ``novelty/detector.py`` is ``novelty``'s)."""
+    found = []
+    for name, path in modules.items():
+        here = _package_of(name, modules)
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom):
+                base = here.split(".")[: len(here.split(".")) - node.level + 1] if node.level else []
+                source = ".".join(base + ([node.module] if node.module else []))
+                paths = [source] + [f"{source}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                paths = [a.name for a in node.names]
+            else:
+                continue
+            for dotted in paths:
+                parts = dotted.split(".")
+                private = [i for i, part in enumerate(parts) if i and _private(part)]
+                if parts[0] != "novelty" or not private:
+                    continue
+                holder = ".".join(parts[:private[0]])   # the module or package the private name is in
+                owner = _package_of(holder, modules) if holder in modules else holder
+                if here != owner and not here.startswith(owner + "."):
+                    found.append(f"{name}:{node.lineno} {dotted}")
+    return found
+
+
+def test_the_private_import_finder(tmp_path):
+    files = {"__init__.py": "", "_k.py": "", "a/__init__.py": "", "a/x.py": "", "a/_y.py": "",
+             "b/__init__.py": "", "a/c/__init__.py": "",
+             "b/z.py": "from ..a import _y\nfrom ..a.x import _f, g\nfrom .._k import h\nimport novelty.a._y\n",
+             "a/c/w.py": "from .. import _y\nfrom ..x import _f\nfrom ..._k import h\n"}
+    for rel, text in files.items():
+        (tmp_path / "novelty" / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "novelty" / rel).write_text(text)
+    found = private_imports(import_levels.modules(tmp_path / "novelty"))
+    assert found == ["novelty.b.z:1 novelty.a._y", "novelty.b.z:2 novelty.a.x._f", "novelty.b.z:4 novelty.a._y"]
+
+
+def test_no_private_name_is_imported_across_packages():
+    found = private_imports(import_levels.modules(PACKAGE))
+    assert not found, f"private names imported from another package (give them a public name or a door): {found}"
+
+
+# ------------------------------------------------------------- a parameter's walk, as the engine guide lists it
+#: the most stops a parameter takes from novelty.make to its multiply
+MAX_STOPS = 12
+
+
+def _walk() -> list[tuple[str, list[str], list[str]]]:
+    """The stops of "The path of a parameter" in docs/guide/engine.md: (number, the functions
+    named in its "where", the files they are in)."""
+    text = (ROOT / "docs/guide/engine.md").read_text(encoding="utf-8")
+    section = text.split("## The path of a parameter", 1)[1].split("\n## ", 1)[0]
+    stops = []
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 3 or not cells[0].isdigit():
+            continue
+        spans = re.findall(r"`([^`]+)`", cells[1])
+        files, folder = [], ""
+        for span in spans:
+            if span.endswith(".py"):
+                folder = span.rpartition("/")[0] if "/" in span else folder
+                files.append(span if "/" in span else f"{folder}/{span}")
+        names = [span for span in spans if not span.endswith(".py")]
+        stops.append((cells[0], names, files))
+    return stops
+
+
+def test_a_parameters_walk_is_at_most_twelve_stops_each_where_the_guide_says():
+    stops = _walk()
+    assert [number for number, _, _ in stops] == [str(i) for i in range(1, len(stops) + 1)], stops
+    assert 0 < len(stops) <= MAX_STOPS, f"a learning rate walks {len(stops)} stops (at most {MAX_STOPS})"
+    for number, names, files in stops:
+        assert names and files, f"stop {number} names no function or no file"
+        sources = "\n".join((ROOT / f).read_text(encoding="utf-8") for f in files)
+        for name in names:
+            last = name.rpartition(".")[2]
+            assert re.search(rf"^\s*(?:def|class) {re.escape(last)}\b", sources, re.MULTILINE), (
+                f"stop {number}: {name} is not defined in {files}")
