@@ -561,6 +561,7 @@ def private_imports(modules: dict[str, Path]) -> list[str]:
                 owner = _package_of(holder, modules) if holder in modules else holder
                 if here != owner and not here.startswith(owner + "."):
                     found.append(f"{name}:{node.lineno} {dotted}")
+                    break   # an import statement counted once
     return found
 
 
