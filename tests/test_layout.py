@@ -184,6 +184,7 @@ ACROSS = {
     "baselines/test_baseline_checks.py": "the estimator and conformance checks on other configurations",
     "fuzz/test_detectors.py": "every registered detector against hostile input",
     "fuzz/test_files.py": "hostile save targets, suite files and standard input",
+    "rosnode/test_guide.py": "the live-robot guide's session, run against a real ROS master",
     "tasks/objects/test_bags.py": "the tasks read from a bag (novelty.tasks.objects, novelty.tasks.recordings) with a laser's mount",
     "tasks/objects/test_points.py": "the points input (novelty.io.scans.points) of the objects tasks' sweeps",
     "_kernels/test_hostile_state.py": "both engines against a hostile state of every pair (choice, state, the drivers)",
@@ -413,6 +414,12 @@ SHARED_NAMES = {
     "reproduce": "the paper's experiments (reproduce/) and the command that runs them (cli/reproduce.py)",
     "scans": "the scans a detector is given, checked (_validation/scans.py), and a recording's messages made "
              "scans (io/scans/)",
+    "node": "the live node (rosnode/node.py) and the command that starts it (cli/node.py: a command's module is "
+            "named after the command)",
+    "reading": "how a recording is read (io/recording/reading.py, the Reading) and the live node's reading built "
+               "on it (rosnode/reading.py)",
+    "scoring": "the engines' batch scoring (_kernels/scoring.py) and the live node's scorer (rosnode/scoring.py)",
+    "stats": "the benchmark's statistics (bench/stats/) and the live node's counts and latencies (rosnode/stats.py)",
 }
 
 

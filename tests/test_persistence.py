@@ -987,7 +987,8 @@ def test_overlapping_entries_are_read_no_more_than_the_file_holds(saved, tmp_pat
         assert zf.getinfo(names[0]).file_size > 2**21
 
     def load():
-        with pytest.raises(ModelFileError, match="entries overlap"):
+        # the project's own check, or zipfile's where the Python has it (3.12, and 3.11 builds with the backport)
+        with pytest.raises(ModelFileError, match="entries overlap|Overlapped entries"):
             novelty.load(bad)
 
     assert peak_mib(load) < 12

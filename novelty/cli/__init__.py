@@ -57,6 +57,7 @@ COMMANDS = {
     "bench": "novelty.cli.bench",
     "run": "novelty.cli.run",
     "score": "novelty.cli.score",
+    "node": "novelty.cli.node",
     "simulate": "novelty.cli.simulate",
     "plot": "novelty.cli.plot",
     "reproduce": "novelty.cli.reproduce",

@@ -20,8 +20,10 @@ from ._common import UserError, format_cell
 __all__ = ["add_recording_options", "recording_reading", "recording_rings", "recording_points", "pose_columns",
            "RowSink", "POINTS_SECTORS"]
 
-#: the points input's sectors unless --sectors says: the habituating maps were measured on lasers with
-#: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
+
+
+#: the points input's sectors unless --sectors says: novelty.io.scans.points.POINTS_SECTORS, written out so
+#: that the command line starts without the readers (tests/cli/test_recording.py checks they agree)
 POINTS_SECTORS = 180
 
 
@@ -150,28 +152,29 @@ def recording_points(args, report=None):
     The input of the detectors that read the robot's pose with each scan
     (the habituating maps, :mod:`novelty.io.scans.points`): the pose, each
     sector's nearness and its end point in the world frame
-    (:func:`novelty.io.scans.points.sweep_points`), :data:`POINTS_SECTORS`
+    (:class:`novelty.io.scans.points.PointsMaker`), :data:`POINTS_SECTORS`
     sectors unless ``--sectors`` says (one a beam for a sensor of fewer).
-    Scans before the pose source's first message are left out, and
-    ``report`` says how many; a recording with no pose at all is an error
-    that says where poses come from.
+    Scans without a pose at their time (before the pose source's first
+    message, or after its last) are left out, and ``report`` says how
+    many; a recording with no pose at all is an error that says where
+    poses come from.
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording.readers import read_sweeps
-    from ..io.scans.points import sweep_points
+    from ..io.scans.points import PointsMaker
 
     reading = recording_reading(args, "points")
-    sectors = args.sectors
+    points = None if args.sectors is None else PointsMaker(args.sectors, reading.threshold)
     without, scored = 0, 0
     try:
         for sweep in read_sweeps(args.data, reading, report=report):
             if sweep.pose is None:
                 without += 1
                 continue
-            if sectors is None:
-                sectors = min(reading.sectors, len(sweep.ranges))
+            if points is None:
+                points = PointsMaker(min(reading.sectors, len(sweep.ranges)), reading.threshold)
             scored += 1
-            yield sweep.time, sweep_points([sweep], sectors, reading.threshold)[0], sweep.pose
+            yield sweep.time, points(sweep), sweep.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
     if without and not scored:
@@ -179,8 +182,8 @@ def recording_points(args, report=None):
                         f"{args.data} had one: give --pose-topic (an Odometry, PoseStamped or tf topic; ODOM in "
                         "a CARMEN log).")
     if without and report is not None:
-        report.notes.append(f"{without} scans before the first pose left out (the points input places each "
-                            "echo in the world by the robot's pose)")
+        report.notes.append(f"{without} scans without a pose at their time left out (before the first pose or after "
+                            "the last; the points input places each echo in the world by the robot's pose)")
 
 
 def pose_columns(pose) -> dict:

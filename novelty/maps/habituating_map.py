@@ -142,7 +142,7 @@ import numbers
 import numpy as np
 
 from .._component import StateError, check_array_state, check_int_state
-from .._validation import Interval, Options
+from .._validation import Interval, Options, check_one
 from ..detector import NoveltyDetector
 from ..habituation.stanley import euler_steps
 from ..io.scans.points import split_points
@@ -393,6 +393,14 @@ class HabituatingMap(NoveltyDetector):
     def _score(self, hits: np.ndarray) -> float:
         if hits.size == 0:
             return 0.0
+        y = self._cell_values(hits)
+        if self.top is None:
+            return float(y.mean())
+        k = int(self.top)
+        return float(np.sort(y)[-k:].sum() / k)
+
+    def _cell_values(self, hits: np.ndarray) -> np.ndarray:
+        """``v_c`` of (2) (or (2')) for each hit cell: the values a scan's novelty is the top mean of."""
         slots = self._slots(hits)
         met = slots >= 0
         y = self._efficacy(hits)
@@ -405,10 +413,44 @@ class HabituatingMap(NoveltyDetector):
             counted = np.zeros(hits.size, dtype=bool)
             counted[met] = self.passes_[slots[met]] >= self.min_passes
             y = np.where(counted, y, 0.0)
-        if self.top is None:
-            return float(y.mean())
-        k = int(self.top)
-        return float(np.sort(y)[-k:].sum() / k)
+        return y
+
+    def cell_novelty(self, x) -> tuple[np.ndarray, np.ndarray]:
+        """The cells one scan hits, and each one's novelty ``v_c`` as the scan's novelty reads it (no learning).
+
+        Parameters
+        ----------
+        x : array-like of shape (n_features,)
+            One row of the ``points`` input.
+
+        Returns
+        -------
+        centres : ndarray of shape (n_hit, 2)
+            The hit cells' centres in the world frame (m).
+        novelty : ndarray of shape (n_hit,)
+            Their ``v_c`` (2); the scan's novelty is the mean of the ``top`` largest.
+
+        Examples
+        --------
+        Two echoes 2.5 m left and right of the robot, learned once: each cell's
+        efficacy has taken one step of (1), ``1 - 1 / 3.33``:
+
+        >>> row = [0.0, 0.0, 0.0, 0.5, 0.5, -2.5, 2.5, 0.5, 0.5]
+        >>> det = HabituatingMap(cell_size=1.0, evidence="hits", tolerance=0, arc=0.0).fit([row])
+        >>> centres, v = det.cell_novelty(row)
+        >>> centres.tolist(), v.round(4).tolist()
+        ([[-2.5, 0.5], [2.5, 0.5]], [0.6997, 0.6997])
+        """
+        self._check_fitted()
+        x = check_one(x, self, self.n_features_in_, self._names())
+        poses, near, ends = self._rows(x[None, :])
+        hits = self._cells(poses[0], near[0], ends[0])[0]
+        if hits.size == 0:
+            return np.empty((0, 2)), np.empty(0)
+        c = float(self.cell_size)
+        i = (hits >> np.int64(32)) - _SHIFT_I
+        j = (hits & np.int64(0xFFFFFFFF)) - _SHIFT_J
+        return (np.column_stack([i, j]).astype(np.float64) + 0.5) * c, self._cell_values(hits)
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         poses, near, ends = self._rows(X)

@@ -284,3 +284,10 @@ def test_the_console_says_which_frame_mount_and_poses_were_used(tmp_path, capsys
     assert main(["run", "hsom", "--data", str(bag), "--out", str(out), "--mount", "0.2,0,180,flipped"]) == 0
     assert ("/scan: x=0.2 m, y=0 m, yaw=180 deg, upside down, from option (the bag's own transform "
             "base_footprint -> base_scan is not used)") in capsys.readouterr().err
+
+
+def test_the_points_inputs_default_sectors_are_the_readers():
+    from novelty.cli.recording_options import POINTS_SECTORS
+    from novelty.io.scans import points
+
+    assert POINTS_SECTORS == points.POINTS_SECTORS == 180

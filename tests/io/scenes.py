@@ -101,6 +101,8 @@ def write_robot_bag(path, kind, messages):
         connections = {}
         for t, topic, msgtype, build in sorted(messages, key=lambda m: m[0]):
             if topic not in connections:
-                connections[topic] = writer.add_connection(topic, msgtype, typestore=ts)
+                # /tf_static latched, as rosbag record keeps it: rosbag play then latches it too
+                latched = {"latching": 1} if kind == "ros1" and topic == "/tf_static" else {}
+                connections[topic] = writer.add_connection(topic, msgtype, typestore=ts, **latched)
             writer.write(connections[topic], int(round(t * 1e9)), serialize(build(ts), msgtype))
     return out

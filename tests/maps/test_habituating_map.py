@@ -340,6 +340,29 @@ def test_with_arc_sector_each_scan_gets_its_own_width():
     assert wide[0] > 0.5
 
 
+# ------------------------------------------------------------------ the cells of a scan
+def test_a_scans_cells_are_its_hit_cells_centres_with_the_values_its_novelty_is_the_top_mean_of():
+    # two echoes in cells (2, 0) and (0, 2) once learned (2^-1 each), a third in cell (-2, 0) never met (1)
+    det = HabituatingMap(**{**EXACT, "evidence": "hits", "top": 2}).fit([scan((2.1, 0.1), (0.1, 2.1), None)])
+    row = scan((2.1, 0.1), (0.1, 2.1), (-1.9, 0.1))
+    centres, v = det.cell_novelty(row)
+    assert sorted(zip(map(tuple, centres.tolist()), v.tolist())) == [
+        ((-1.5, 0.5), 1.0), ((0.5, 2.5), 0.5), ((2.5, 0.5), 0.5)]
+    assert det.novelty([row])[0] == (1.0 + 0.5) / 2
+
+
+def test_the_cells_are_read_without_learning_and_agree_with_the_novelty_on_any_map():
+    X = HabituatingMap._example_rows(seed=5, n=80)
+    det = HabituatingMap(tolerance=1, unseen=0.25).fit(X[:60])
+    before = det.efficacy_.copy()
+    for row in X[60:]:
+        centres, v = det.cell_novelty(row)
+        assert centres.shape == (len(v), 2) and np.array_equal(cell_keys(centres, det.cell_size), np.sort(
+            cell_keys(centres, det.cell_size)))
+        assert np.sort(v)[-2:].mean() == det.novelty(row[None, :])[0]
+    assert np.array_equal(det.efficacy_, before)
+
+
 # ------------------------------------------------------------------ determinism, persistence, refusals
 @pytest.mark.parametrize("params", [{"tau_neighbour": 10.0}, {"evidence_lag": 7, "tolerance": 1, "min_passes": 2},
                                     {"visit_gap": 3}])

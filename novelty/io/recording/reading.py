@@ -17,6 +17,8 @@ are checked when it is made, with the project's message form::
 :meth:`Reading.to_mapping` gives it back as plain data (a task's metadata,
 a log); :meth:`Reading.from_mapping` makes one of such data, refusing a key
 it does not know with the list of those it does.
+
+Shares its name with novelty/rosnode/reading.py, the live node's reading built on this one.
 """
 
 from __future__ import annotations

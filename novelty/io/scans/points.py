@@ -50,10 +50,13 @@ from ...sonar.preprocessing import preprocess
 from .sectors import sector_index
 from .sweep_rings import RingMaker
 
-__all__ = ["POSE_COLUMNS", "points_columns", "split_points", "check_points", "ring_points", "sweep_points"]
+__all__ = ["POSE_COLUMNS", "POINTS_SECTORS", "PointsMaker", "points_columns", "split_points", "check_points", "ring_points", "sweep_points"]
 
 #: The pose's columns, first in every row.
 POSE_COLUMNS = ("x", "y", "heading")
+#: A recording's sectors of the points input unless given: the habituating maps were measured on lasers with
+#: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
+POINTS_SECTORS = 180
 
 
 def points_columns(n_sectors: int) -> list[str]:
@@ -151,42 +154,82 @@ def sweep_points(sweeps: Sequence, sectors: int = 16, threshold: float = 4.0) ->
     >>> sweep_points([ahead], sectors=2).round(3).tolist()   # facing +y: 1 m to its right, 3 m ahead-left
     [[10.0, 5.0, 1.571, 0.75, 0.25, 10.924, 7.228, 5.383, 6.148]]
     """
-    if isinstance(sectors, bool) or not isinstance(sectors, (int, np.integer)) or sectors < 1:
-        raise ValueError(f"The points input needs one number of sectors (an int >= 1); got {sectors!r}.")
-    maker = RingMaker(int(sectors), "min")
-    rows = []
-    for sweep in sweeps:
+    maker = PointsMaker(sectors, threshold)
+    return np.array([maker(sweep) for sweep in sweeps], dtype=np.float64).reshape(-1, 3 + 3 * int(sectors))
+
+
+class PointsMaker:
+    """:func:`sweep_points` of one sweep at a time, its sectors and threshold fixed, keeping each geometry's sectors.
+
+    The beams' sectors depend on their directions alone: for a geometry (the
+    same ``angles`` array, or equal ones) they are worked out once, with each
+    sector's beams in order and its middle beam, and the ring's
+    (:class:`~novelty.io.scans.sweep_rings.RingMaker`) kept too, so that a
+    recording's sweeps, which share a few geometries, cost a few vector
+    operations each. Each sector's end point is its nearest beam's (the first
+    of the nearest, in the beams' order), as the module docstring says.
+    """
+
+    def __init__(self, sectors: int = 16, threshold: float = 4.0):
+        if isinstance(sectors, bool) or not isinstance(sectors, (int, np.integer)) or sectors < 1:
+            raise ValueError(f"The points input needs one number of sectors (an int >= 1); got {sectors!r}.")
+        self.sectors, self.threshold = int(sectors), float(threshold)
+        self.rings = RingMaker(self.sectors, "min")
+        self._known: list[_Beams] = []
+
+    def __call__(self, sweep) -> np.ndarray:
+        """The sweep's ``points`` row (``3 + 3 sectors`` values)."""
         if sweep.pose is None:
             raise ValueError(f"The sweep at t={sweep.time} has no pose: the points input places each echo in the "
                              "world frame (give the recording's poses, pose_topic=).")
-        near = preprocess(maker(sweep), threshold)
-        ends = _sector_ends(sweep, int(sectors), threshold)
+        near = preprocess(self.rings(sweep), self.threshold)
+        ends = self._geometry(sweep.angles).ends(sweep, self.threshold)
         x, y, yaw = (float(v) for v in sweep.pose)
         c, s = math.cos(yaw), math.sin(yaw)
         world_x = x + c * ends[:, 0] - s * ends[:, 1]
         world_y = y + s * ends[:, 0] + c * ends[:, 1]
         heading = (yaw + math.pi) % (2 * math.pi) - math.pi
-        rows.append(np.r_[x, y, heading, near, world_x, world_y])
-    return np.array(rows, dtype=np.float64).reshape(-1, 3 + 3 * int(sectors))
+        return np.r_[x, y, heading, near, world_x, world_y]
+
+    def _geometry(self, angles) -> "_Beams":
+        for known in self._known:
+            if known.angles is angles or (known.angles.shape == np.shape(angles)
+                                          and np.array_equal(known.angles, angles)):
+                return known
+        beams = _Beams(np.asarray(angles, dtype=np.float64), self.sectors)
+        self._known = [beams] + self._known[:3]   # a few sensors' geometries
+        return beams
 
 
-def _sector_ends(sweep, sectors: int, threshold: float) -> np.ndarray:
-    """Each sector's end point in the base frame: its nearest beam's echo, or ``threshold`` along it."""
-    angles = np.asarray(sweep.angles, dtype=np.float64)
-    ranges = np.asarray(sweep.ranges, dtype=np.float64)
-    origins = np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
-    echo = np.isfinite(ranges)
-    unit = np.c_[np.cos(angles), np.sin(angles)]
-    ends = origins + np.where(echo, ranges, 0.0)[:, None] * unit
-    distance = np.where(echo, np.hypot(ends[:, 0], ends[:, 1]), np.inf)
-    index = sector_index(angles, sectors)
-    out = np.empty((sectors, 2))
-    for k in range(sectors):
-        beams = np.flatnonzero(index == k)
-        j = beams[np.argmin(distance[beams])] if np.isfinite(distance[beams]).any() else beams[len(beams) // 2]
-        if distance[j] <= threshold:
-            out[k] = ends[j]
-        else:
-            direction = ends[j] if echo[j] else unit[j]
-            out[k] = threshold * direction / np.hypot(*direction)
-    return out
+class _Beams:
+    """A geometry's beams by sector: their directions, the beams of each sector in order, and its middle beam."""
+
+    def __init__(self, angles: np.ndarray, sectors: int):
+        self.angles = angles
+        self.unit = np.c_[np.cos(angles), np.sin(angles)]
+        index = sector_index(angles, sectors)   # raises where the beams cannot fill the sectors
+        inside = np.flatnonzero(index >= 0)
+        self.order = inside[np.argsort(index[inside], kind="stable")]   # each sector's beams, in the beams' order
+        self.sector = index[self.order]
+        counts = np.bincount(self.sector, minlength=sectors)
+        self.starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        self.middle = self.order[self.starts + counts // 2]
+
+    def ends(self, sweep, threshold: float) -> np.ndarray:
+        """Each sector's end point in the base frame: its nearest beam's echo, or ``threshold`` along it."""
+        ranges = np.asarray(sweep.ranges, dtype=np.float64)
+        origins = np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
+        echo = np.isfinite(ranges)
+        ends = origins + np.where(echo, ranges, 0.0)[:, None] * self.unit
+        distance = np.where(echo, np.hypot(ends[:, 0], ends[:, 1]), np.inf)
+        # the first beam of each sector at the sector's least distance; the middle beam where none returned
+        d = distance[self.order]
+        least = np.minimum.reduceat(d, self.starts)
+        at = np.flatnonzero(d == least[self.sector])
+        first = at[np.unique(self.sector[at], return_index=True)[1]]
+        j = np.where(np.isfinite(least), self.order[first], self.middle)
+        within = distance[j] <= threshold
+        direction = np.where(echo[j][:, None], ends[j], self.unit[j])
+        with np.errstate(divide="ignore", invalid="ignore"):   # an echo at the centre is within: not used
+            beyond = threshold * direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
+        return np.where(within[:, None], ends[j], beyond)

@@ -24,7 +24,7 @@ import numpy as np
 from ..ros.messages import RangeReading
 from .ranges import clean_ranges
 
-__all__ = ["sonar_rings"]
+__all__ = ["sonar_rings", "SonarRings"]
 
 
 def sonar_rings(readings: Iterable[RangeReading], sensors: Sequence[str] | Mapping[str, float] | None = None,
@@ -33,7 +33,8 @@ def sonar_rings(readings: Iterable[RangeReading], sensors: Sequence[str] | Mappi
 
     A ring is complete when every sensor has reported since the last ring;
     its time is its newest reading's. A sensor reporting twice before the
-    ring completes keeps its newer reading.
+    ring completes keeps its newer reading. :class:`SonarRings` does it a
+    reading at a time (a live node's sonars).
 
     Parameters
     ----------
@@ -56,30 +57,69 @@ def sonar_rings(readings: Iterable[RangeReading], sensors: Sequence[str] | Mappi
     >>> [(t, ring.tolist()) for t, ring in sonar_rings(rs)]
     [(0.1, [2.0, 1.0]), (0.3, [0.5, inf])]
     """
-    it = iter(readings)
-    order = _sensor_order(sensors) if sensors is not None else None
-    pending: list[RangeReading] = []
-    if order is None:
-        order, pending = _discover_sensors(it)
-    position = {name: i for i, name in enumerate(order)}
-    ring: dict[str, RangeReading] = {}
-    for reading in _chain(pending, it):
-        if reading.sensor not in position:
+    gather = SonarRings(sensors, max_span)
+    for reading in readings:
+        yield from gather.push(reading)
+    yield from gather.flush()
+
+
+class SonarRings:
+    """:func:`sonar_rings` a reading at a time: :meth:`push` each, the rings it completes come back.
+
+    Without ``sensors`` the readings are held until a sensor reports again
+    (the sensors met so far are the ring's, in natural name order), or until
+    :meth:`flush`, or until :meth:`decide` names the order (by the sensors met
+    so far: a live node's sonars ordered by their mounts in the tf tree).
+
+    Attributes
+    ----------
+    order : list of str or None
+        The ring's sensors in order, once known.
+    held : list of RangeReading
+        The readings held while the sensors are being discovered.
+    """
+
+    def __init__(self, sensors: Sequence[str] | Mapping[str, float] | None = None, max_span: float | None = None):
+        self.order = _sensor_order(sensors) if sensors is not None else None
+        self.max_span = max_span
+        self.held: list[RangeReading] = []
+        self._ring: dict[str, RangeReading] = {}
+
+    def push(self, reading: RangeReading) -> list[tuple[float, np.ndarray]]:
+        """Take one reading; the rings it completes (several at most when the sensors have just become known)."""
+        if self.order is None:
+            if all(r.sensor != reading.sensor for r in self.held):
+                self.held.append(reading)
+                return []
+            self.held.append(reading)
+            return self.decide(sorted({r.sensor for r in self.held}, key=_natural))
+        return self._gather(reading)
+
+    def decide(self, sensors: Sequence[str] | Mapping[str, float]) -> list[tuple[float, np.ndarray]]:
+        """Name the ring's sensors (in order, or by angle); the rings of the readings held."""
+        self.order = _sensor_order(sensors)
+        held, self.held = self.held, []
+        return [ring for reading in held for ring in self._gather(reading)]
+
+    def flush(self) -> list[tuple[float, np.ndarray]]:
+        """The rings of the readings held, the sensors those met (the readings have ended)."""
+        if self.order is None:
+            return self.decide(sorted({r.sensor for r in self.held}, key=_natural)) if self.held else []
+        return []
+
+    def _gather(self, reading: RangeReading) -> list[tuple[float, np.ndarray]]:
+        if reading.sensor not in self.order:
             raise ValueError(f"A reading of sensor {reading.sensor!r}, not one of the ring's "
-                             f"{list(order)}.")
+                             f"{list(self.order)}.")
+        ring = self._ring
         ring[reading.sensor] = reading
-        if max_span is not None:
-            ring = {k: v for k, v in ring.items() if reading.stamp - v.stamp <= max_span}
-        if len(ring) == len(order):
-            values = [clean_ranges([ring[s].range], ring[s].range_min, ring[s].range_max)[0]
-                      for s in order]
-            yield max(v.stamp for v in ring.values()), np.where(np.isnan(values), np.inf, values)
-            ring = {}
-
-
-def _chain(first, rest):
-    yield from first
-    yield from rest
+        if self.max_span is not None:
+            ring = self._ring = {k: v for k, v in ring.items() if reading.stamp - v.stamp <= self.max_span}
+        if len(ring) < len(self.order):
+            return []
+        values = [clean_ranges([ring[s].range], ring[s].range_min, ring[s].range_max)[0] for s in self.order]
+        self._ring = {}
+        return [(max(v.stamp for v in ring.values()), np.where(np.isnan(values), np.inf, values))]
 
 
 def _sensor_order(sensors) -> list[str]:
@@ -89,17 +129,6 @@ def _sensor_order(sensors) -> list[str]:
     if not order or len(set(order)) != len(order):
         raise ValueError(f"sensors must name each sensor once; got {order!r}.")
     return order
-
-
-def _discover_sensors(it) -> tuple[list[str], list[RangeReading]]:
-    seen: list[RangeReading] = []
-    names: set[str] = set()
-    for reading in it:
-        if reading.sensor in names:
-            return sorted(names, key=_natural), seen + [reading]
-        names.add(reading.sensor)
-        seen.append(reading)
-    return sorted(names, key=_natural), seen
 
 
 def _natural(name: str):

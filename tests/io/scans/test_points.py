@@ -5,7 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.scans.points import check_points, points_columns, ring_points, split_points
+from novelty.io.ros.messages import Sweep
+from novelty.io.scans.points import PointsMaker, check_points, points_columns, ring_points, split_points, sweep_points
+from novelty.io.scans.sectors import sector_index
 
 
 def test_a_ring_at_known_bearings_puts_each_echo_offset_plus_range_along_its_axis_in_the_world():
@@ -47,3 +49,52 @@ def test_a_ring_and_poses_that_do_not_match_are_refused():
         ring_points([[0.5, 0.5]], [[0.0, 0.0, 0.0]], [0.0], 4.0)
     with pytest.raises(ValueError, match="threshold must be positive"):
         ring_points([[0.5]], [[0.0, 0.0, 0.0]], [0.0], 0.0)
+
+
+# ------------------------------------------------------------------ a sweep's row, one sweep at a time
+def reference_ends(sweep, sectors: int, threshold: float) -> np.ndarray:
+    """Each sector's end point, sector by sector: its nearest beam (the first of equals), or its middle beam
+    where none returned; the echo where it is within ``threshold``, else ``threshold`` along the beam."""
+    angles, ranges, origins = sweep.angles, sweep.ranges, sweep.origins
+    echo = np.isfinite(ranges)
+    unit = np.c_[np.cos(angles), np.sin(angles)]
+    ends = origins + np.where(echo, ranges, 0.0)[:, None] * unit
+    distance = np.where(echo, np.hypot(ends[:, 0], ends[:, 1]), np.inf)
+    index = sector_index(angles, sectors)
+    out = np.empty((sectors, 2))
+    for k in range(sectors):
+        beams = np.flatnonzero(index == k)
+        j = beams[np.argmin(distance[beams])] if np.isfinite(distance[beams]).any() else beams[len(beams) // 2]
+        if distance[j] <= threshold:
+            out[k] = ends[j]
+        else:
+            direction = ends[j] if echo[j] else unit[j]
+            out[k] = threshold * direction / np.hypot(*direction)
+    return out
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_a_sweeps_end_points_are_those_of_each_sectors_nearest_beam_exactly(seed):
+    rng = np.random.default_rng(seed)
+    n, sectors = int(rng.integers(40, 400)), int(rng.integers(1, 40))
+    angles = np.sort(rng.uniform(-np.pi, np.pi, n)) if seed % 2 else -np.pi + 2 * np.pi / n * np.arange(n)
+    ranges = np.round(rng.uniform(0.2, 8.0, n), 1)   # rounded: equal distances, the first of them taken
+    ranges[rng.random(n) < 0.2] = np.inf
+    ranges[rng.random(n) < 0.1] = np.nan
+    ranges[sector_index(angles, sectors) == 0] = np.inf   # a sector without an echo: its middle beam
+    origins = np.zeros((n, 2)) + (rng.normal(0, 0.2, 2) if seed % 3 else 0.0)
+    sweep = Sweep(0.0, origins, angles, ranges, np.array([1.0, -2.0, 0.7]))
+    maker = PointsMaker(sectors, 4.0)
+    row = maker(sweep)
+    ends = reference_ends(sweep, sectors, 4.0)
+    c, s = math.cos(0.7), math.sin(0.7)
+    np.testing.assert_array_equal(row[3 + sectors:3 + 2 * sectors], 1.0 + c * ends[:, 0] - s * ends[:, 1])
+    np.testing.assert_array_equal(row[3 + 2 * sectors:], -2.0 + s * ends[:, 0] + c * ends[:, 1])
+    np.testing.assert_array_equal(row, maker(sweep))                  # the geometry kept: the same row
+    np.testing.assert_array_equal(row, sweep_points([sweep], sectors, 4.0)[0])
+
+
+def test_a_sweep_without_a_pose_has_no_row():
+    sweep = Sweep(1.5, np.zeros((4, 2)), np.arange(4.0), np.ones(4), None)
+    with pytest.raises(ValueError, match="The sweep at t=1.5 has no pose"):
+        PointsMaker(2)(sweep)
