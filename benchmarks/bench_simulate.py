@@ -14,7 +14,7 @@ import statistics
 import time
 
 from novelty import sonar
-from novelty.sonar.inspection import generate_corridor
+from novelty.tasks.inspection import generate_corridor
 
 
 def _time(env, repeats: int) -> tuple[float, float, int]:

@@ -28,7 +28,7 @@ import numpy as np
 import novelty
 from novelty import _kernels
 from novelty.bench.exploration.prequential import exploration_metrics, prequential
-from novelty.exploration import open_door
+from novelty.tasks.exploration import open_door
 
 DETECTORS = ("hsom", "som-wang-hsu", "gwr-novelty", "gwr-explore", "gng-stanley")
 

@@ -18,6 +18,9 @@ readers' layers at most :data:`MAX_LEVELS` high).
     python benchmarks/import_levels.py novelty.io    # novelty.io and the layers under it
     python benchmarks/import_levels.py --modules novelty.io.scans   # and each module's level
     python benchmarks/import_levels.py --whole novelty.io           # novelty.io and all below it as one layer
+    python benchmarks/import_levels.py --whole novelty --package /tmp/before/novelty   # another checkout
+
+(``git archive <commit> novelty | tar -x -C /tmp/before`` gives the package as a commit had it.)
 """
 
 from __future__ import annotations
@@ -169,10 +172,11 @@ def main(argv=None) -> int:
     parser.add_argument("under", nargs="?", default="", help="a package: only it and the layers under it")
     parser.add_argument("--modules", action="store_true", help="each module's level too")
     parser.add_argument("--whole", action="store_true", help="the package named and all below it as one layer")
+    parser.add_argument("--package", type=Path, default=PACKAGE, help="the package's folder (default: novelty/ here)")
     args = parser.parse_args(argv)
     if args.whole and not args.under:
         parser.error("--whole needs a package")
-    print(report(layers(under=args.under, whole=args.whole), args.modules))
+    print(report(layers(args.package, under=args.under, whole=args.whole), args.modules))
     return 0
 
 

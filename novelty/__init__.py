@@ -70,7 +70,7 @@ _moved.install()   # module paths that moved keep working, with a FutureWarning
 
 #: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
 _SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing",
-                "rules", "maps")
+                "rules", "maps", "io", "tasks")
 
 
 def __getattr__(name: str) -> Any:

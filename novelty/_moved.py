@@ -10,10 +10,11 @@ through to them), after a ``FutureWarning`` that names the new homes; the
 old paths will be removed in a future release. Names that users import from
 a package (``from novelty.io import read_rings``) never moved and never warn.
 
-:func:`install` puts the finder in :data:`sys.meta_path` (``import
-novelty`` does it); it answers for the paths of :data:`MOVED` only, after
-every file of the package has been looked for, so a module that exists is
-never shadowed.
+:func:`install` puts the finder first in :data:`sys.meta_path` (``import
+novelty`` does it); it answers for the paths of :data:`MOVED` only, none of
+which names a module of the package (a test checks), so that a folder an
+old checkout leaves behind (``__pycache__`` alone) is not taken for the
+package it was.
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ MOVED: dict[str, tuple[str, ...]] = {
     "novelty.io.chunks": ("novelty.io.ros1.chunks",),
     "novelty.io.ros2_inflation": ("novelty.io.ros2.inflation",),
     "novelty.io.rosbag": ("novelty.io.bags.rosbag",),
-    "novelty.io.report": ("novelty.io.bags.report",),
+    "novelty.io.report": ("novelty.io.bags.read_report",),
     # frames
     "novelty.io.tf": ("novelty.io.frames.tf",),
     "novelty.io.mounts": ("novelty.io.frames.mounts",),
@@ -60,7 +61,7 @@ MOVED: dict[str, tuple[str, ...]] = {
                           "novelty.io.recording.reading", "novelty.io.recording.carmen_sweeps",
                           "novelty.io.recording.bag_sweeps"),
     "novelty.io.bag_sweeps": ("novelty.io.recording.bag_sweeps",),
-    "novelty.io.plotting": ("novelty.io.recording.plotting",),
+    "novelty.io.plotting": ("novelty.io.recording.path_plot",),
     # the task builders that were in novelty.io
     "novelty.io.tasks": ("novelty.tasks.recordings",),
     "novelty.io.places": ("novelty.tasks.places",),
@@ -72,6 +73,22 @@ MOVED: dict[str, tuple[str, ...]] = {
     "novelty.io.objects.shapes": ("novelty.tasks.objects.shapes",),
     "novelty.io.objects.raycast": ("novelty.tasks.objects.raycast",),
     "novelty.io.objects.placement": ("novelty.tasks.objects.placement",),
+    # the task builders that were in novelty.datasets and novelty.sonar, and the exploration tasks' short names
+    "novelty.datasets.paper": ("novelty.tasks.paper",),
+    "novelty.datasets.inspection": ("novelty.tasks.inspection",),
+    "novelty.datasets.inputs": ("novelty.tasks.inputs",),
+    "novelty.datasets.resampling": ("novelty.tasks.resampling",),
+    "novelty.datasets.files": ("novelty.tasks.files",),
+    "novelty.datasets.uci": ("novelty.tasks.uci",),
+    "novelty.datasets.exploration": ("novelty.tasks.exploration",),
+    "novelty.datasets.exploration.runs": ("novelty.tasks.exploration.runs",),
+    "novelty.datasets.exploration.tasks": ("novelty.tasks.exploration.tours",),
+    "novelty.datasets.exploration.objects": ("novelty.tasks.exploration.recurrence",),
+    "novelty.exploration": ("novelty.tasks.exploration",),
+    "novelty.sonar.tasks": ("novelty.tasks.simulated",),
+    "novelty.sonar.inspection": ("novelty.tasks.inspection",),
+    "novelty._children": ("novelty._safe_path",),
+    "novelty.cli.recording": ("novelty.cli.recording_options",),
     # tables of scans
     "novelty.datasets.tables": ("novelty.io.tables.table",),
     "novelty.datasets.columns": ("novelty.io.tables.columns",),
@@ -144,6 +161,6 @@ _FINDER = _Finder()
 
 
 def install() -> None:
-    """Put the finder of the old paths last in :data:`sys.meta_path` (once)."""
+    """Put the finder of the old paths first in :data:`sys.meta_path` (once)."""
     if not any(isinstance(f, _Finder) for f in sys.meta_path):
-        sys.meta_path.append(_FINDER)
+        sys.meta_path.insert(0, _FINDER)

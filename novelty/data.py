@@ -1,8 +1,11 @@
 """The one dataset type every source of scans returns.
 
-Its own module, below both :mod:`novelty.datasets` (which builds datasets
-and tasks by name) and :mod:`novelty.sonar` (whose simulator returns them),
-so that neither of those imports the other to reach it.
+Its own module, below :mod:`novelty.tasks` (which builds datasets and
+tasks), :mod:`novelty.datasets` (which makes them by name), the readers of
+:mod:`novelty.io` and :mod:`novelty.sonar` (whose simulator returns them),
+so that none of those imports another to reach it; a name beside
+``datasets`` that keeps its place because a benchmark's definition digests
+name the type by its module.
 
 A :class:`Dataset` is a sequence of scans in the order they were perceived,
 with whatever ground truth the source knows. A novelty *task* is a dataset

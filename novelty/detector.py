@@ -93,7 +93,9 @@ _LOCK = "_lock"
 _locks_guard = threading.Lock()
 
 
-def _lock_of(detector) -> _Lock:
+def lock_of(detector) -> _Lock:
+    """``detector``'s lock (:class:`_Lock`), made on first use: held by each of its public
+    calls (and by the habituating filter's single-scan calls, which take it themselves)."""
     lock = vars(detector).get(_LOCK)
     if lock is None:
         with _locks_guard:  # two threads asking first get the same lock
@@ -106,7 +108,7 @@ def _one_at_a_time(method):
 
     @functools.wraps(method)
     def locked(self, *args, **kwargs):
-        with _lock_of(self):
+        with lock_of(self):
             return method(self, *args, **kwargs)
 
     return locked
@@ -620,7 +622,7 @@ class NoveltyDetector(OutlierMixin, Component):
     # ------------------------------------------------------------------ files
     def save(self, path) -> None:
         """Write the detector to ``path`` (npz arrays + JSON metadata; no pickle)."""
-        with _lock_of(self):
+        with lock_of(self):
             persistence.save(self, path)
 
 

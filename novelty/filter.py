@@ -19,6 +19,8 @@ efficacy (:mod:`novelty._filter.efficacy_range`) and the single-scan protocol
 One module although over 300 lines: the class is about 310 of them, the
 estimator's one job (parameters, fit, learn and score, the novelty rules),
 which a split would only scatter across files a reader must hold together.
+``filter.py`` beside ``_filter/``: the estimator users import by this name
+(``novelty.filter.HabituatingFilter``), its private parts in the folder.
 """
 
 from __future__ import annotations
@@ -30,7 +32,8 @@ import numpy as np
 from ._component import StateError, check_array_state
 from ._filter import calibration, efficacy_range, parts, routing, scan_range, single_scan
 from ._filter.scan_range import ScanRangeWarning
-from ._kernels.choice import engine_of
+from ._kernels.choice import engine_for
+from ._kernels.interface import Engine
 from ._kernels.reference import learn_stream
 from ._kernels.state import check_state
 from ._validation import Instance, Interval, Options, check_batch
@@ -241,6 +244,16 @@ class HabituatingFilter(NoveltyDetector):
         self._calibration = None if scans is None else ScaleCalibration(
             scans, self.calibration_scans, self.match_quantile, self._calibration_rule())
 
+    def _current_engine(self) -> Engine:
+        """The engine of the fitted parts as they are now, kept in ``_engine`` (written here
+        only, outside the change counting of :meth:`~novelty._component.Component.__setattr__`):
+        the one held while it holds them, else another (:func:`novelty._kernels.choice.engine_for`)."""
+        held = vars(self).get("_engine")
+        engine = engine_for(held, self)
+        if engine is not held:
+            vars(self)["_engine"] = engine
+        return engine
+
     def _calibration_rule(self) -> str | None:
         """The rule that calibrates sigma (:mod:`novelty.match_scale`), None when it is given."""
         if self.match_scale is None:
@@ -258,7 +271,7 @@ class HabituatingFilter(NoveltyDetector):
         """Learn the rows of ``X``: each row's efficacy novelty and, unless the rule is the
         efficacy alone, its squared distance to its winner."""
         distances = None if self.novelty_rule == "efficacy" else np.empty(X.shape[0])
-        return engine_of(self).learn(X, dt, float(self.stimulus), distances), distances
+        return self._current_engine().learn(X, dt, float(self.stimulus), distances), distances
 
     def _combine(self, efficacy: np.ndarray, distances: np.ndarray | None) -> np.ndarray:
         if self.novelty_rule == "efficacy":
@@ -267,7 +280,7 @@ class HabituatingFilter(NoveltyDetector):
         return rule(efficacy, distances, self.match_scale_)
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
-        return self._novelty_of(*engine_of(self).score(X))
+        return self._novelty_of(*self._current_engine().score(X))
 
     def _novelty_of(self, rows: np.ndarray, distances: np.ndarray, efficacy: np.ndarray) -> np.ndarray:
         """The novelty of scans from their winners' rows, squared distances and efficacies."""
@@ -306,7 +319,7 @@ class HabituatingFilter(NoveltyDetector):
         reference learns until it is ready, with the same results).
         """
         self._check_fitted()
-        return engine_of(self).why
+        return self._current_engine().why
 
     def winners(self, X) -> tuple[np.ndarray, np.ndarray]:
         """The winning units of ``X`` and their squared distances (as ``match`` computes them),
@@ -317,7 +330,7 @@ class HabituatingFilter(NoveltyDetector):
         rows move as units are removed.
         """
         self._check_fitted()
-        rows, distances = engine_of(self).nearest(check_batch(X, self, self.n_features_in_))
+        rows, distances = self._current_engine().nearest(check_batch(X, self, self.n_features_in_))
         return self.clusterer_.unit_ids_[rows], distances
 
     def _first_novelty(self) -> float:

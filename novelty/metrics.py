@@ -57,6 +57,10 @@ novel scans it is then asked to flag).
 1.0
 >>> float(get_scorer("roc_auc")(det, X[100:], y[100:]))   # scikit-learn's sign: 1 - AUC
 0.0
+
+Shares its name with ``novelty/bench/exploration/metrics.py``, ``novelty/bench/holdout/metrics.py``:
+each benchmark protocol's package holds its own metrics, plots and summary; novelty/metrics.py is
+the users' ROC AUC of novelty scores.
 """
 
 from __future__ import annotations

@@ -21,7 +21,8 @@ parameter with the valid ones.
 The registries are one module although it is long: the :class:`Registry`
 class, the four registries made from it and the two helpers over them are
 the one place a name becomes a component, and the built-in names read best
-beside the rules that look them up.
+beside the rules that look them up; the datasets' and tasks' names are
+their builders' table (:data:`novelty.tasks.registered.TASKS`), beside them.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 from ._messages import unknown_parameters
+from .tasks.registered import TASKS
 
 __all__ = [
     "Registry",
@@ -337,46 +339,8 @@ detectors = Registry(
     },
 )
 
-#: datasets and tasks (:mod:`novelty.datasets`); their built-ins:
-_DATASETS = {
-    "paper-a": "novelty.datasets.paper:paper_a",
-    "paper-a-star": "novelty.datasets.paper:paper_a_star",
-    "paper-b": "novelty.datasets.paper:paper_b",
-    "paper-c": "novelty.datasets.paper:paper_c",
-    "paper-control": "novelty.datasets.paper:paper_control",
-    "paper-a-to-a-star": "novelty.datasets.paper:paper_a_to_a_star",
-    "paper-a-to-b": "novelty.datasets.paper:paper_a_to_b",
-    "paper-a-to-c": "novelty.datasets.paper:paper_a_to_c",
-    "inspection": "novelty.datasets.inspection:inspection",
-    "inspection-easy": "novelty.datasets.inspection:inspection_easy",
-    "inspection-medium": "novelty.datasets.inspection:inspection_medium",
-    "inspection-hard": "novelty.datasets.inspection:inspection_hard",
-    "exploration-tour": "novelty.datasets.exploration.tasks:paper_tour",
-    "exploration-open-door": "novelty.datasets.exploration.tasks:open_door",
-    "exploration-patrol": "novelty.datasets.exploration.tasks:patrol",
-    "exploration-irregular": "novelty.datasets.exploration.objects:irregular",
-    "exploration-return": "novelty.datasets.exploration.objects:returning",
-    "exploration-moving": "novelty.datasets.exploration.objects:moving",
-    "uci-wall-following": "novelty.datasets.uci:uci_wall_following",
-    "uci-wall-following-novelty": "novelty.datasets.uci:uci_wall_following_novelty",
-    "uci-sonar": "novelty.datasets.uci:uci_sonar",
-    "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
-    "files": "novelty.datasets.files:files",
-    "recording": "novelty.tasks.recordings:recording_task",
-    "exploration-radish-intel": "novelty.tasks.radish:radish_intel",
-    "exploration-radish-aces": "novelty.tasks.radish:radish_aces",
-    "exploration-radish-csail": "novelty.tasks.radish:radish_csail",
-    "inspection-objects": "novelty.tasks.objects.object_tasks:inspection_task",
-    "exploration-objects": "novelty.tasks.objects.object_tasks:exploration_task",
-    "inspection-objects-radish-intel": "novelty.tasks.radish:inspection_objects_intel",
-    "inspection-objects-radish-aces": "novelty.tasks.radish:inspection_objects_aces",
-    "inspection-objects-radish-csail": "novelty.tasks.radish:inspection_objects_csail",
-    "exploration-objects-radish-intel": "novelty.tasks.radish:exploration_objects_intel",
-    "exploration-objects-radish-aces": "novelty.tasks.radish:exploration_objects_aces",
-    "exploration-objects-radish-csail": "novelty.tasks.radish:exploration_objects_csail",
-}
-
-datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)
+#: datasets and tasks (:mod:`novelty.datasets`); their built-ins are :data:`novelty.tasks.registered.TASKS`
+datasets = Registry("dataset", group="novelty.datasets", builtins=TASKS)
 
 #: the registries by the kind they hold
 _BY_KIND = {r.kind: r for r in (detectors, clusterers, synapses, datasets)}

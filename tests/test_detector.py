@@ -478,14 +478,14 @@ def test_single_scan_calls_wait_for_the_detectors_own_lock(call):
     """A fitted detector's engine comes from the clone its fit learned on; the single-scan calls
     must still wait for this detector's lock (they once took the clone's, and raced stream)."""
     from novelty._kernels import wait
-    from novelty.detector import _lock_of
+    from novelty.detector import lock_of
 
     det = make_quick("gng-stanley").fit(data(30))
     wait(det.clusterer_, det.synapse_)
     det.learn_one(data(1, seed=1)[0])  # the engine is built and serves single scans
     done = threading.Event()
     worker = threading.Thread(target=lambda: (getattr(det, call)(data(1, seed=2)[0]), done.set()))
-    with _lock_of(det):
+    with lock_of(det):
         worker.start()
         assert not done.wait(0.3), f"{call} ran while another thread held the detector's lock"
     worker.join(30)
@@ -499,15 +499,15 @@ def test_each_detector_has_its_own_lock_through_copies_pickles_and_fits():
     import copy
     import pickle
 
-    from novelty.detector import _lock_of
+    from novelty.detector import lock_of
 
     det = make_quick("hsom").fit(data(10))
-    lock = _lock_of(det)
-    assert _lock_of(det) is lock
+    lock = lock_of(det)
+    assert lock_of(det) is lock
     with lock:
         twins = [copy.deepcopy(det), pickle.loads(pickle.dumps(det))]
         for twin in twins:
-            other = _lock_of(twin)
+            other = lock_of(twin)
             assert other is not lock
             acquired = []
 
@@ -521,8 +521,8 @@ def test_each_detector_has_its_own_lock_through_copies_pickles_and_fits():
             worker.join(10)
             assert acquired == [True]  # unheld, although the original is held here
     det.fit(data(12, seed=3))
-    assert _lock_of(det) is lock
-    assert _lock_of(copy.copy(det)) is lock
+    assert lock_of(det) is lock
+    assert lock_of(copy.copy(det)) is lock
     assert "_lock" not in det.get_params()
 
 

@@ -15,6 +15,12 @@
   CHANGELOG.md keeps how the defaults changed) or quotes a timing (the
   performance guide keeps them); and a study reads the library through its
   public names only.
+- Private names stay with their owner: no module outside the habituating
+  filter (``novelty/filter.py``, ``novelty/_filter/``) uses the filter's
+  private names, and no private name is imported from outside the package that
+  holds it.
+- A module name used twice in ``novelty/`` says why, in the module and in
+  :data:`SHARED_NAMES`.
 """
 
 import ast
@@ -343,3 +349,280 @@ def test_studies_read_the_library_through_its_public_names():
         assert found == allowed, f"{rel} no longer reads {sorted(allowed - found)}: update PENDING_STUDY_SCRIPTS"
     private = {rel: sorted(names) for rel, names in reads.items() if names}
     assert not private, f"study scripts reading the library's private names (use or add a public API): {private}"
+
+
+# ------------------------------------------------------------- the house, as the guides draw it
+#: the pages that name the package's folders and modules
+HOUSE_PAGES = ("docs/guide/layout.md", "docs/guide/engine.md")
+#: a path of the repository written in a page: under one of its top folders, a folder or a module
+PATH = re.compile(r"(?<![\w./<-])((?:novelty|tests|studies|benchmarks|docs|examples)/[\w./-]*)")
+
+
+def _named_paths(page: str) -> set[str]:
+    found = set()
+    for match in PATH.finditer((ROOT / page).read_text(encoding="utf-8")):
+        path = match.group(1).rstrip(".,:;")
+        if not path.endswith("/") and "." not in path.rsplit("/", 1)[-1]:
+            continue   # neither a folder (written with its slash) nor a file: a module path in prose
+        found.add(path)
+    return found
+
+
+def test_the_path_pattern_finds_folders_and_files_not_placeholders():
+    text = "in `novelty/io/<format>/`, `novelty/io/scans/` and novelty/io/scans/sweeps.py, tests/io/, novelty.io"
+    assert {m.group(1) for m in PATH.finditer(text)} == {"novelty/io/", "novelty/io/scans/",
+                                                          "novelty/io/scans/sweeps.py", "tests/io/"}
+
+
+@pytest.mark.parametrize("page", HOUSE_PAGES)
+def test_every_folder_and_module_a_guide_names_exists(page):
+    missing = sorted(path for path in _named_paths(page) if not (ROOT / path).exists())
+    assert _named_paths(page), f"{page} names no path"
+    assert not missing, f"{page} names paths that do not exist: {missing}"
+
+
+def test_the_house_names_every_folder_of_the_package_and_of_the_readers():
+    named = _named_paths("docs/guide/layout.md")
+    text = (ROOT / "docs/guide/layout.md").read_text(encoding="utf-8")
+    folders = sorted(p.relative_to(ROOT).as_posix() + "/" for p in PACKAGE.iterdir()
+                     if (p / "__init__.py").exists())
+    readers = sorted(p.name + "/" for p in (PACKAGE / "io").iterdir() if (p / "__init__.py").exists())
+    assert not [f for f in folders if f not in named and f.split("/", 1)[1] not in text], folders
+    assert not [r for r in readers if f"  {r}" not in text], readers
+
+
+# ------------------------------------------------------------- names that say where they live
+#: module and package names used more than once in novelty/, and why each may be: every module of such a
+#: name says so in its docstring ("shares its name with ...")
+SHARED_NAMES = {
+    "base": "each kind of component has its base classes beside its modules: clusterers/base.py, habituation/base.py",
+    "_common": "a package's private helpers shared by its modules: cli/_common.py, reproduce/experiments/_common.py",
+    "metrics": "each benchmark protocol's package holds its metrics, plots and summary (bench/holdout/, "
+               "bench/exploration/); novelty/metrics.py is the users' ROC AUC of novelty scores",
+    "plots": "each benchmark protocol's package holds its metrics, plots and summary",
+    "summary": "each benchmark protocol's package holds its metrics, plots and summary; bench/reports/ and "
+               "reproduce/experiments/ summarise a run of theirs",
+    "exploration": "the exploration protocol (bench/exploration/, beside bench/holdout/) and its tasks "
+                   "(tasks/exploration/)",
+    "figures": "the figures of the paper's experiments (reproduce/) and of a benchmark's report (bench/reports/)",
+    "protocol": "the paper's protocol (reproduce/) and the benchmark's protocols' interface (bench/)",
+    "table1": "the paper's Table 1: its experiments (reproduce/experiments/) and its rows against the paper's "
+              "(reproduce/)",
+    "simulate": "the simulator (sonar/) and the command that runs it (cli/simulate.py: a command's module is named "
+                "after the command)",
+    "bench": "the benchmark (bench/) and the command that runs it (cli/bench.py)",
+    "reproduce": "the paper's experiments (reproduce/) and the command that runs them (cli/reproduce.py)",
+    "scans": "the scans a detector is given, checked (_validation/scans.py), and a recording's messages made "
+             "scans (io/scans/)",
+    "node": "the live node (rosnode/node.py) and the command that starts it (cli/node.py: a command's module is "
+            "named after the command)",
+    "reading": "how a recording is read (io/recording/reading.py, the Reading) and the live node's reading built "
+               "on it (rosnode/reading.py)",
+    "scoring": "the engines' batch scoring (_kernels/scoring.py) and the live node's scorer (rosnode/scoring.py)",
+    "stats": "the benchmark's statistics (bench/stats/) and the live node's counts and latencies (rosnode/stats.py)",
+}
+
+
+def _names() -> dict[str, list[Path]]:
+    """Each module or package name of novelty/ (a package by its folder) and where it is used."""
+    found = defaultdict(list)
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "__pycache__" in path.parts:
+            continue
+        if path.name == "__init__.py":
+            if path.parent != PACKAGE:
+                found[path.parent.name].append(path)
+        else:
+            found[path.stem].append(path)
+    return found
+
+
+def test_no_module_name_is_used_twice_without_a_reason():
+    shared = {name: paths for name, paths in _names().items() if len(paths) > 1}
+    unexplained = sorted(set(shared) - set(SHARED_NAMES))
+    assert not unexplained, (f"module names used more than once (rename one, or give the reason in SHARED_NAMES and "
+                             f"in each module): {[(n, [p.relative_to(PACKAGE).as_posix() for p in shared[n]]) for n in unexplained]}")
+    assert not set(SHARED_NAMES) - set(shared), f"names no longer shared: {sorted(set(SHARED_NAMES) - set(shared))}"
+    silent = [p.relative_to(PACKAGE).as_posix() for name in shared for p in shared[name]
+              if "shares its name" not in (ast.get_docstring(ast.parse(p.read_text(encoding="utf-8"))) or "").lower()]
+    assert not silent, f"modules whose docstring does not say why they share their name: {silent}"
+
+
+# ------------------------------------------------------------- private names stay with their owner
+#: the habituating filter: its class's module and its private parts' folder
+FILTER = (PACKAGE / "filter.py", PACKAGE / "_filter")
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _library_files(*skip: Path):
+    for path in sorted(PACKAGE.rglob("*.py")):
+        if "__pycache__" not in path.parts and not any(path == s or s in path.parents for s in skip):
+            yield path
+
+
+def _filter_files():
+    return [FILTER[0], *sorted(FILTER[1].glob("*.py"))]
+
+
+def filter_private_names() -> set[str]:
+    """The habituating filter's own private names: those its class defines that none of its base
+    classes has (``_learn_raw``, ``_combine``, ...), and those its modules keep in its ``__dict__``
+    (``vars(filter)["_engine"]``, ``self._calibration = ...``)."""
+    from novelty.filter import HabituatingFilter
+
+    names = {name for name in vars(HabituatingFilter) if _private(name)
+             and not any(hasattr(base, name) for base in HabituatingFilter.__mro__[1:])}
+    for path in _filter_files():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            key = None
+            if isinstance(node, ast.Subscript) and _is_vars(node.value):
+                key = node.slice
+            elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and _is_vars(node.func.value)
+                  and node.args):
+                key = node.args[0]   # vars(x).get("_name"), .pop, .setdefault
+            elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
+                key = ast.Constant(node.attr)
+            if isinstance(key, ast.Constant) and isinstance(key.value, str) and _private(key.value):
+                names.add(key.value)
+    return names
+
+
+def _is_vars(node) -> bool:
+    return isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "vars"
+
+
+def private_uses(path: Path, names: set[str]) -> list[str]:
+    """Where ``path`` reaches one of ``names`` on another object than its own (``self`` and
+    ``cls`` are a class's own): ``x._name``, ``vars(x)["_name"]``, ``getattr(x, "_name")``."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        name = None
+        if isinstance(node, ast.Attribute) and node.attr in names:
+            if not (isinstance(node.value, ast.Name) and node.value.id in ("self", "cls")):
+                name = node.attr
+        elif isinstance(node, ast.Subscript) and _is_vars(node.value):
+            name = getattr(node.slice, "value", None)
+        elif isinstance(node, ast.Call) and node.args:
+            reach = ((isinstance(node.func, ast.Attribute) and _is_vars(node.func.value))
+                     or (isinstance(node.func, ast.Name) and node.func.id in ("getattr", "setattr", "hasattr",
+                                                                               "delattr")))
+            if reach:
+                first = node.args[0] if _is_vars(getattr(node.func, "value", None)) else (
+                    node.args[1] if len(node.args) > 1 else None)
+                name = getattr(first, "value", None)
+        if isinstance(name, str) and name in names:
+            where = path.relative_to(ROOT).as_posix() if ROOT in path.parents else path.name
+            found.append(f"{where}:{node.lineno} {name}")
+    return found
+
+
+def test_the_filter_private_name_finder(tmp_path):
+    names = filter_private_names()
+    assert {"_engine", "_calibration", "_parts_changed", "_parts_seen", "_learn_raw", "_combine",
+            "_novelty_of", "_calibration_rule", "_current_engine"} <= names
+    assert not {"_learn", "_novelty", "_start", "_check_state", "_rebuild_scratch"} & names  # the detector's hooks
+    module = tmp_path / "module.py"
+    module.write_text('def f(det):\n    det._combine(1)\n    vars(det)["_engine"] = 2\n    getattr(det, "_engine")\n'
+                      'class E:\n    def g(self):\n        self._parts_seen = ()\n')
+    assert sorted(use.split(" ")[1] for use in private_uses(module, names)) == ["_combine", "_engine", "_engine"]
+
+
+def test_no_module_outside_the_filter_uses_its_private_names():
+    names = filter_private_names()
+    outside = [use for path in _library_files(*FILTER) for use in private_uses(path, names)]
+    outside += [use for top in ("studies", "benchmarks", "examples") for path in sorted((ROOT / top).rglob("*.py"))
+                for use in private_uses(path, names)]
+    assert not outside, f"the habituating filter's private names used outside it (give them an owner): {outside}"
+
+
+def _package_of(name: str, modules: dict[str, Path]) -> str:
+    return name if modules[name].name == "__init__.py" else name.rpartition(".")[0]
+
+
+def private_imports(modules: dict[str, Path]) -> list[str]:
+    """Imports of a private name (a module or an object whose name starts with ``_``) from outside
+    the package that holds it. A private name is its package's, for its modules and its
+    subpackages' (``novelty._kernels`` is the whole library's; ``novelty.habituation._schedule``
+    is ``novelty.habituation``'s; ``_lock_of`` of ``novelty/detector.py`` is ``novelty``'s)."""
+    found = []
+    for name, path in modules.items():
+        here = _package_of(name, modules)
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom):
+                base = here.split(".")[: len(here.split(".")) - node.level + 1] if node.level else []
+                source = ".".join(base + ([node.module] if node.module else []))
+                paths = [source] + [f"{source}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                paths = [a.name for a in node.names]
+            else:
+                continue
+            for dotted in paths:
+                parts = dotted.split(".")
+                private = [i for i, part in enumerate(parts) if i and _private(part)]
+                if parts[0] != "novelty" or not private:
+                    continue
+                holder = ".".join(parts[:private[0]])   # the module or package the private name is in
+                owner = _package_of(holder, modules) if holder in modules else holder
+                if here != owner and not here.startswith(owner + "."):
+                    found.append(f"{name}:{node.lineno} {dotted}")
+                    break   # an import statement counted once
+    return found
+
+
+def test_the_private_import_finder(tmp_path):
+    files = {"__init__.py": "", "_k.py": "", "a/__init__.py": "", "a/x.py": "", "a/_y.py": "",
+             "b/__init__.py": "", "a/c/__init__.py": "",
+             "b/z.py": "from ..a import _y\nfrom ..a.x import _f, g\nfrom .._k import h\nimport novelty.a._y\n",
+             "a/c/w.py": "from .. import _y\nfrom ..x import _f\nfrom ..._k import h\n"}
+    for rel, text in files.items():
+        (tmp_path / "novelty" / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "novelty" / rel).write_text(text)
+    found = private_imports(import_levels.modules(tmp_path / "novelty"))
+    assert found == ["novelty.b.z:1 novelty.a._y", "novelty.b.z:2 novelty.a.x._f", "novelty.b.z:4 novelty.a._y"]
+
+
+def test_no_private_name_is_imported_across_packages():
+    found = private_imports(import_levels.modules(PACKAGE))
+    assert not found, f"private names imported from another package (give them a public name or a door): {found}"
+
+
+# ------------------------------------------------------------- a parameter's walk, as the engine guide lists it
+#: the most stops a parameter takes from novelty.make to its multiply
+MAX_STOPS = 12
+
+
+def _walk() -> list[tuple[str, list[str], list[str]]]:
+    """The stops of "The path of a parameter" in docs/guide/engine.md: (number, the functions
+    named in its "where", the files they are in)."""
+    text = (ROOT / "docs/guide/engine.md").read_text(encoding="utf-8")
+    section = text.split("## The path of a parameter", 1)[1].split("\n## ", 1)[0]
+    stops = []
+    for line in section.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) != 3 or not cells[0].isdigit():
+            continue
+        spans = re.findall(r"`([^`]+)`", cells[1])
+        files, folder = [], ""
+        for span in spans:
+            if span.endswith(".py"):
+                folder = span.rpartition("/")[0] if "/" in span else folder
+                files.append(span if "/" in span else f"{folder}/{span}")
+        names = [span for span in spans if not span.endswith(".py")]
+        stops.append((cells[0], names, files))
+    return stops
+
+
+def test_a_parameters_walk_is_at_most_twelve_stops_each_where_the_guide_says():
+    stops = _walk()
+    assert [number for number, _, _ in stops] == [str(i) for i in range(1, len(stops) + 1)], stops
+    assert 0 < len(stops) <= MAX_STOPS, f"a learning rate walks {len(stops)} stops (at most {MAX_STOPS})"
+    for number, names, files in stops:
+        assert names and files, f"stop {number} names no function or no file"
+        sources = "\n".join((ROOT / f).read_text(encoding="utf-8") for f in files)
+        for name in names:
+            last = name.rpartition(".")[2]
+            assert re.search(rf"^\s*(?:def|class) {re.escape(last)}\b", sources, re.MULTILINE), (
+                f"stop {number}: {name} is not defined in {files}")

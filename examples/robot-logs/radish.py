@@ -109,7 +109,7 @@ def figure(folder: Path, out: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from novelty.io.recording.plotting import plot_path
+    from novelty.io.recording.path_plot import plot_path
 
     data = read_recording(folder / "intel-corrected.log.gz")
     visits = visit_counts(data.poses, 1.0)

@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._kernels.choice import engine_of
 from ..match_scale import mismatch_novelty, product_novelty
 
 __all__ = ["learn_calibrating"]
@@ -44,7 +43,7 @@ def learn_calibrating(detector, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         if calibration.add(X[i]):
             detector.match_scale_ = calibration.scale
             if not at_once:
-                engine_of(detector).calibrate(detector.match_scale_)
+                detector._current_engine().calibrate(detector.match_scale_)
         i += 1
     detector.calibration_scans_ = calibration.scans
     out = np.empty(n)

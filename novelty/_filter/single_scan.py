@@ -14,9 +14,9 @@ protocol, which gives the same number or leaves the scan to the general path
    filter, its unfitted parts or its fitted parts since it was last
    confirmed). When it is not, the general path's checks run once here (the
    parts' parameters after fitting, the filter's parameters, no timestamps,
-   calibration over), the engine is had again
-   (:func:`novelty._kernels.choice.engine_of`: the state checked, another
-   engine chosen if the parts changed) and it is confirmed
+   calibration over), the engine is had again (``HabituatingFilter._current_engine``,
+   :func:`novelty._kernels.choice.engine_for`: the state checked, another engine chosen
+   if the parts changed) and it is confirmed
    (:meth:`~novelty._kernels.interface.Engine.watch`);
 3. the engine learns or scores the scan in one call that checks it (as many
    features as the units, a sum of squares within the norm bound), else
@@ -27,10 +27,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._kernels.choice import engine_of
 from .._kernels.interface import Engine
 from ..clusterers.base import Clusterer
-from ..detector import _lock_of
+from ..detector import lock_of
 from .parts import templates
 
 __all__ = ["learn_one", "score_one"]
@@ -45,7 +44,7 @@ def learn_one(detector, x: np.ndarray) -> float | None:
     engine = _candidate(detector, x)
     if engine is None:
         return None
-    with _lock_of(detector):
+    with lock_of(detector):
         if vars(detector).get("_engine") is not engine:
             # another thread replaced the engine while this one waited for the lock
             return None
@@ -71,11 +70,11 @@ def score_one(detector, x: np.ndarray) -> float | None:
     engine = _candidate(detector, x)
     if engine is None:
         return None
-    with _lock_of(detector):
+    with lock_of(detector):
         if vars(detector).get("_engine") is not engine:
             return None
         if not engine.holds():
-            engine = engine_of(detector)
+            engine = detector._current_engine()
         if not engine.score_one(x):
             return None
         efficacy, distance, row = engine.scored1.tolist()
@@ -107,6 +106,6 @@ def _confirmed(detector):
     calibration = detector._calibration
     if detector.last_time_ is not None or not (calibration is None or calibration.full):
         return None
-    engine = engine_of(detector)
+    engine = detector._current_engine()
     engine.watch(detector, *templates(detector))
     return engine

@@ -34,13 +34,13 @@ import os
 from typing import Callable
 
 from . import choice, compiling
-from .choice import choose, engine_of, why_not_learning, why_not_scoring
+from .choice import choose, engine_for, why_not_learning, why_not_scoring
 from .engine import CompiledEngine, driver_of
 from .interface import Engine
 from .reference import ReferenceEngine, learn_stream
 from .scoring import score
 
-__all__ = ["Engine", "ReferenceEngine", "CompiledEngine", "engine_of", "choose", "learn_stream",
+__all__ = ["Engine", "ReferenceEngine", "CompiledEngine", "engine_for", "choose", "learn_stream",
            "scorer", "kernels_enabled", "wait", "reference_loops"]
 
 #: the nearest-unit kernels (:data:`.choice.NEAREST`), by the name benchmarks know

@@ -1,7 +1,7 @@
 """Which engine a fitted filter gets, and why: decided here, and nowhere else.
 
 A filter holds one engine (:mod:`.interface`) for its fitted parts and asks
-:func:`engine_of` for it on every call. While the engine holds the parts as
+for it on every call (:func:`engine_for`). While the engine holds the parts as
 they are (:meth:`~.interface.Engine.holds`: nothing set on them since it read
 them, ``NOVELTY_NO_KERNELS`` as it was, no kernel it waited for ready since),
 it is the one; otherwise the state is checked (:func:`.state.check_state`,
@@ -42,25 +42,26 @@ from .params import attribute, nested_ready, pack, spec_of
 from .reference import ReferenceEngine
 from .state import check_layout, check_state
 
-__all__ = ["engine_of", "choose", "why_not_learning", "why_not_scoring", "NEAREST"]
+__all__ = ["engine_for", "choose", "why_not_learning", "why_not_scoring", "NEAREST"]
 
 #: the nearest-unit kernels of batch and single-scan scoring (:mod:`._nearest`)
 NEAREST = Compiled("novelty._kernels._nearest")
 
 
-def engine_of(detector) -> Engine:
-    """The engine of a fitted filter's parts as they are now (module docstring)."""
-    engine = vars(detector).get("_engine")
-    if isinstance(engine, Engine):
-        if engine.clusterer is detector.clusterer_ and engine.synapse is detector.synapse_ and engine.holds():
-            return engine
+def engine_for(held, detector) -> Engine:
+    """The engine of a fitted filter's parts as they are now: ``held``, the one the filter
+    holds, while it holds them, else a new one (module docstring). ``held`` is the filter's
+    engine, a deep copy's :class:`~.interface.CheckedCopy` or None; the filter keeps what this
+    returns, its one writer (``HabituatingFilter._current_engine``)."""
+    if isinstance(held, Engine):
+        if held.clusterer is detector.clusterer_ and held.synapse is detector.synapse_ and held.holds():
+            return held
         check_state(detector)
-    elif isinstance(engine, CheckedCopy) and engine.covers(detector):
+    elif isinstance(held, CheckedCopy) and held.covers(detector):
         check_layout(detector)  # a copy of a checked state: torn by a thread, though?
     else:
         check_state(detector)
-    engine = vars(detector)["_engine"] = choose(detector.clusterer_, detector.synapse_)
-    return engine
+    return choose(detector.clusterer_, detector.synapse_)
 
 
 def why_not_learning(clusterer, synapse) -> str | None:

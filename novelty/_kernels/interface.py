@@ -10,7 +10,7 @@ implement the same methods:
   one generated loop per pair, equal to the reference bit for bit.
 
 Which one a filter gets, and why, is decided in one place,
-:func:`novelty._kernels.choice.engine_of`; what an engine reads is checked in
+:func:`novelty._kernels.choice.engine_for`; what an engine reads is checked in
 one place before it reads it, :func:`novelty._kernels.state.check_state`.
 
 The methods (``X`` a C-contiguous float64 batch the filter checked, ``x`` one scan):
@@ -38,11 +38,11 @@ counts a change (:meth:`novelty._component.Component.__setattr__`), so
 writes (the counters, a grown state's views) it takes as seen.
 
 Two predicates, not one, because they answer two questions. ``holds``: may
-this engine go on reading the parts (every call, :func:`~.choice.engine_of`);
+this engine go on reading the parts (every call, :func:`~.choice.engine_for`);
 ``fresh``: may a single scan also skip the owner's checks (its parameters,
 timestamps, calibration), which only :mod:`novelty._filter.single_scan` asks.
 Folded into one comparison of the watched objects, every write to the owner
-(``last_time_``, at every timestamped call) would make ``engine_of`` check
+(``last_time_``, at every timestamped call) would make ``engine_for`` check
 the state and build another engine, several times the cost of a whole
 timestamped call of 10 scans (docs/guide/performance.md); folded the other
 way (``holds`` and a separate comparison of the owner's counts), a single
@@ -102,7 +102,7 @@ class Engine:
         """Whether the engine holds the parts as they are: none was set since it read them (or
         since its own writes), and ``NOVELTY_NO_KERNELS`` says what it said when the engine was
         chosen, and no kernel it waited for is ready since. Every call asks it first; when it fails, the filter has another engine chosen
-        (:func:`novelty._kernels.choice.engine_of`)."""
+        (:func:`novelty._kernels.choice.engine_for`)."""
         return (tuple(map(_CHANGES, self.parts)) == self._parts_seen and disabled() == self._disabled
                 and not (self.pending and _settled(self.pending)))
 

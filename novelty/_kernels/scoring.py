@@ -13,6 +13,9 @@ independent, so the result does not depend on the threads.
 
 No numba here: the compiled module is passed in by :mod:`novelty._kernels`,
 which compiles and loads it.
+
+Shares its name with novelty/rosnode/scoring.py: this is the engines' batch scoring, that the live
+node's scorer.
 """
 
 from __future__ import annotations

@@ -11,6 +11,9 @@ accumulated errors, a mixture's covariances) below the float64 limit of
 is text: numpy would read the string ``"0.3"`` as 0.3, but a string among
 scans is usually a cell a reader left unconverted (``"n/a"`` next to
 ``"0.3"``), which only reading every string as a number would hide.
+
+Shares its name with ``novelty/io/scans/``: the scans a detector is given, checked, and a
+recording's messages made scans.
 """
 
 from __future__ import annotations

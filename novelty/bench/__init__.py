@@ -28,6 +28,9 @@ The package by job:
 - statistics: :mod:`~novelty.bench.stats`;
 - reports shared by the protocols (tables, summary, critical-difference
   diagram): :mod:`~novelty.bench.reports`.
+
+Shares its name with ``novelty/cli/bench.py``: the benchmark, and the command that runs it (a
+command's module is named after the command).
 """
 
 from .specs import Cell, DetectorSpec, SuiteError, TaskSpec, parse_seeds

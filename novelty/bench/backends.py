@@ -23,7 +23,7 @@ Whatever goes wrong inside a cell is a failed cell, never the end of the run:
 
 Every worker process (loky's, its resource tracker, a local Dask cluster's)
 is started without the working directory on its ``sys.path``
-(:mod:`novelty._children`).
+(:mod:`novelty._safe_path`).
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ import time
 from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, wait
 from typing import Iterable, Iterator
 
-from .._children import SAFE_PATH, isolated_children
+from .._safe_path import SAFE_PATH, isolated_children
 from .cell import failed_row, run_cell, run_cell_in_worker
 from .specs import Cell
 

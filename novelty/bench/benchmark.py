@@ -15,7 +15,7 @@ detector objects (each cell runs an unfitted copy), or a dict
 ``{label: either}``. Tasks are registered names (``"inspection-easy"``,
 ``"files path=scans.csv name=lab"``), task objects (a
 :class:`~novelty.datasets.Dataset` with a train/test split: an exploration
-from :func:`novelty.exploration.from_runs`, a recording, one you built), a
+from :func:`novelty.tasks.exploration.from_runs`, a recording, one you built), a
 tuple ``(X_train, X_test, y_test)``, or a dict ``{name: any of these}``.
 Nothing needs registering. With ``out``, the run writes what ``novelty bench``
 writes (``results.csv``, ``results.jsonl``, ``summary.md``, ``plots/``) and
@@ -41,7 +41,7 @@ import numpy as np
 from ..baselines.wrapping import as_detector
 from ..data import Dataset
 from ..io.tables.labels import check_both_classes, check_labels
-from ..datasets.resampling import ResampledTask
+from ..tasks.resampling import ResampledTask
 from .compare import compare_on_task, comparison_text
 from .protocol import get_protocol
 from .reports.statistics import paired_text, statistics_line

@@ -10,6 +10,9 @@ Each protocol is one sub-package of :mod:`novelty.bench` exposing one
 
 A protocol is chosen by name (:func:`get_protocol`); the cell, the runner,
 the summary and the plots ask it, never test its name.
+
+Shares its name with ``novelty/reproduce/protocol.py``: the paper's protocol and the benchmark's
+protocols are two things of one name.
 """
 
 from __future__ import annotations

@@ -75,7 +75,7 @@ def check_task(spec: TaskSpec) -> None:
     same in every cell (it takes no seed), or the ``files`` task (whose seed
     only draws its split), is loaded once here, so that a
     wrong column, label or split is refused before the run, with the message
-    :func:`novelty.datasets.files.read_scans` gives (as ``novelty run``
+    :func:`novelty.tasks.files.read_scans` gives (as ``novelty run``
     prints it), rather than failing every cell. Generated tasks, and data
     sets found through ``NOVELTY_DATA_DIR``, are built in the cells only.
     """

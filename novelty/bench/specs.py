@@ -49,7 +49,7 @@ class SuiteError(ValueError):
     """A suite that cannot be run: malformed, or naming unknown things."""
 
 
-#: the task made from the user's own files (:func:`novelty.datasets.files.files`)
+#: the task made from the user's own files (:func:`novelty.tasks.files.files`)
 FILES_TASK = "files"
 #: its options that name files, read relative to the suite file
 FILE_OPTIONS = ("path", "test_path")

@@ -1,4 +1,8 @@
-"""What the commands share: the parser, user errors, parameters, scan files."""
+"""What the commands share: the parser, user errors, parameters, scan files.
+
+Shares its name with ``novelty/reproduce/experiments/_common.py``: a package's private helpers,
+shared by its modules, are its _common.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +15,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from .._atomic import inside, same_file
-from ..datasets.files import PREPROCESSING
+from ..tasks.files import PREPROCESSING
 from ..registry import RegistryError
 
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
@@ -114,15 +118,15 @@ def add_data_options(parser, data_help: str = "scans: .csv or .npz") -> None:
 
 
 def data_options(args) -> dict:
-    """The options of :func:`novelty.datasets.files.read_scans` given on the command line."""
+    """The options of :func:`novelty.tasks.files.read_scans` given on the command line."""
     return dict(columns=args.columns, label=args.label, time=args.time, preprocess=args.preprocess,
                 threshold=args.range_threshold, bin_length=args.bin_length)
 
 
 def read_scans(args):
-    """The scans of ``--data`` as a :class:`~novelty.datasets.Dataset` (see :mod:`novelty.datasets.files`)."""
+    """The scans of ``--data`` as a :class:`~novelty.datasets.Dataset` (see :mod:`novelty.tasks.files`)."""
     # deferred: reading scans is not needed to start the command line
-    from ..datasets.files import read_scans as read
+    from ..tasks.files import read_scans as read
 
     try:
         return read(args.data, **data_options(args))

@@ -1,4 +1,8 @@
-"""``novelty bench``: run a benchmark suite and print what a reader needs first (the rest in summary.md)."""
+"""``novelty bench``: run a benchmark suite and print what a reader needs first (the rest in summary.md).
+
+Shares its name with ``novelty/bench/``: the benchmark, and the command that runs it (a command's
+module is named after the command).
+"""
 
 from __future__ import annotations
 

@@ -1,4 +1,8 @@
-"""``novelty node``: the live ROS 1 node, scoring each scan as it arrives."""
+"""``novelty node``: the live ROS 1 node, scoring each scan as it arrives.
+
+Shares its name with novelty/rosnode/node.py: a command's module is named after the command, and
+that is the node it starts.
+"""
 
 from __future__ import annotations
 

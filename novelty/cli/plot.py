@@ -139,7 +139,7 @@ def _plot_path(data: dict, path: Path, plt):
     """The robot's path coloured by novelty, and the novelty scan by scan below it; alarms on both."""
     # deferred: plotting imports matplotlib; `novelty --help` does not
     from ..bench.reports.route import plot_route, route_legend
-    from ..io.recording.plotting import plot_path
+    from ..io.recording.path_plot import plot_path
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 9), gridspec_kw={"height_ratios": [3, 1]},
                                       layout="constrained")

@@ -1,4 +1,8 @@
-"""``novelty reproduce``: rerun the paper's experiments in the sonar world; Table 1 beside the paper's."""
+"""``novelty reproduce``: rerun the paper's experiments in the sonar world; Table 1 beside the paper's.
+
+Shares its name with ``novelty/reproduce/``: the paper's experiments, and the command that runs them
+(a command's module is named after the command).
+"""
 
 from __future__ import annotations
 

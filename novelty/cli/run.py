@@ -14,7 +14,7 @@ from ..answers import FROZEN, LEARNING, NO_POSE, PAPER
 from ._common import UserError, add_command, add_data_options, check_layout, check_outputs, format_cell, one_line, \
     parse_params, read_scans, write_novelty
 from .familiar import StreamCalibration, add_calibration_options, stretch_of
-from .recording import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
+from .recording_options import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
                         recording_scans)
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
@@ -186,7 +186,7 @@ def _run_file(det, args, alarm: Alarm | StreamCalibration | None) -> int:
 def _run_recording(det, args, alarm: Alarm | StreamCalibration | None) -> int:
     """Score and learn a recording's rings as they are read, writing each ring's row at once."""
     # deferred: the readers are loaded only for a recording
-    from ..io.bags.report import ReadReport
+    from ..io.bags.read_report import ReadReport
 
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")

@@ -13,7 +13,7 @@ from ..answers import PAPER
 from .._atomic import check_target
 from ._common import UserError, add_command, add_data_options, check_layout, check_outputs, read_scans, write_novelty
 from .familiar import add_calibration_options, p_values, say_calibration, stretch_of, threshold_in_force
-from .recording import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
+from .recording_options import (RowSink, add_recording_options, check_recording_options, is_recording, pose_columns,
                         recording_scans)
 
 DESCRIPTION = """Score scans with a saved model, without learning anything.
@@ -113,7 +113,7 @@ def _score_file(det, args, stretch) -> int:
 
 def _score_recording(det, args, stretch) -> int:
     """Score a recording's scans frozen (a batch at a time), calibrate, then write a row a scan."""
-    from ..io.bags.report import ReadReport  # deferred: the readers are loaded only for a recording
+    from ..io.bags.read_report import ReadReport  # deferred: the readers are loaded only for a recording
 
     check_recording_options(args)
     report = ReadReport()

@@ -1,4 +1,8 @@
-"""``novelty simulate``: simulate sonar traversals of an environment."""
+"""``novelty simulate``: simulate sonar traversals of an environment.
+
+Shares its name with ``novelty/sonar/simulate.py``: the simulator, and the command that runs it (a
+command's module is named after the command).
+"""
 
 from __future__ import annotations
 

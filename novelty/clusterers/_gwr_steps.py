@@ -18,8 +18,8 @@ import math
 import numpy as np
 
 from .._jit import compiled, step
-from ..habituation import _stanley_steps as firing
-from ..habituation._schedule import fire, stimulate
+from ..habituation.steps import fire, stimulate
+from ..habituation.steps import stanley_steps as firing
 from . import _graph_steps as graph
 from ._graph import NO_EDGE
 from .base import move_towards

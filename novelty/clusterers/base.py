@@ -10,6 +10,9 @@ synapse bank of a novelty filter follows them. Every unit carries a stable id
 
 Rows versus ids: methods speak of *rows* (positions in ``weights_``), which
 shift when units are removed; ``unit_ids_[row]`` is the stable id.
+
+Shares its name with ``novelty/habituation/base.py``: each kind of component keeps its base classes
+beside its modules.
 """
 
 from __future__ import annotations

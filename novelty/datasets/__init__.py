@@ -2,21 +2,24 @@
 
 ``available()`` lists them with a one-line description; ``load(name, **options)``
 builds one. Third-party datasets register through the entry-point group
-``novelty.datasets``.
+``novelty.datasets``. The builders are in :mod:`novelty.tasks`, their names
+in its one table (:mod:`novelty.tasks.registered`); this package is the
+door users load them by (the name they have always imported), and the
+:class:`~novelty.data.Dataset` every one returns is :mod:`novelty.data`'s.
 
 Built in:
 
-- the paper's environments, simulated (:mod:`novelty.sonar`): ``paper-a``,
+- the paper's environments, simulated (:mod:`novelty.sonar`, :mod:`novelty.tasks.paper`): ``paper-a``,
   ``paper-a-star``, ``paper-b``, ``paper-c``, ``paper-control``
   (``run=0, seed=0, runs=1``);
 - tasks from the paper's experiments: ``paper-a-to-a-star``, ``paper-a-to-b``,
   ``paper-a-to-c`` (``seed=0, train_runs=3, test_runs=1``);
-- inspection tasks on generated corridors: ``inspection`` (any
+- inspection tasks on generated corridors (:mod:`novelty.tasks.inspection`): ``inspection`` (any
   ``difficulty``), ``inspection-easy``, ``inspection-medium``,
   ``inspection-hard`` (``seed=0, n_novelties=2, train_runs=3, test_runs=1,
   length=15.0``);
 - exploration tasks, runs in order with every scan's tracked feature and its
-  exposure count (:mod:`novelty.datasets.exploration`): ``exploration-tour``,
+  exposure count (:mod:`novelty.tasks.exploration`): ``exploration-tour``,
   ``exploration-open-door``, ``exploration-patrol``, ``exploration-irregular``,
   ``exploration-return``, ``exploration-moving``; from the Radish robot logs
   (:mod:`novelty.tasks.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
@@ -28,12 +31,12 @@ Built in:
   seed), and the Radish logs' ``inspection-objects-radish-intel``,
   ``-aces``, ``-csail`` and ``exploration-objects-radish-intel``, ``-aces``,
   ``-csail``;
-- real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``):
+- real data, read from the user's files (``path=`` or ``$NOVELTY_DATA_DIR``; :mod:`novelty.tasks.uci`):
   ``uci-wall-following``, ``uci-wall-following-novelty``, ``uci-sonar``,
   ``uci-sonar-mines``;
 - the user's own scans, a CSV or NPZ file: ``files`` (``path=``, with
   ``columns``, ``label``, ``time``, and ``train_rows``, ``split`` or
-  ``test_path``; see :mod:`novelty.datasets.files`).
+  ``test_path``; see :mod:`novelty.tasks.files`).
 
 ``registry`` is :data:`novelty.registry.datasets`, beside the registries of
 the other kinds of component.

@@ -22,6 +22,9 @@ rule, from this class. A subclass provides only the model:
 elapsed time ``dt`` with a constant stimulus, and ``_per_unit`` /
 :meth:`Synapse._fresh` describe the per-unit state so that the bank can grow
 and shrink with its clusterer.
+
+Shares its name with ``novelty/clusterers/base.py``: each kind of component keeps its base classes
+beside its modules.
 """
 
 from __future__ import annotations

@@ -37,6 +37,9 @@ The package by job: :mod:`~novelty.reproduce.trial` (a trial and the
 resting criterion), :mod:`~novelty.reproduce.protocol` (running the trials),
 :mod:`~novelty.reproduce.table1` (the table beside the paper's) and
 :mod:`~novelty.reproduce.figures` (figures 4 and 5).
+
+Shares its name with ``novelty/cli/reproduce.py``: the paper's experiments, and the command that
+runs them (a command's module is named after the command).
 """
 
 from .figures import plot_experiment1, plot_experiments2_3, write_figures

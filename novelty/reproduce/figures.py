@@ -1,4 +1,8 @@
-"""The paper's figures 4 and 5: the output neuron along the route, trial by trial, the map's features shaded."""
+"""The paper's figures 4 and 5: the output neuron along the route, trial by trial, the map's features shaded.
+
+Shares its name with ``novelty/bench/reports/figures.py``: the paper's experiments and a benchmark's
+report each draw their own figures.
+"""
 
 from __future__ import annotations
 

@@ -2,6 +2,9 @@
 
 The order of the trials and the choices the paper leaves open are described
 in :mod:`novelty.reproduce`.
+
+Shares its name with ``novelty/bench/protocol.py``: the paper's protocol and the benchmark's
+protocols are two things of one name.
 """
 
 from __future__ import annotations

@@ -1,4 +1,8 @@
-"""The paper's Table 1, and ours beside it: rows, markdown and CSV."""
+"""The paper's Table 1, and ours beside it: rows, markdown and CSV.
+
+Shares its name with ``novelty/reproduce/experiments/table1.py``: the paper's Table 1: its
+experiments, and its rows beside the paper's.
+"""
 
 from __future__ import annotations
 

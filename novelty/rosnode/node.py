@@ -32,6 +32,9 @@ messages in and out:
 - **the master**: checked once a second; while it is away the node goes on
   over the connections it has; when one is back, the node registers its
   topics and services with it again.
+
+Shares its name with novelty/cli/node.py, the command that starts it (a command's module is named
+after the command).
 """
 
 from __future__ import annotations

@@ -33,6 +33,9 @@ messages come:
 A scan whose pose never came is skipped for the ``points`` input and
 counted; a ring does not need one. :attr:`LiveReading.skipped` counts every
 scan left out, by reason.
+
+Shares its name with novelty/io/recording/reading.py: the live node's reading, built on that
+Reading.
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..io.bags.report import ReadReport
+from ..io.bags.read_report import ReadReport
 from ..io.frames.posing import Posing
 from ..io.frames.tf import TfBuffer, TfError
 from ..io.recording.reading import Reading

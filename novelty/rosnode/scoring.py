@@ -24,6 +24,9 @@ and the faults it met, each said once (:attr:`LiveScorer.said`), none fatal:
 
 Learning can be frozen and resumed, the model saved (atomically:
 :func:`novelty.save`) and reset to its state at start.
+
+Shares its name with novelty/_kernels/scoring.py: this is the live node's scorer, that the engines'
+batch scoring.
 """
 
 from __future__ import annotations

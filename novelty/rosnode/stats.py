@@ -6,6 +6,9 @@ the node's queue, and read once a second into a
 Latency is the time from a scan's (last) message arriving to its novelty
 being published, over the last :data:`WINDOW` scans; its percentiles are
 numpy's (linear interpolation).
+
+Shares its name with novelty/bench/stats/: this is the live node's counts and latencies, that the
+benchmark's statistics.
 """
 
 from __future__ import annotations

@@ -12,7 +12,7 @@ published; this subpackage rebuilds the setting:
   :class:`~novelty.sonar.preprocessor.SonarPreprocessor` the same as a
   scikit-learn transformer (imported on first use: it needs scikit-learn);
 - :mod:`~novelty.sonar.environments` the paper's maps A, A*, B, C and control;
-- :mod:`~novelty.sonar.inspection` seeded corridors with inserted novelties;
+- :mod:`~novelty.tasks.inspection` seeded corridors with inserted novelties;
 - :mod:`~novelty.sonar.plotting` figures (needs matplotlib).
 
 >>> from novelty import sonar

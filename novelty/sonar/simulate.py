@@ -11,6 +11,9 @@ Randomness comes only from ``numpy.random.default_rng(SeedSequence([seed,
 run]))``. Runs with the same ``(seed, run)`` in two environments therefore
 share their random draws (common random numbers): A and A* run 0 differ only
 where the geometry differs, which makes paired comparisons sharp.
+
+Shares its name with ``novelty/cli/simulate.py``: the simulator, and the command that runs it (a
+command's module is named after the command).
 """
 
 from __future__ import annotations

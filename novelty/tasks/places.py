@@ -30,10 +30,10 @@ from dataclasses import replace
 import numpy as np
 
 from ..data import Dataset
-from ..datasets.exploration.runs import from_runs
-from ..sonar.preprocessing import PAPER_THRESHOLD
 from ..io.recording.readers import read_recording
 from ..io.recording.reading import Reading
+from ..sonar.preprocessing import PAPER_THRESHOLD
+from .exploration.runs import from_runs
 
 __all__ = ["leader_places", "place_visits", "revisit_task", "finite_positions"]
 
@@ -181,7 +181,7 @@ def revisit_task(path, topic=None, *, radius: float = 1.0, leave: float | None =
     Returns
     -------
     Dataset
-        As :func:`novelty.exploration.from_runs` (``columns["exposure"]``
+        As :func:`novelty.tasks.exploration.from_runs` (``columns["exposure"]``
         counting visits), plus ``poses``, ``columns["time"]``,
         ``columns["place"]`` (every scan's place, familiar ones too) and
         ``columns["visit"]`` (every scan's visits before, familiar ones too).

@@ -5,7 +5,7 @@ time, or by the user's time intervals); the features a scan perceives are
 marked from the user's CSV (:func:`read_marks`, :func:`mark_features`: "the
 box stood here from t1 to t2") or are the places of a grid over the robot's
 poses (:func:`place_features`); :func:`recording_task` makes of them an
-exploration task (:func:`novelty.exploration.from_runs`: each scan's tracked
+exploration task (:func:`novelty.tasks.exploration.from_runs`: each scan's tracked
 feature and its exposure count), which is also a hold-out task (learn the
 warm-up runs, score the rest; ``y`` = 1 at a feature's first exposure). The
 task carries the poses and times, so novelty can be drawn on the robot's
@@ -27,11 +27,11 @@ from typing import Sequence
 import numpy as np
 
 from ..data import Dataset
-from ..datasets.exploration.runs import from_runs
-from .places import finite_positions
 from ..io.recording.readers import read_recording, read_sweeps
 from ..io.recording.reading import Reading, reading_given, reading_of, takes_reading_options
 from ..io.scans.points import points_columns, sweep_points
+from .exploration.runs import from_runs
+from .places import finite_positions
 
 __all__ = ["Mark", "read_marks", "mark_features", "place_features", "split_runs", "visit_counts",
            "recording_task"]
@@ -255,7 +255,7 @@ def recording_task(paths, reading: Reading | None = None, *, marks=None, places:
     Returns
     -------
     Dataset
-        As :func:`novelty.exploration.from_runs`, plus ``poses``,
+        As :func:`novelty.tasks.exploration.from_runs`, plus ``poses``,
         ``columns["time"]`` and ``metadata["sources"]``.
     """
     if reading is not None and not isinstance(reading, Reading):

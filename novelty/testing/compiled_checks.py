@@ -23,7 +23,7 @@ import unittest
 import numpy as np
 from sklearn.base import clone
 
-from .. import _kernels
+from .._kernels import kernels_enabled, reference_loops, scorer, wait
 from .._component import declares
 from .._kernels.params import field_kind, spec_of
 from ..clusterers.base import Clusterer
@@ -58,19 +58,19 @@ def check_compiled_equals_reference(component) -> None:
     dt = 1.0 + np.random.default_rng(3).integers(0, 3, len(X)) * 0.5  # gaps of 1, 1.5, 2 scans
     t = np.cumsum(dt)
     fast = HabituatingFilter(**_pair(component)).fit(X[:1], timestamps=t[:1])
-    if not _kernels.kernels_enabled():
+    if not kernels_enabled():
         raise unittest.SkipTest("numba kernels unavailable")
     if spec_of(component) is not None:
-        assert _kernels.wait(fast.clusterer_, fast.synapse_) is not None, fast.compiled_
+        assert wait(fast.clusterer_, fast.synapse_) is not None, fast.compiled_
         assert fast.compiled_ == "compiled", fast.compiled_
     got = fast.stream(X[1:], timestamps=t[1:]), fast.novelty(X)
-    with _kernels.reference_loops():
+    with reference_loops():
         slow = HabituatingFilter(**_pair(component)).fit(X[:1], timestamps=t[:1])
         expected = slow.stream(X[1:], timestamps=t[1:]), slow.novelty(X)
     name = type(component).__name__
     _close(got[0], expected[0], tolerance, f"{name}: the novelty while learning")
     if declares(fast.clusterer_, "nearest-unit"):
-        assert _kernels.scorer(fast.clusterer_, fast.synapse_) is not None
+        assert scorer(fast.clusterer_, fast.synapse_) is not None
     _close(got[1], expected[1], tolerance, f"{name}: the novelty after learning")
     fast_state, slow_state = _state_arrays(fast), _state_arrays(slow)
     assert fast_state.keys() == slow_state.keys(), f"{name}: the learned attributes differ"

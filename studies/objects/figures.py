@@ -20,12 +20,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import novelty  # noqa: E402
+from novelty.io.recording.path_plot import plot_path  # noqa: E402
 from novelty.tasks.objects import cast_all, world_beams  # noqa: E402
-from novelty.tasks.objects.placement import object_from_fields  # noqa: E402
-from novelty.tasks.radish import radish_objects_exploration  # noqa: E402
 from novelty.tasks.objects.object_tasks import LABEL_DEFAULTS, read_drive  # noqa: E402
-from novelty.io.recording.plotting import plot_path  # noqa: E402
-from novelty.tasks.radish import radish_log  # noqa: E402
+from novelty.tasks.objects.placement import object_from_fields  # noqa: E402
+from novelty.tasks.radish import radish_log, radish_objects_exploration  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -9,7 +9,6 @@ import pytest
 
 import novelty
 from novelty import _kernels
-from novelty._kernels.choice import engine_of
 
 from .._kernels.kernel_helpers import assert_same_filter, corridor, reference_only
 
@@ -20,7 +19,7 @@ def _counting_single_scans(det, monkeypatch, method="learn_one"):
     """What the engine's single-scan call (``learn_one`` or ``score_one``) answered, a list that
     grows: True for a scan it took, False for one it left to the general path."""
     answers = []
-    engine = engine_of(det)  # chosen once the kernels are ready (the one of the fit waited for them)
+    engine = det._current_engine()  # chosen once the kernels are ready (the one of the fit waited for them)
     original = getattr(engine, method)
 
     def counting(*args):

@@ -10,7 +10,7 @@ import pytest
 
 import novelty
 from novelty import _kernels, registry
-from novelty._kernels.choice import engine_of, why_not_learning
+from novelty._kernels.choice import why_not_learning
 from novelty._kernels.engine import CompiledEngine
 from novelty._kernels.reference import ReferenceEngine
 from novelty.clusterers.gwr import GrowWhenRequired
@@ -47,21 +47,21 @@ def test_the_reasons_and_the_engines(monkeypatch):
     X = corridor(50)
     hsom = novelty.make("hsom").fit(X)
     assert _kernels.wait(hsom.clusterer_, hsom.synapse_) is not None and _kernels.wait() is not None
-    assert hsom.compiled_ == "compiled" and type(engine_of(hsom)) is CompiledEngine
+    assert hsom.compiled_ == "compiled" and type(hsom._current_engine()) is CompiledEngine
     for clusterer in (MySOM(n_rows=2, n_columns=2), LeaderClusterer()):
         det = HabituatingFilter(clusterer=clusterer).fit(X)
         assert det.compiled_ == f"reference ({type(clusterer).__name__} declares no compiled steps)"
-        assert type(engine_of(det)) is ReferenceEngine  # and neither declares nearest-unit
+        assert type(det._current_engine()) is ReferenceEngine  # and neither declares nearest-unit
     gwr = HabituatingFilter(clusterer=GrowWhenRequired(firing="wang-hsu")).fit(X)
     assert gwr.compiled_ == "reference (GrowWhenRequired's parts declare other steps)"
-    engine = engine_of(gwr)  # learning by the reference, scoring compiled (GWR's is nearest-unit)
+    engine = gwr._current_engine()  # learning by the reference, scoring compiled (GWR's is nearest-unit)
     assert type(engine) is CompiledEngine and engine.score == engine._score and engine.learn != getattr(
         engine, "_learn", None)
     with reference_only():
         det = novelty.make("hsom").fit(X)
-        assert det.compiled_ == "reference (NOVELTY_NO_KERNELS)" and type(engine_of(det)) is ReferenceEngine
+        assert det.compiled_ == "reference (NOVELTY_NO_KERNELS)" and type(det._current_engine()) is ReferenceEngine
     # the variable is read on every call: an engine chosen under it is not kept after
-    assert type(engine_of(det)) is CompiledEngine
+    assert type(det._current_engine()) is CompiledEngine
 
 
 def test_a_layout_the_driver_does_not_take_is_copied():
@@ -81,7 +81,7 @@ def test_the_filter_holds_its_engine_dropped_by_set_params_and_load(tmp_path):
     X = corridor(60)
     det = novelty.make("hsom").fit(X[:20])
     assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
-    engine = engine_of(det)
+    engine = det._current_engine()
     assert engine.clusterer is det.clusterer_ and engine.synapse is det.synapse_
     det.stream(X[20:30])
     det.score_learn_one(X[30])
@@ -91,7 +91,7 @@ def test_the_filter_holds_its_engine_dropped_by_set_params_and_load(tmp_path):
     det.score_learn_one(X[30])
     assert det._engine is not engine and det._engine.clusterer is det.clusterer_
     copied = copy.deepcopy(det)  # holds what its own engine is made from (test_interface)
-    assert engine_of(copied) is not det._engine and copied._engine.clusterer is copied.clusterer_
+    assert copied._current_engine() is not det._engine and copied._engine.clusterer is copied.clusterer_
     det.save(tmp_path / "m.npz")
     loaded = novelty.load(tmp_path / "m.npz")
     assert "_engine" not in vars(loaded)
@@ -102,10 +102,10 @@ def test_the_filter_holds_its_engine_dropped_by_set_params_and_load(tmp_path):
 def test_another_engine_once_a_part_is_replaced_or_set():
     X = corridor(60)
     det = novelty.make("hsom").fit(X[:20])
-    engine = engine_of(det)
-    assert engine_of(det) is engine
+    engine = det._current_engine()
+    assert det._current_engine() is engine
     det.clusterer_.learning_rate = 0.5  # a parameter set on a fitted part: read again
-    assert engine_of(det) is not engine
-    engine = engine_of(det)
+    assert det._current_engine() is not engine
+    engine = det._current_engine()
     det.synapse_ = copy.deepcopy(det.synapse_)
-    assert engine_of(det) is not engine and det._engine.synapse is det.synapse_
+    assert det._current_engine() is not engine and det._engine.synapse is det.synapse_

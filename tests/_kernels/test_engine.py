@@ -20,7 +20,6 @@ from sklearn.base import clone
 
 import novelty
 from novelty import _kernels, registry
-from novelty._kernels.choice import engine_of
 from novelty.filter import HabituatingFilter
 
 from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
@@ -516,7 +515,7 @@ def test_a_growing_network_gets_room_to_grow(single):
     det = novelty.make("gng-stanley", insertion_interval=5).fit(X[:2])
     slow = copy.deepcopy(det)
     assert _kernels.wait(det.clusterer_, det.synapse_) is not None
-    moves, capacity = 0, engine_of(det).capacity
+    moves, capacity = 0, det._current_engine().capacity
     for block in np.array_split(X[2:], 50):
         if single:
             for x in block:
@@ -547,7 +546,7 @@ def test_short_batches_scored_scan_by_scan_equal_the_batch_kernel(clusterer_name
     det = HabituatingFilter(clusterer=clusterer_name).fit(X[:2])
     assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
     det.stream(X[2:200])
-    engine = engine_of(det)
+    engine = det._current_engine()
     assert type(engine) is CompiledEngine and engine._score_one is not None
     W = det.clusterer_.weights_
     tie = (W[0] + W[-1]) / 2  # as far from the first unit as from the last (or nearly)

@@ -13,7 +13,6 @@ import novelty
 from novelty._component import StateError
 from novelty._kernels import reference_loops
 from novelty import _kernels
-from novelty._kernels.choice import engine_of
 from novelty._kernels.engine import CompiledEngine
 from novelty._kernels.interface import CheckedCopy
 
@@ -24,17 +23,17 @@ from .kernel_helpers import corridor
 def test_an_engine_holds_the_parts_until_one_is_set(reference):
     with reference_loops() if reference else contextlib.nullcontext():
         det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
-        engine = engine_of(det)
+        engine = det._current_engine()
         det.stream(corridor(10, n_features=4, seed=1))  # its own writes, taken as seen
-        assert engine.holds() and engine_of(det) is engine
+        assert engine.holds() and det._current_engine() is engine
         det.synapse_.tau_winner = 5.0
         assert not engine.holds()
-        assert engine_of(det) is not engine
+        assert det._current_engine() is not engine
 
 
 def test_fresh_also_watches_what_the_owner_gave():
     det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
-    engine = engine_of(det)
+    engine = det._current_engine()
     assert engine.holds() and not engine.fresh()  # nothing confirmed by the owner yet
     engine.watch(det, det.synapse)
     assert engine.fresh()
@@ -47,10 +46,10 @@ def test_fresh_also_watches_what_the_owner_gave():
 
 def test_a_copy_or_a_pickle_makes_its_own_engine():
     det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
-    engine = engine_of(det)
+    engine = det._current_engine()
     copied = copy.deepcopy(det)
     assert isinstance(copied._engine, CheckedCopy) and copied._engine.clusterer is copied.clusterer_
-    assert engine_of(copied) is not engine and engine_of(copied).clusterer is copied.clusterer_
+    assert copied._current_engine() is not engine and copied._current_engine().clusterer is copied.clusterer_
     assert pickle.loads(pickle.dumps(det))._engine is None
     det.synapse_.alpha = 1.2  # set after the engine read it: a copy's state is not taken as checked
     assert copy.deepcopy(det)._engine is None
@@ -129,9 +128,9 @@ def test_calibrating_keeps_the_engine_and_learns_as_a_new_engine_would(reference
     X = corridor(260)
     with reference_loops() if reference else contextlib.nullcontext():
         kept = novelty.make("gwr-novelty").fit(X[:2])
-        engine = engine_of(kept)
+        engine = kept._current_engine()
         kept_novelty = kept.partial_fit(X[2:]).stream(X[:20])
-        assert engine_of(kept) is engine and kept._calibration.full
+        assert kept._current_engine() is engine and kept._calibration.full
         anew = novelty.make("gwr-novelty").fit(X[:2])
         built = []
         with pytest.MonkeyPatch.context() as mp:  # every calibrating scan seen as a change
@@ -145,7 +144,7 @@ def test_calibrating_keeps_the_engine_and_learns_as_a_new_engine_would(reference
 
 def test_a_calibrate_that_sets_more_than_fitted_parameters_has_the_state_checked():
     det = novelty.make("gwr-novelty").fit(corridor(5))
-    engine = engine_of(det)
+    engine = det._current_engine()
     clusterer = det.clusterer_
     # set in its __dict__: an attribute set as usual would count as a change of its own
     vars(clusterer)["calibrate"] = lambda scale: setattr(clusterer, "weights_", np.zeros((2, 99)))
@@ -158,7 +157,7 @@ def test_a_calibrate_that_sets_more_than_fitted_parameters_has_the_state_checked
 
 def test_a_calibrated_threshold_that_is_not_a_finite_number_is_not_taken_in_place():
     det = novelty.make("gwr-novelty").fit(corridor(5))
-    engine = engine_of(det)
+    engine = det._current_engine()
     clusterer = det.clusterer_
     vars(clusterer)["calibrate"] = lambda scale: setattr(clusterer, "activity_threshold_", float("nan"))
     assert engine.holds()
@@ -168,7 +167,7 @@ def test_a_calibrated_threshold_that_is_not_a_finite_number_is_not_taken_in_plac
 
 def test_a_calibrate_that_sets_a_nested_part_has_the_state_checked():
     det = novelty.make("gwr-novelty").fit(corridor(5))
-    engine = engine_of(det)
+    engine = det._current_engine()
     firing = det.clusterer_.firing_
     vars(det.clusterer_)["calibrate"] = lambda scale: setattr(firing, "efficacy_", firing.efficacy_[:1].copy())
     assert engine.holds()
@@ -225,7 +224,7 @@ def test_check_values_refuses_exactly_what_the_exact_checks_refuse(reference, wh
         for every in (False, True):
             det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
             det.stream(corridor(5, n_features=4, seed=1))
-            engine = engine_of(det)
+            engine = det._current_engine()
             _write(det, where, value, every)
             expected = _exact_verdict(engine)
             if expected is None:
@@ -250,7 +249,7 @@ def test_single_scan_calls_refuse_exactly_what_the_exact_checks_refuse(call, whe
         assert _kernels.wait(det.clusterer_, det.synapse_) is not None and _kernels.wait() is not None
         det.stream(corridor(5, n_features=4, seed=1))
         det.score_learn_one(x)  # the engine confirmed: the next call takes the compiled path
-        engine = engine_of(det)
+        engine = det._current_engine()
         assert type(engine) is CompiledEngine and engine.fresh()
         _write(det, where, value, every)
         expected = _exact_verdict(engine)
@@ -278,11 +277,11 @@ def test_check_values_reads_the_arrays_the_parts_hold_after_the_engine_grew():
     X = corridor(200, n_features=4)
     det = novelty.make("gng-stanley").fit(X[:2])
     det.stream(X[:3])
-    engine = engine_of(det)
+    engine = det._current_engine()
     engine.check_values()
     units = det.clusterer_.n_units_
     det.stream(X[3:])  # grows, past the room the engine had
-    assert det.clusterer_.n_units_ > units and engine_of(det) is engine
+    assert det.clusterer_.n_units_ > units and det._current_engine() is engine
     det.clusterer_.weights_[-1, 0] = np.nan
     with pytest.raises(StateError, match="NaN or infinity"):
         det.stream(X[:2])

@@ -6,7 +6,6 @@ import numpy as np
 
 import novelty
 from novelty._kernels import reference_loops
-from novelty._kernels.choice import engine_of
 from novelty._kernels.reference import ReferenceEngine, learn_stream
 
 from .kernel_helpers import corridor
@@ -32,7 +31,7 @@ def test_the_loop_by_hand():
 def test_scans_the_single_scan_call_leaves_to_the_general_path():
     with reference_loops():
         det = novelty.make("hsom", n_rows=2, n_columns=2).fit(corridor(20, n_features=3))
-        engine = engine_of(det)
+        engine = det._current_engine()
         assert isinstance(engine, ReferenceEngine)
         before = det.clusterer_.weights_.copy()
         for x in (np.ones(4), np.array([0.0, np.nan, 0.0]), np.full(3, 1e300)):

@@ -9,7 +9,7 @@ import pytest
 import novelty
 from novelty import bench
 from novelty.bench import SuiteError
-from novelty.exploration import from_runs
+from novelty.tasks.exploration import from_runs
 
 
 def _arrays(seed=0):

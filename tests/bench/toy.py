@@ -60,7 +60,7 @@ EXPLORATION = "bench-toy-exploration"
 
 def toy_exploration(seed=0, n_runs=6, n_scans=20, n_sensors=4):
     """Familiar scans near 0.3; a door (near 0.8) in every other run after the warm-up run."""
-    from novelty.exploration import from_runs
+    from novelty.tasks.exploration import from_runs
 
     rng = np.random.default_rng(seed)
     runs, seen = [], []

@@ -11,9 +11,12 @@ One place for everything of this protocol:
 - :mod:`~novelty.bench.exploration.plots`: novelty along the exploration,
   exposure curves, learning curves.
 
-The tasks it runs on are datasets (:mod:`novelty.datasets.exploration`,
-built with :func:`novelty.exploration.from_runs` from recorded runs). The
+The tasks it runs on are datasets (:mod:`novelty.tasks.exploration`,
+built with :func:`novelty.tasks.exploration.from_runs` from recorded runs). The
 harness reads the protocol through :data:`PROTOCOL`.
+
+Shares its name with ``novelty/tasks/exploration/``: the exploration protocol lives in the benchmark
+beside the hold-out protocol, its tasks among the tasks.
 """
 
 from ..protocol import Protocol

@@ -2,7 +2,7 @@
 
 Every function takes the novelty of every scan of an exploration, in order
 (each scored before it was learned), and the labels of
-:mod:`novelty.datasets.exploration`: the run of each scan, its tracked
+:mod:`novelty.tasks.exploration`: the run of each scan, its tracked
 ``feature`` (``""`` for a familiar scan) and its ``exposure`` count (0 at
 the feature's first encounter). Warm-up runs (``run < warmup``) are never
 scored. Definitions:
@@ -64,6 +64,10 @@ scored. Definitions:
   familiar scans of the same run;
 - **integrated novelty per run**: the paper's Table 1 measure,
   ``sum (novelty - resting)`` over each run (Marsland et al., 2000).
+
+Shares its name with ``novelty/bench/holdout/metrics.py``, ``novelty/metrics.py``: each benchmark
+protocol's package holds its own metrics, plots and summary; novelty/metrics.py is the users' ROC
+AUC of novelty scores.
 """
 
 from __future__ import annotations

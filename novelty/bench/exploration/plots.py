@@ -12,6 +12,9 @@
   over seeds.
 
 Each figure's title says which seed(s) it shows.
+
+Shares its name with ``novelty/bench/holdout/plots.py``: each benchmark protocol's package holds its
+own metrics, plots and summary.
 """
 
 from __future__ import annotations

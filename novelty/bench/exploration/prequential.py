@@ -1,7 +1,7 @@
 """The exploration protocol: every scan scored, then learned, in order.
 
 Prequential ("predictive sequential") evaluation (Dawid 1984): the detector
-meets the scans of an exploration task (:mod:`novelty.datasets.exploration`) in
+meets the scans of an exploration task (:mod:`novelty.tasks.exploration`) in
 the order the robot perceived them; each scan's novelty is taken before the
 detector may learn it. A suite runs this protocol with
 ``[suite] protocol = "exploration"``; :func:`evaluate` is then what a cell

@@ -13,6 +13,10 @@ unless the mean 1st excess is above a millionth of the detector's mean
 range of novelty), each only with a separation of at least 0.5
 (:mod:`novelty.bench.exploration.metrics`); the verdicts without the
 separation stay in two columns of their own.
+
+Shares its name with ``novelty/bench/holdout/summary.py``, ``novelty/bench/reports/summary.py``,
+``novelty/reproduce/experiments/summary.py``: each benchmark protocol's package holds its own
+metrics, plots and summary; the reports and the paper's experiments summarise a run of theirs.
 """
 
 from __future__ import annotations

@@ -14,6 +14,10 @@ alarm at or after it.
 :data:`METRICS` is the table of the columns a cell reports and the benchmark
 summary shows: one :class:`Metric` a column, computed from the cell's
 :class:`Scored` test. Adding a metric is adding an entry.
+
+Shares its name with ``novelty/bench/exploration/metrics.py``, ``novelty/metrics.py``: each
+benchmark protocol's package holds its own metrics, plots and summary; novelty/metrics.py is the
+users' ROC AUC of novelty scores.
 """
 
 from __future__ import annotations

@@ -5,6 +5,9 @@ Every function returns the paths it wrote, and every figure says which seeds
 it shows (ROC curves and routes: the lowest seed of each task) or aggregates.
 The critical-difference diagram, shared by the protocols, is
 :mod:`novelty.bench.reports.critical_difference`.
+
+Shares its name with ``novelty/bench/exploration/plots.py``: each benchmark protocol's package holds
+its own metrics, plots and summary.
 """
 
 from __future__ import annotations

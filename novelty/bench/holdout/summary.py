@@ -5,6 +5,10 @@ Ranked by ROC AUC averaged over tasks, mean ± standard deviation over seeds
 are means over the detector's successful cells of the metrics of
 :data:`novelty.bench.holdout.metrics.METRICS`, and what the machine and the
 model show (training time, peak memory, units).
+
+Shares its name with ``novelty/bench/exploration/summary.py``, ``novelty/bench/reports/summary.py``,
+``novelty/reproduce/experiments/summary.py``: each benchmark protocol's package holds its own
+metrics, plots and summary; the reports and the paper's experiments summarise a run of theirs.
 """
 
 from __future__ import annotations

@@ -3,6 +3,9 @@
 matplotlib is optional: :func:`matplotlib_missing` says in one line what to
 install when it is absent, and :func:`pyplot` imports it (with the
 non-interactive Agg backend) only when a plot is drawn.
+
+Shares its name with ``novelty/reproduce/figures.py``: the paper's experiments and a benchmark's
+report each draw their own figures.
 """
 
 from __future__ import annotations

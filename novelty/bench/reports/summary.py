@@ -5,6 +5,10 @@ exploration tables); then the ROC AUC per task
 (:mod:`novelty.bench.reports.ranking`), the paired comparison with a
 reference detector, the ranks per task and the tests between detectors
 (:mod:`novelty.bench.reports.statistics`), and how the run was made.
+
+Shares its name with ``novelty/bench/exploration/summary.py``, ``novelty/bench/holdout/summary.py``,
+``novelty/reproduce/experiments/summary.py``: each benchmark protocol's package holds its own
+metrics, plots and summary; the reports and the paper's experiments summarise a run of theirs.
 """
 
 from __future__ import annotations

@@ -6,4 +6,7 @@
   Wilcoxon-Holm pairs and the critical-difference groups (Demsar 2006);
 - :mod:`~novelty.bench.stats.signed_rank`: the pairwise Wilcoxon signed-rank
   tests and Holm's correction.
+
+Shares its name with novelty/rosnode/stats.py: this is the benchmark's statistics, that the live
+node's counts.
 """

@@ -47,8 +47,8 @@ from typing import Iterator, Sequence
 
 import numpy as np
 
-from ..tables.data_files import is_float
 from ..ros.messages import LaserScan, Pose
+from ..tables.data_files import is_float
 
 __all__ = ["CarmenLog", "CarmenError", "read_carmen", "CARMEN_MESSAGES", "MAX_LINE"]
 

@@ -22,9 +22,9 @@ import math
 
 import numpy as np
 
-from ..ros.messages import Pose, Transform
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..bags.rosbag import POSE_TYPES, TF_TYPES, Bag
+from ..ros.messages import Pose, Transform
 from .tf import TfBuffer, TfError
 
 __all__ = ["Posing"]

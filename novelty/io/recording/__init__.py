@@ -9,7 +9,7 @@
   :mod:`~novelty.io.recording.carmen_sweeps`: each format's messages as
   sweeps, through the layers below (:mod:`novelty.io.frames`,
   :mod:`novelty.io.scans`);
-- :mod:`~novelty.io.recording.plotting`: novelty drawn along the robot's path.
+- :mod:`~novelty.io.recording.path_plot`: novelty drawn along the robot's path.
 """
 
 from .carmen_sweeps import CARMEN_LASERS, CARMEN_SUFFIXES

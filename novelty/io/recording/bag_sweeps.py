@@ -32,7 +32,7 @@ from __future__ import annotations
 
 from typing import Iterator
 
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..bags.rosbag import Bag
 from ..frames.posing import Posing
 from ..ros.messages import Sweep

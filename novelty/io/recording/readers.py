@@ -38,7 +38,7 @@ import numpy as np
 
 from ...data import Dataset
 from ...sonar.preprocessing import preprocess
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..bags.rosbag import SCAN_TYPES, Bag, is_bag
 from ..frames.posing import Posing
 from ..frames.tf import TfError

@@ -4,7 +4,7 @@ Every way into a recording takes the same options: the readers
 (:func:`novelty.io.read_rings`, :func:`~novelty.io.read_sweeps`,
 :func:`~novelty.io.read_recording`), the task of a user's recordings
 (``recording``, :func:`novelty.tasks.recordings.recording_task`), ``novelty
-run --data run.bag`` (:mod:`novelty.cli.recording` builds one from the
+run --data run.bag`` (:mod:`novelty.cli.recording_options` builds one from the
 command line) and a live node (from its parameters,
 :meth:`Reading.from_mapping`). A :class:`Reading` says which messages are
 the scans and where the poses come from, how a bag's scans become whole
@@ -17,6 +17,8 @@ are checked when it is made, with the project's message form::
 :meth:`Reading.to_mapping` gives it back as plain data (a task's metadata,
 a log); :meth:`Reading.from_mapping` makes one of such data, refusing a key
 it does not know with the list of those it does.
+
+Shares its name with novelty/rosnode/reading.py, the live node's reading built on this one.
 """
 
 from __future__ import annotations
@@ -29,7 +31,8 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
-from ..._validation import Instance, Interval, Options, unknown_parameters, validate_parameters
+from ..._messages import unknown_parameters
+from ..._validation import Instance, Interval, Options, validate_parameters
 from ...sonar.preprocessing import PAPER_THRESHOLD
 from ..frames.mounts import Mount, parse_mount
 from ..ros.decoders import ECHOES

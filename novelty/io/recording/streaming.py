@@ -35,7 +35,7 @@ import heapq
 import itertools
 import math
 
-from ..bags.report import ReadReport
+from ..bags.read_report import ReadReport
 from ..frames.mounts import Mount
 from ..frames.posing import Posing
 from ..frames.tf import TfError

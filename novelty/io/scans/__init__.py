@@ -32,6 +32,9 @@ References
 Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features
 of an environment using habituation. Proc. SAB 2000, section 4.1.
 ROS Enhancement Proposal 117, "Informational Distance Measurements".
+
+Shares its name with ``novelty/_validation/scans.py``: the scans a detector is given, checked, and a
+recording's messages made scans.
 """
 
 from .ranges import clean_ranges

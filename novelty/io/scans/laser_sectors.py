@@ -18,8 +18,8 @@ from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..._validation import Bounds, Interval, Options, validate_parameters
-from .sectors import REDUCTIONS, _check_reduce, reduce_sectors, sector_index
 from .ranges import clean_ranges
+from .sectors import REDUCTIONS, _check_reduce, reduce_sectors, sector_index
 
 __all__ = ["LaserSectors"]
 

@@ -33,7 +33,7 @@ header fields with readings; its sensor columns must be chosen
 (``columns="field.ranges*"``), so that no timestamp or sequence number is
 ever read as a sensor.
 
-The registered task ``files`` (:mod:`novelty.datasets.files`) splits the
+The registered task ``files`` (:mod:`novelty.tasks.files`) splits the
 scans of one file into a training and a test part.
 
 Reading a file into columns is :mod:`novelty.io.tables.table`, deciding which

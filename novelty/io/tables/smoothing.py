@@ -1,4 +1,4 @@
-"""The paper's smoothing of scans over travel (:func:`smooth_by_distance`), used by :mod:`novelty.datasets.files`."""
+"""The paper's smoothing of scans over travel (:func:`smooth_by_distance`), used by :mod:`novelty.tasks.files`."""
 
 from __future__ import annotations
 

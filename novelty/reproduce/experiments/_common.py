@@ -1,4 +1,8 @@
-"""What every experiment shares: its result, corridor A's six trials, tables, a process pool."""
+"""What every experiment shares: its result, corridor A's six trials, tables, a process pool.
+
+Shares its name with ``novelty/cli/_common.py``: a package's private helpers, shared by its modules,
+are its _common.
+"""
 
 from __future__ import annotations
 
@@ -15,7 +19,7 @@ from typing import TextIO
 import numpy as np
 
 import novelty
-from novelty._children import isolated_children
+from novelty._safe_path import isolated_children
 from novelty._progress import Steps
 from novelty.reproduce.figures import pyplot  # noqa: F401  (the experiments' figures)
 from novelty.sonar import simulate

@@ -1,4 +1,9 @@
-"""One table from all the experiments: each discrepancy of Table 1, what explains it, the numbers."""
+"""One table from all the experiments: each discrepancy of Table 1, what explains it, the numbers.
+
+Shares its name with ``novelty/bench/exploration/summary.py``, ``novelty/bench/holdout/summary.py``,
+``novelty/bench/reports/summary.py``: each benchmark protocol's package holds its own metrics, plots
+and summary; the reports and the paper's experiments summarise a run of theirs.
+"""
 
 from __future__ import annotations
 

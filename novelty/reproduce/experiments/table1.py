@@ -4,6 +4,9 @@ Runs :func:`novelty.reproduce.run_protocol` (``hsom``, the paper's
 constants; A with three pairs of runs as in Table 1) once per seed. Each
 claim of the paper is written as a test on one seed's trials; the table says
 on how many seeds it holds, with the range of the measured quantity.
+
+Shares its name with ``novelty/reproduce/table1.py``: the paper's Table 1: its experiments, and its
+rows beside the paper's.
 """
 
 from __future__ import annotations

@@ -40,13 +40,13 @@ from typing import Sequence
 import numpy as np
 
 from ...data import FAMILIAR, Dataset
-from ...datasets.exploration.runs import from_runs
-from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
-from ...io.bags.report import ReadReport
+from ...io.bags.read_report import ReadReport
 from ...io.recording.readers import read_sweeps
 from ...io.recording.reading import Reading, reading_given
 from ...io.scans.points import points_columns, sweep_points
 from ...io.scans.sweep_rings import RingMaker
+from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
+from ..exploration.runs import from_runs
 from .casting import cast_all, passes, sightings
 from .placement import check_objects, draw_objects, read_objects
 

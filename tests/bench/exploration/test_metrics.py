@@ -9,7 +9,7 @@ import pytest
 import novelty
 from novelty.bench.exploration.prequential import exploration_metrics, prequential
 from novelty.bench.exploration import metrics as xm
-from novelty.exploration import open_door
+from novelty.tasks.exploration import open_door
 
 # run 0 warm-up; runs 1-3 each: 2 familiar scans, 1 scan of the door "d" (exposures 0, 1, 2);
 # run 2 also meets a box "b" for the first time

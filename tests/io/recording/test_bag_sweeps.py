@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from novelty.io import Reading
-from novelty.io.bags.report import ReadReport
+from novelty.io.bags.read_report import ReadReport
 from novelty.io.bags.rosbag import Bag
 from novelty.io.frames.tf import TfError
 from novelty.io.recording.readers import read_rings, read_sweeps

@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.recording.readers import is_recording, read_recording, read_rings
 from novelty.io import Reading
+from novelty.io.recording.readers import is_recording, read_recording, read_rings
 
 from ...io.carmen.test_log import LOG
 

@@ -9,8 +9,8 @@ import pytest
 
 import novelty
 from novelty.io.ros import caps
-from novelty.io.ros1.bag1 import Bag1, BagFormatError
 from novelty.io.ros.caps import MessageError
+from novelty.io.ros1.bag1 import Bag1, BagFormatError
 
 from novelty.io.ros1 import chunks
 

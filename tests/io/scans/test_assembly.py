@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from novelty.io.scans.assembly import LEARN, Assembler
 from novelty.io.ros.messages import LaserScan
+from novelty.io.scans.assembly import LEARN, Assembler
 
 INC = math.radians(0.5)
 

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from novelty.io.scans.merge import Merger, merged
 from novelty.io.ros.messages import Sweep
+from novelty.io.scans.merge import Merger, merged
 
 
 def sweep(t, source, ranges=(1.0,)):

@@ -8,10 +8,10 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from novelty.io.ros.messages import LaserScan, RangeReading
-from novelty.io.scans.sectors import all_round, reduce_sectors, sector_index
 from novelty.io.scans.ranges import clean_ranges
-from novelty.io.scans.sweep_rings import laser_ring
+from novelty.io.scans.sectors import all_round, reduce_sectors, sector_index
 from novelty.io.scans.sonar_rings import sonar_rings
+from novelty.io.scans.sweep_rings import laser_ring
 from novelty.sonar.preprocessing import preprocess
 
 INF, NAN = math.inf, math.nan

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from novelty.data import Dataset
-from novelty.datasets.files import files, read_scans, smooth_by_distance
+from novelty.tasks.files import files, read_scans, smooth_by_distance
 
 ROS_HEADER = ("%time,field.header.seq,field.header.stamp,field.header.frame_id,field.angle_min,"
               "field.ranges0,field.ranges1,field.ranges2")

@@ -98,7 +98,7 @@ def test_an_npz_array_declaring_more_than_it_holds_is_refused_before_allocation(
 def test_an_odds_mat_file_reads_x_and_its_column_of_labels(tmp_path):
     from scipy.io import savemat
 
-    from novelty.datasets.files import read_scans
+    from novelty.tasks.files import read_scans
 
     X = np.arange(12.0).reshape(6, 2)
     savemat(tmp_path / "odds.mat", {"X": X, "y": np.array([[0], [0], [1], [0], [1], [0]], dtype=float)})
@@ -129,7 +129,7 @@ def test_a_mat_cell_array_is_refused_by_name_without_being_read(tmp_path):
 def test_a_label_vector_of_one_row_or_one_column_is_a_column(tmp_path, shape):
     from scipy.io import savemat
 
-    from novelty.datasets.files import read_scans
+    from novelty.io.tables.scan_file import read_scans
 
     X, y = np.arange(12.0).reshape(6, 2), np.array([0, 0, 1, 0, 1, 0])
     labels = y[None, :] if shape == "row" else y[:, None]
@@ -147,7 +147,7 @@ def test_a_label_vector_of_another_length_is_named(tmp_path):
 
 
 def test_numbers_stored_as_text_in_an_npz_are_read_as_a_csv_reads_them(tmp_path):
-    from novelty.datasets.files import read_scans
+    from novelty.io.tables.scan_file import read_scans
 
     X = np.array([[0.5, 1.0], [2.0, 3.5], [1e-3, -4.0]])
     np.savez(tmp_path / "text.npz", X=X.astype(str), y=np.array(["0", "1", "0"]), split=np.array(["train"] * 3))

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
+from novelty.io.ros.messages import Sweep
 from novelty.tasks.objects.raycast import inject
 from novelty.tasks.objects.shapes import Wall
-from novelty.io.ros.messages import Sweep
 
 #: The corridor: 2 m wide along x from -1 to 11, closed at both ends.
 WALLS = [Wall("left", -1.0, 1.05, 11.0, 1.05), Wall("right", -1.0, -1.05, 11.0, -1.05),

@@ -18,8 +18,8 @@ import pytest
 
 from novelty import datasets
 from novelty.tasks.objects.casting import cast_all, sightings
-from novelty.tasks.objects.shapes import Cylinder
 from novelty.tasks.objects.object_tasks import inspection_task, read_drive
+from novelty.tasks.objects.shapes import Cylinder
 
 pytest.importorskip("rosbags", reason="the bags are written with rosbags' writers (the ros extra)")
 

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
+from novelty.io import Reading
+from novelty.io.recording.readers import read_sweeps
 from novelty.tasks.objects.casting import cast_all, passes, sightings
 from novelty.tasks.objects.shapes import Cylinder
-from novelty.io.recording.readers import read_sweeps
-from novelty.io import Reading
 
 
 def test_every_sweep_is_cast_and_counted(drive):

@@ -5,8 +5,8 @@ import pytest
 
 from novelty import bench, datasets
 from novelty.tasks.objects.casting import cast_all, passes, sightings
-from novelty.tasks.objects.shapes import Cylinder
 from novelty.tasks.objects.object_tasks import exploration_task, familiar_places, inspection_task, object_rings
+from novelty.tasks.objects.shapes import Cylinder
 
 from .conftest import corridor_sweeps, drive_poses
 

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
+from novelty.io.ros.messages import Sweep
 from novelty.io.scans.points import sweep_points
 from novelty.tasks.objects.object_tasks import object_inputs, object_rings
-from novelty.io.ros.messages import Sweep
 
 
 def test_each_sectors_end_point_is_its_nearest_echo_in_the_world_frame(drive):

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from novelty.tasks.objects.raycast import cone_range, inject, world_beams
-from novelty.tasks.objects.shapes import Box, Cylinder
 from novelty.io.ros.messages import Sweep
 from novelty.io.scans.sweep_rings import sweep_ring
+from novelty.tasks.objects.raycast import cone_range, inject, world_beams
+from novelty.tasks.objects.shapes import Box, Cylinder
 
 R2 = math.sqrt(2)
 ANGLES = np.deg2rad([-90.0, -45.0, 0.0, 45.0, 90.0])

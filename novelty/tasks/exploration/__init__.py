@@ -1,21 +1,24 @@
 """Exploration tasks: a sequence of runs in which features appear, recur and change.
 
-- :mod:`~novelty.datasets.exploration.tasks`: the named tasks
+- :mod:`~novelty.tasks.exploration.tours`: the named tasks
   (``exploration-tour``, ``exploration-open-door``, ``exploration-patrol``);
-- :mod:`~novelty.datasets.exploration.objects`: tasks of objects that come
+- :mod:`~novelty.tasks.exploration.recurrence`: tasks of objects that come
   and go (``exploration-irregular``, ``exploration-return``,
   ``exploration-moving``);
-- :mod:`~novelty.datasets.exploration.runs`: building an exploration from
+- :mod:`~novelty.tasks.exploration.runs`: building an exploration from
   runs, simulated (:func:`simulate_exploration`) or recorded
-  (:func:`from_runs`, also :func:`novelty.exploration.from_runs`).
+  (:func:`from_runs`, also :func:`novelty.tasks.exploration.from_runs`).
 
 They are evaluated by the benchmark's exploration protocol
 (:mod:`novelty.bench.exploration`).
+
+Shares its name with ``novelty/bench/exploration/``: the exploration protocol lives in the benchmark
+beside the hold-out protocol, its tasks among the tasks.
 """
 
-from .objects import irregular, moving, returning
+from .recurrence import irregular, moving, returning
 from .runs import FAMILIAR, Leg, exposures, from_runs, simulate_exploration
-from .tasks import open_door, paper_tour, patrol
+from .tours import open_door, paper_tour, patrol
 
 __all__ = ["FAMILIAR", "Leg", "exposures", "from_runs", "open_door", "paper_tour", "patrol",
            "simulate_exploration", "irregular", "returning", "moving"]

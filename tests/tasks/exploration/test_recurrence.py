@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from novelty.datasets.exploration import irregular, moving, returning
-from novelty.datasets.exploration.objects import _irregular_schedule
 from novelty.registry import build
+from novelty.tasks.exploration import irregular, moving, returning
+from novelty.tasks.exploration.recurrence import _irregular_schedule
 
 SHORT = 8.0  # a short corridor keeps the simulation fast
 

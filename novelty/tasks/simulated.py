@@ -1,6 +1,6 @@
 """Novelty tasks from simulated runs: learn a familiar environment, then patrol a changed one.
 
-A task is one :class:`~novelty.datasets.Dataset`: ``train_runs`` traversals
+A task is one :class:`~novelty.data.Dataset`: ``train_runs`` traversals
 of the familiar environment (``split == "train"``, ``y == 0``), then
 ``test_runs`` traversals of the test environment (``split == "test"``) in
 which a scan is labelled novel (``y == 1``) when one of the named novel
@@ -20,8 +20,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from .environments import get_environment
-from .simulate import concatenate, simulate_run
+from ..sonar.environments import get_environment
+from ..sonar.simulate import concatenate, simulate_run
 
 __all__ = ["make_task", "TEST_RUN_OFFSET"]
 

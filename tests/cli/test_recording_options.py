@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from novelty.cli import main
-from novelty.cli.recording import recording_rings
+from novelty.cli.recording_options import recording_rings
 from novelty.io import Reading
 
 from ..io.carmen.test_log import LOG
@@ -295,7 +295,7 @@ def test_the_console_says_which_frame_mount_and_poses_were_used(tmp_path, capsys
 
 
 def test_the_points_inputs_default_sectors_are_the_readers():
-    from novelty.cli.recording import POINTS_SECTORS
+    from novelty.cli.recording_options import POINTS_SECTORS
     from novelty.io.scans import points
 
     assert POINTS_SECTORS == points.POINTS_SECTORS == 180

@@ -40,7 +40,7 @@ def files(path, test_path=None, columns=None, label=None, time=None, split=None,
     - ``resample``: a split drawn for each ``seed``, ``stratified`` or
       ``shuffled``, of ``test`` (default 0.3) tested, the table first
       bootstrapped to ``min_rows`` or subsampled to ``max_rows``
-      (:mod:`novelty.datasets.resampling`).
+      (:mod:`novelty.tasks.resampling`).
 
     Whichever the split, ``training="clean"`` drops the novel scans from the
     training part (default ``"contaminated"``: they stay, unlabelled) and
@@ -62,7 +62,7 @@ def files(path, test_path=None, columns=None, label=None, time=None, split=None,
     train_passes : int, default=1
         How many times a detector streams the training part.
     resample, test, min_rows, max_rows, scale, training
-        The resampling protocol (:class:`~novelty.datasets.resampling.Resampling`).
+        The resampling protocol (:class:`~novelty.tasks.resampling.Resampling`).
     seed : int, default=0
         The seed of a drawn split (unused otherwise).
     """

@@ -23,7 +23,7 @@ __all__ = ["add_recording_options", "is_recording", "check_recording_options", "
 
 
 #: the points input's sectors unless --sectors says: novelty.io.scans.points.POINTS_SECTORS, written out so
-#: that the command line starts without the readers (tests/cli/test_recording.py checks they agree)
+#: that the command line starts without the readers (tests/cli/test_recording_options.py checks they agree)
 POINTS_SECTORS = 180
 
 
@@ -155,7 +155,7 @@ def recording_reading(args, inputs: str = "ring"):
 def recording_rings(args, report=None):
     """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes.
 
-    ``report`` (a :class:`novelty.io.bags.report.ReadReport`) is filled as the reading goes.
+    ``report`` (a :class:`novelty.io.bags.read_report.ReadReport`) is filled as the reading goes.
     """
     # deferred: the readers are loaded only for a recording
     from ..io.recording.readers import read_rings

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from novelty.datasets.exploration.runs import exposures, from_runs
+from novelty.tasks.exploration.runs import exposures, from_runs
 
 
 def test_exposures_count_earlier_runs_not_scans():

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from novelty import datasets
-from novelty.datasets.exploration import open_door, patrol
 from novelty.sonar import simulate_run
+from novelty.tasks.exploration import open_door, patrol
 
 
 @pytest.fixture(scope="module")

@@ -35,7 +35,7 @@ Seeds control every traversal: run ``i`` of an exploration under ``seed``
 is :func:`~novelty.sonar.simulate_run` ``(environment, seed, i)``.
 
 Building an exploration from runs (:class:`Leg`, :func:`simulate_exploration`,
-:func:`from_runs`, :func:`exposures`) is :mod:`novelty.datasets.exploration.runs`; this
+:func:`from_runs`, :func:`exposures`) is :mod:`novelty.tasks.exploration.runs`; this
 module holds the named tasks and exports those names too.
 """
 
@@ -45,8 +45,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...sonar.inspection import DIFFICULTIES, CorridorPlan, generate_corridor
 from ..inputs import with_inputs
+from ..inspection import DIFFICULTIES, CorridorPlan, generate_corridor
 from .runs import FAMILIAR, Leg, exposures, from_runs, simulate_exploration  # noqa: F401  (read from here too)
 
 __all__ = ["Leg", "simulate_exploration", "from_runs", "exposures", "paper_tour", "open_door",
@@ -67,7 +67,7 @@ def paper_tour(seed: int = 0, warmup: int = 3, runs_per_environment: int = 3, co
     prequential protocol scores each scan before learning it). C's brick and
     glass differ from A's walls throughout, so its untracked scans are not
     familiar in the sense of A: read C's scores with that in mind.
-    ``inputs="points"``: the rows of :func:`novelty.datasets.inputs.with_inputs`
+    ``inputs="points"``: the rows of :func:`novelty.tasks.inputs.with_inputs`
     (each environment's own coordinates, overlapping A's).
     """
     legs = [Leg("a")] * warmup + [Leg("a-star", ("door-r1-open",))] * runs_per_environment
@@ -101,10 +101,10 @@ def patrol(seed: int = 0, difficulty: str = "easy", warmup: int = 3, patrols: in
     """A new object each patrol: a generated corridor, recurring objects, one new object a run.
 
     ``warmup`` clean runs of a generated corridor
-    (:func:`~novelty.sonar.inspection.generate_corridor`), then ``patrols``
+    (:func:`~novelty.tasks.inspection.generate_corridor`), then ``patrols``
     runs, each with two recurring objects (``recurring-0``, ``recurring-1``,
     there on every patrol) and one object never seen before (``new-<p>``),
-    drawn from the difficulty's objects (:data:`~novelty.sonar.inspection.DIFFICULTIES`;
+    drawn from the difficulty's objects (:data:`~novelty.tasks.inspection.DIFFICULTIES`;
     open doors excepted) and placed at least 3 m from the recurring ones. From
     patrol ``change_at`` on, ``recurring-0`` is replaced by an object of
     another kind at the same place (``recurring-0-changed``): a known place

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from novelty.datasets import load
-from novelty.datasets.files import files
+from novelty.tasks.files import files
 
 from ..io.tables.test_scan_file import six_scans, write
 

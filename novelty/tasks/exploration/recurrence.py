@@ -1,9 +1,9 @@
 """Exploration tasks of objects that come and go: irregular recurrence, a long absence, a move.
 
-Each patrols a generated corridor (:func:`~novelty.sonar.inspection.generate_corridor`)
+Each patrols a generated corridor (:func:`~novelty.tasks.inspection.generate_corridor`)
 after ``warmup`` clean runs, with objects drawn from a difficulty's objects
-(:data:`~novelty.sonar.inspection.DIFFICULTIES`; open doors excepted), and
-asks what the exploration tasks of :mod:`novelty.datasets.exploration.tasks` do not:
+(:data:`~novelty.tasks.inspection.DIFFICULTIES`; open doors excepted), and
+asks what the exploration tasks of :mod:`novelty.tasks.exploration.tours` do not:
 
 - :func:`irregular`: two objects that recur at irregular intervals (gaps of
   1 to ``max_gap`` runs, drawn from the seed), so habituation meets
@@ -25,10 +25,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...sonar.inspection import DIFFICULTIES, generate_corridor
 from ..inputs import with_inputs
+from ..inspection import DIFFICULTIES, generate_corridor
 from .runs import Leg, simulate_exploration
-from .tasks import place_object, with_items
+from .tours import place_object, with_items
 
 __all__ = ["irregular", "returning", "moving"]
 
@@ -73,7 +73,7 @@ def irregular(seed: int = 0, difficulty: str = "easy", warmup: int = 3, runs: in
     (``irregular-0``, ``irregular-1``, at fixed places at least 3 m apart)
     is present on its own schedule: from run 0 or 1, then after gaps of 1 to
     ``max_gap`` runs drawn from the seed. ``inputs="points"``: the rows of
-    :func:`novelty.datasets.inputs.with_inputs` (the robot's pose with each scan).
+    :func:`novelty.tasks.inputs.with_inputs` (the robot's pose with each scan).
     """
     _check(warmup=(warmup, 1), runs=(runs, 3), max_gap=(max_gap, 1))
     clean, rng, makers = _setup(seed, difficulty, length, 0x1EE)

@@ -10,7 +10,7 @@ from sklearn.model_selection import train_test_split
 
 from novelty import bench
 from novelty.data import Dataset
-from novelty.datasets.resampling import ADBENCH, Resampling, adbench_split, resampled
+from novelty.tasks.resampling import ADBENCH, Resampling, adbench_split, resampled
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from novelty import datasets
-from novelty.datasets.uci import WALL_FOLLOWING_CLASSES
+from novelty.tasks.uci import WALL_FOLLOWING_CLASSES
 
 #: The project's shared folder of public data, beside the repository.
 SHARED = (Path(__file__).resolve().parents[2] / ".." / "shared" / "datasets").resolve()

@@ -2,7 +2,7 @@
 
 Every scan gets its tracked feature and that feature's exposure count
 (:func:`exposures`); the dataset's fields are described in
-:mod:`novelty.datasets.exploration.tasks`.
+:mod:`novelty.tasks.exploration.tours`.
 """
 
 from __future__ import annotations

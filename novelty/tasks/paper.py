@@ -13,8 +13,8 @@ The tasks follow the paper's experiments: learn A, then meet a change.
 from __future__ import annotations
 
 from ..sonar.simulate import simulate
-from ..sonar.tasks import make_task
 from .inputs import with_inputs
+from .simulated import make_task
 
 __all__ = ["paper_a", "paper_a_star", "paper_b", "paper_c", "paper_control",
            "paper_a_to_a_star", "paper_a_to_b", "paper_a_to_c"]

@@ -5,10 +5,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from novelty.datasets.inputs import with_inputs
-from novelty.datasets.paper import paper_a_to_a_star
 from novelty.io.scans.points import split_points
 from novelty.sonar.robot import NOMAD_200
+from novelty.tasks.inputs import with_inputs
+from novelty.tasks.paper import paper_a_to_a_star
 
 
 @pytest.fixture(scope="module")

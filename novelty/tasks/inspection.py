@@ -1,4 +1,4 @@
-"""Seeded inspection corridors with inserted novelties, every scan labelled.
+"""Inspection tasks on seeded, generated corridors with inserted novelties, every scan labelled.
 
 The paper's motivating use (Marsland et al., 2000, section 1): a robot
 learns a section of building known to be clean, then patrols and flags
@@ -8,7 +8,8 @@ wall materials, doors and their recess depths, cracks, a junction);
 bin against a wall, a person standing, a missing wall panel, a new display
 board); :func:`inspection_task` simulates clean training runs and a patrol
 of the changed corridor, with ``y = 1`` on the scans that perceive an
-inserted feature.
+inserted feature; :func:`inspection` and its three difficulties are the
+registered tasks (``inspection``, ``inspection-easy``, ...).
 
 Difficulty sets which novelties are drawn and how big they are:
 
@@ -30,12 +31,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .environments import Environment, corridor_environment
-from .layout import Board, Crack, Door, Opening, Person, Protrusion
-from .tasks import make_task
+from ..sonar.environments import Environment, corridor_environment
+from ..sonar.layout import Board, Crack, Door, Opening, Person, Protrusion
+from .inputs import with_inputs
+from .simulated import make_task
 
-__all__ = ["CorridorPlan", "generate_corridor", "insert_novelties", "inspection_task",
-           "DIFFICULTIES"]
+__all__ = ["CorridorPlan", "generate_corridor", "insert_novelties", "inspection_task", "DIFFICULTIES",
+           "inspection", "inspection_easy", "inspection_medium", "inspection_hard"]
 
 _MATERIALS_RIGHT = ("breezeblock", "brick", "plaster")
 _MATERIALS_LEFT = ("breezeblock", "brick", "plaster", "glass")
@@ -233,3 +235,49 @@ def inspection_task(seed: int = 0, difficulty: str = "easy", n_novelties: int = 
         corridor={"width": plan.width, "right": plan.right, "left": plan.left,
                   "length": plan.length},
     )
+
+
+# ------------------------------------------------------------------ the registered tasks
+def inspection(seed: int = 0, difficulty: str = "easy", n_novelties: int = 2, train_runs: int = 3,
+               test_runs: int = 1, length: float = 15.0, inputs: str = "ring"):
+    """Learn a clean generated corridor, patrol it with inserted novelties; every scan labelled.
+
+    Parameters
+    ----------
+    seed : int, default=0
+        Chooses the corridor, the novelties and every traversal.
+    difficulty : {"easy", "medium", "hard"}, default="easy"
+        Large, high-contrast novelties (open door, bin, big box, person, deep
+        missing panel) down to small, low-contrast ones (low box, thin board,
+        shallow missing panel).
+    n_novelties : int, default=2
+        Inserted changes, at least 3 m apart along the route.
+    train_runs : int, default=3
+        Clean traversals in the training part (``metadata["train_passes"]`` is 1:
+        the runs are distinct traversals, as the paper's repeated trials).
+    test_runs : int, default=1
+        Traversals of the changed corridor.
+    length : float, default=15.0
+        Route length (m); 10 scans per metre.
+    inputs : {"ring", "points"}, default="ring"
+        The rows: as simulated, or the ``points`` input (:func:`novelty.tasks.inputs.with_inputs`).
+    """
+    return with_inputs(inspection_task(seed, difficulty, n_novelties, train_runs, test_runs, length), inputs)
+
+
+def inspection_easy(seed: int = 0, n_novelties: int = 2, train_runs: int = 3, test_runs: int = 1,
+                    length: float = 15.0, inputs: str = "ring"):
+    """Inspection task with large, high-contrast novelties (see :func:`inspection`)."""
+    return inspection(seed, "easy", n_novelties, train_runs, test_runs, length, inputs)
+
+
+def inspection_medium(seed: int = 0, n_novelties: int = 2, train_runs: int = 3, test_runs: int = 1,
+                      length: float = 15.0, inputs: str = "ring"):
+    """Inspection task with medium-sized novelties (see :func:`inspection`)."""
+    return inspection(seed, "medium", n_novelties, train_runs, test_runs, length, inputs)
+
+
+def inspection_hard(seed: int = 0, n_novelties: int = 2, train_runs: int = 3, test_runs: int = 1,
+                    length: float = 15.0, inputs: str = "ring"):
+    """Inspection task with small, low-contrast novelties (see :func:`inspection`)."""
+    return inspection(seed, "hard", n_novelties, train_runs, test_runs, length, inputs)
