@@ -18,9 +18,10 @@ has not hit before: novel at first sight, familiar after a few passes.
 
 Free-space evidence (ours). A cell never hit may be a wall the robot never
 saw from this side, or space it has seen through. Each cell also counts the
-scans whose rays passed through it (``passes``: from the robot's position
-towards each end point, sampled every ``c / 2``, stopping one cell short of
-an echo; a sector with no echo up to its end point). With
+scans whose rays passed through it (``passes``: the cells a ray passes
+through from the robot's position towards each end point, by the grid walk of
+:mod:`novelty.maps.grid_walk`, stopping one cell short of an echo; a sector
+with no echo up to its end point). With
 ``evidence="free"`` a hit cell's novelty is its efficacy weighted by that
 evidence,
 
@@ -115,6 +116,13 @@ The width is at most pi (the option's own bound); a scan with fewer than
 two sectors that point anywhere (an end point off the robot's position)
 is read on its axes.
 
+What a scan may cost is bounded (ours): a sector ending more than
+``max_range`` from the robot is cut to it and read as no echo (its free space
+up to ``max_range``; a :class:`MapRangeWarning` says how many), and a scan
+whose rays would touch more than ``max_scan_cells`` cells is refused with a
+ValueError before anything of its batch is learned. A ray costs the cells it
+passes through, linear in its length; a cone's rays grow with its range too.
+
 Learning a scan applies (1) to the cells it hits and adds one pass to the
 cells its rays crossed (a cell both hit and crossed in one scan counts as
 hit). Cells are made as they are first met; the state is three arrays over
@@ -138,6 +146,7 @@ empty along the rays: the evidence grid behind (2)).
 from __future__ import annotations
 
 import numbers
+import warnings
 
 import numpy as np
 
@@ -145,12 +154,18 @@ from .._component import StateError, check_array_state, check_int_state
 from .._validation import Interval, Options
 from ..detector import NoveltyDetector
 from ..habituation.stanley import euler_steps
+from .grid_walk import walk_lengths, walk_rays
 from .points import split_points
 
 #: The packed offsets of a cell's eight neighbours.
 _NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
 
-__all__ = ["HabituatingMap", "cell_keys", "sector_width", "map_explore", "MAP_EXPLORE", "MAX_COORDINATE"]
+__all__ = ["HabituatingMap", "MapRangeWarning", "cell_keys", "sector_width", "map_explore", "MAP_EXPLORE",
+           "MAX_COORDINATE"]
+
+
+class MapRangeWarning(UserWarning):
+    """Sectors ending beyond a map's ``max_range`` were cut to it and read as no echo."""
 
 #: Coordinates (m) beyond which a row is refused: the packed cell indices stay exact.
 MAX_COORDINATE = 1e6
@@ -229,6 +244,11 @@ class HabituatingMap(NoveltyDetector):
     arc : float or "sector", default="sector"
         Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis;
         ``"sector"``: as wide as the median angle between the scan's sectors (ours).
+    max_range : float, default=10.0
+        Sectors ending farther than this from the robot (m) are cut to it and
+        read as no echo.
+    max_scan_cells : int, default=1000000
+        A scan whose rays would touch more cells than this is refused.
     threshold : float, default=0.5
         Novelty above which :meth:`predict` says novel.
     contamination : "auto" or float in (0, 0.5], default="auto"
@@ -282,12 +302,16 @@ class HabituatingMap(NoveltyDetector):
         "evidence_lag": Interval(numbers.Integral, 0, None),
         "visit_gap": Interval(numbers.Integral, 0, None),
         "arc": (Interval(numbers.Real, 0, np.pi), Options(("sector",))),
+        "max_range": Interval(numbers.Real, 0, MAX_COORDINATE, closed="right"),
+        "max_scan_cells": Interval(numbers.Integral, 1, 2**31),
         "threshold": Interval(numbers.Real, None, None),
     }
 
     def __init__(self, cell_size=0.1, evidence="free", free_scale=2.0, top=2, tau=3.33, alpha=1.05,
                  tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.25, visit_gap=10,
-                 threshold=0.5, contamination="auto"):
+                 max_range=10.0, max_scan_cells=1_000_000, threshold=0.5, contamination="auto"):
+        self.max_range = max_range
+        self.max_scan_cells = max_scan_cells
         self.unseen = unseen
         self.visit_gap = visit_gap
         self.tau_neighbour = tau_neighbour
@@ -330,12 +354,37 @@ class HabituatingMap(NoveltyDetector):
                              f"the Euler step to stay in [1 - 1/alpha, 1]. Got {self.tau} instead.")
 
     # ------------------------------------------------------------------ the rows
-    def _rows(self, X: np.ndarray):
+    def _rows(self, X: np.ndarray, bounds: bool = True):
+        """The rows as (poses, nearness, end points); with ``bounds``, each scan's cost checked first."""
         poses, near, ends = split_points(X, type(self).__name__)
         if np.abs(poses[:, :2]).max() > MAX_COORDINATE or np.abs(ends).max() > MAX_COORDINATE:
             raise ValueError(f"{type(self).__name__}: a pose or end point lies more than {MAX_COORDINATE:g} m "
                              "from the world's origin; give poses in metres in a local frame (odom or map).")
+        if bounds:
+            self._check_sizes(poses, near, ends)
         return poses, near, ends
+
+    def _check_sizes(self, poses, near, ends) -> None:
+        """Refuse rows with a scan that would touch more than ``max_scan_cells`` cells (before anything is
+        learned); warn once of sectors that end beyond ``max_range`` (read as no echo, free up to it)."""
+        d = ends - poses[:, None, :2]
+        far = np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1]) > self.max_range
+        if far.any():
+            warnings.warn(f"{int(far.sum())} sectors of {int(far.any(axis=1).sum())} scans end beyond "
+                          f"max_range = {self.max_range:g} m from the robot: {type(self).__name__} reads each as "
+                          "no echo, its free space up to max_range (set max_range to the sensor's range to "
+                          "read them whole).", MapRangeWarning, stacklevel=5)
+        for i in range(poses.shape[0]):
+            rays = self._rays(poses[i], near[i], ends[i], self.max_scan_cells)
+            cells = int(np.count_nonzero(rays[0])) + int(walk_lengths(*rays[2:], self.cell_size).sum())
+            if cells > self.max_scan_cells:
+                raise ValueError(self._too_many(i, cells))
+
+    def _too_many(self, row: int, cells) -> str:
+        return (f"{type(self).__name__}: the scan of row {row} would touch {cells} cells, more than "
+                f"max_scan_cells = {self.max_scan_cells} (its rays up to max_range = {self.max_range:g} m, in "
+                f"cells of {self.cell_size:g} m); nothing was learned. Lower max_range or arc, or raise "
+                "cell_size or max_scan_cells.")
 
     def _arc(self, pose, ends) -> float:
         """The cone's width for one scan (rad): ``arc``, or with ``"sector"`` the median gap between its bearings."""
@@ -343,33 +392,44 @@ class HabituatingMap(NoveltyDetector):
             return float(self.arc)
         return sector_width(pose, ends)
 
-    def _cones(self, pose, near, ends, arc: float) -> tuple[np.ndarray, np.ndarray]:
-        """Each sector as rays evenly across its cone of width ``arc``, each as long as the sector."""
+    def _rays(self, pose, near, ends, most=None):
+        """One scan as rays: ``(hit, ends, starts, free ends)``, a ray per sector (each cone's rays with an
+        ``arc``), the sectors beyond ``max_range`` cut to it and read as no echo; the free stretch of a ray
+        with an echo stops one cell short of it. ``most``: refuse a scan of more rays than this."""
+        c = float(self.cell_size)
         d = ends - pose[:2]
-        length = np.hypot(d[:, 0], d[:, 1])
-        rays = 1 + int(np.ceil(arc * length.max() / (float(self.cell_size) / 2))) if length.size else 1
-        spread = np.linspace(-arc / 2, arc / 2, rays)
-        bearing = np.arctan2(d[:, 1], d[:, 0])[:, None] + spread[None, :]
-        out = pose[:2] + length[:, None, None] * np.stack([np.cos(bearing), np.sin(bearing)], axis=-1)
-        return np.repeat(near, rays), out.reshape(-1, 2)
+        length = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+        far = length > self.max_range
+        if far.any():
+            d = np.where(far[:, None], d * (self.max_range / np.where(far, length, 1.0))[:, None], d)
+            ends = np.where(far[:, None], pose[:2] + d, ends)
+            near = np.where(far, 0.0, near)
+            length = np.where(far, float(self.max_range), length)
+        arc = self._arc(pose, ends)
+        if arc > 0 and length.size:
+            rays = 1 + int(np.ceil(arc * length.max() / (c / 2)))
+            if most is not None and rays * length.size > most:
+                raise ValueError(self._too_many(-1, f"at least {rays * length.size}"))
+            spread = np.linspace(-arc / 2, arc / 2, rays)
+            bearing = np.arctan2(d[:, 1], d[:, 0])[:, None] + spread[None, :]
+            ends = (pose[:2] + length[:, None, None] * np.stack([np.cos(bearing), np.sin(bearing)], axis=-1))
+            ends, near, length = ends.reshape(-1, 2), np.repeat(near, rays), np.repeat(length, rays)
+            d = ends - pose[:2]
+            length = np.sqrt(d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1])
+        hit = near > 0
+        reach = np.where(hit, length - c, length)
+        walked = reach > 0
+        unit = d[walked] / length[walked][:, None]
+        start = np.broadcast_to(pose[:2], unit.shape)
+        return hit, ends, start, start + reach[walked][:, None] * unit
 
     def _cells(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
         """The cells one scan hits, and those its rays cross (not hit), as sorted unique keys."""
         c = float(self.cell_size)
-        arc = self._arc(pose, ends)
-        if arc > 0:
-            near, ends = self._cones(pose, near, ends, arc)
-        hit = near > 0
+        hit, ends, starts, free_ends = self._rays(pose, near, ends)
         hits = np.unique(cell_keys(ends[hit], c))
-        d = ends - pose[:2]
-        length = np.hypot(d[:, 0], d[:, 1])
-        reach = np.where(hit, length - c, length)
-        step = c / 2
-        counts = np.maximum(np.floor(reach / step), 0).astype(np.int64)
-        beam = np.repeat(np.arange(len(ends)), counts)
-        along = (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts) + 0.5) * step
-        unit = d / np.where(length > 0, length, 1.0)[:, None]
-        crossed = np.unique(cell_keys(pose[:2] + along[:, None] * unit[beam], c))
+        cells, _ = walk_rays(starts, free_ends, c)
+        crossed = np.unique(((cells[:, 0] + _SHIFT_I) << np.int64(32)) + (cells[:, 1] + _SHIFT_J))
         return hits, np.setdiff1d(crossed, hits, assume_unique=True)
 
     def _slots(self, keys: np.ndarray) -> np.ndarray:
@@ -423,7 +483,7 @@ class HabituatingMap(NoveltyDetector):
 
     # ------------------------------------------------------------------ learning
     def _start(self, X: np.ndarray) -> None:
-        self._rows(X[:1])
+        self._rows(X[:1], bounds=False)
         self.cells_ = np.empty(0, dtype=np.int64)
         self.efficacy_ = np.empty(0)
         self.passes_ = np.empty(0)
@@ -445,7 +505,7 @@ class HabituatingMap(NoveltyDetector):
             # its free space counts when it is `lag` scans old: evidence from earlier passes only
             self.pending_ = np.vstack([self.pending_, X[i:i + 1]])
             while self.pending_.shape[0] > lag:
-                (pose,), (ring,), (points,) = self._rows(self.pending_[:1])
+                (pose,), (ring,), (points,) = self._rows(self.pending_[:1], bounds=False)
                 self.passes_[self._slots(self._cells(pose, ring, points)[1])] += 1.0
                 self.pending_ = self.pending_[1:]
         return out
@@ -505,7 +565,7 @@ class HabituatingMap(NoveltyDetector):
 #: chose whatever the class's defaults become (``visit_gap = 0``: a step a scan, as it was chosen).
 MAP_EXPLORE = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
                "tolerance": 0, "unseen": 0.5, "arc": 0.0, "tau_neighbour": None, "min_passes": 0,
-               "evidence_lag": 0, "visit_gap": 0}
+               "evidence_lag": 0, "visit_gap": 0, "max_range": 10.0, "max_scan_cells": 1_000_000}
 
 
 def map_explore(**params) -> HabituatingMap:

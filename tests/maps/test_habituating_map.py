@@ -4,17 +4,18 @@ Rows are the ``points`` input (x, y, heading, n nearness values, n end points'
 x, then y). With alpha = 1 and tau = 2, one Euler step of equation (1) a scan
 halves a hit cell's efficacy: y_k = 2^-k exactly (y_inf = 1 - 1/alpha = 0,
 r = 1 - alpha / tau = 1/2; ``visit_gap=0``: every hit a step). Cells are 1 m, the robot stands at (0.1, 0.1), so
-that an echo at (2.1, 0.1) lies in cell (2, 0) and its ray, sampled every
-0.5 m up to one cell short of it (0.35 and 0.85), crosses cell (0, 0) only.
+that an echo at (2.1, 0.1) lies in cell (2, 0) and its ray, walked up to one
+cell short of it (to (1.1, 0.1)), crosses cells (0, 0) and (1, 0).
 """
 
 import math
+import tracemalloc
 
 import numpy as np
 import pytest
 
 from novelty._component import StateError
-from novelty.maps.habituating_map import HabituatingMap, cell_keys, sector_width
+from novelty.maps.habituating_map import HabituatingMap, MapRangeWarning, cell_keys, sector_width
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)
@@ -53,8 +54,8 @@ def state(det, i, j):
 def test_a_cell_hit_k_times_has_efficacy_two_to_the_minus_k(k):
     det = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))] * k)
     assert state(det, 2, 0) == (0.5 ** k, 0.0)
-    assert state(det, 0, 0) == (1.0, float(k))     # crossed k times, never hit
-    assert det.cells_.tolist() == sorted([cell(0, 0), cell(2, 0)])
+    assert state(det, 0, 0) == state(det, 1, 0) == (1.0, float(k))     # crossed k times, never hit
+    assert det.cells_.tolist() == sorted([cell(0, 0), cell(1, 0), cell(2, 0)])
     assert det.novelty([scan((2.1, 0.1))]).tolist() == [0.5 ** k]
 
 
@@ -76,26 +77,26 @@ def test_neighbours_habituate_at_their_own_time_constant():
 
 # ------------------------------------------------------------------ free-space evidence (2)
 def test_an_echo_where_the_robot_saw_free_space_is_novel_by_the_passes_through_its_cell():
-    # an echo at (3.1, 0.1), seen twice: its rays cross cells (0, 0) and (1, 0); cell (2, 0) is not reached
+    # an echo at (3.1, 0.1), seen twice: its rays cross cells (0, 0) to (2, 0); cell (0, 2) is never met
     det = HabituatingMap(evidence="free", free_scale=2.0, **EXACT).fit([scan((3.1, 0.1))] * 2)
-    assert state(det, 1, 0) == (1.0, 2.0)
-    v = det.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))])
-    # (1, 0): y = 1 and 2 passes, 1 - exp(-2/2); (2, 0) never seen: no evidence; (3, 0): passes 0
+    assert state(det, 1, 0) == state(det, 2, 0) == (1.0, 2.0)
+    v = det.novelty([scan((1.5, 0.1)), scan((0.1, 2.1)), scan((3.1, 0.1))])
+    # (1, 0): y = 1 and 2 passes, 1 - exp(-2/2); (0, 2) never seen: no evidence; (3, 0): passes 0
     assert v.tolist() == [1 - math.exp(-1.0), 0.0, 0.0]
     hits = HabituatingMap(evidence="hits", **EXACT).fit([scan((3.1, 0.1))] * 2)
-    assert hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist() == [1.0, 1.0, 0.25]
+    assert hits.novelty([scan((1.5, 0.1)), scan((0.1, 2.1)), scan((3.1, 0.1))]).tolist() == [1.0, 1.0, 0.25]
 
 
 @pytest.mark.parametrize("unseen", [0.0, 0.5, 1.0])
 def test_unseen_gives_a_cell_never_seen_through_that_weight(unseen):
-    # as above: (1, 0) y = 1 and 2 passes; (2, 0) never met (y = 1, f = 0); (3, 0) hit twice (y = 1/4, f = 0)
+    # as above: (1, 0) y = 1 and 2 passes; (0, 2) never met (y = 1, f = 0); (3, 0) hit twice (y = 1/4, f = 0)
     det = HabituatingMap(free_scale=2.0, **{**EXACT, "unseen": unseen}).fit([scan((3.1, 0.1))] * 2)
-    v = det.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))])
+    v = det.novelty([scan((1.5, 0.1)), scan((0.1, 2.1)), scan((3.1, 0.1))])
     w = 1 - math.exp(-1.0)
     assert v == pytest.approx([unseen + (1 - unseen) * w, unseen, 0.25 * unseen], rel=1e-12, abs=0)
     if unseen == 1.0:   # u = 1 is the map with hits alone
         hits = HabituatingMap(evidence="hits", **EXACT).fit([scan((3.1, 0.1))] * 2)
-        assert v.tolist() == hits.novelty([scan((1.5, 0.1)), scan((2.5, 0.1)), scan((3.1, 0.1))]).tolist()
+        assert v.tolist() == hits.novelty([scan((1.5, 0.1)), scan((0.1, 2.1)), scan((3.1, 0.1))]).tolist()
 
 
 def test_a_first_perception_scores_the_unseen_weight():
@@ -126,9 +127,9 @@ def test_a_scans_novelty_is_the_mean_of_its_top_cells_missing_ones_counted_as_ze
 def test_a_scan_with_no_echo_scores_zero_and_its_rays_count_as_free_space():
     det = HabituatingMap(evidence="hits", **EXACT).fit([scan(None)])
     assert det.novelty([scan(None)]).tolist() == [0.0]
-    # 4 m ahead, sampled every 0.5 m to the end (no echo: no cell short of it): cells 0 to 3 crossed
-    assert det.cells_.tolist() == [cell(i, 0) for i in range(4)]
-    assert det.passes_.tolist() == [1.0] * 4 and det.efficacy_.tolist() == [1.0] * 4
+    # 4 m ahead, walked to its end (no echo: no cell short of it), (4.1, 0.1): cells 0 to 4 crossed
+    assert det.cells_.tolist() == [cell(i, 0) for i in range(5)]
+    assert det.passes_.tolist() == [1.0] * 5 and det.efficacy_.tolist() == [1.0] * 5
 
 
 def test_learning_returns_each_scans_novelty_before_it_is_learned():
@@ -157,8 +158,7 @@ def test_the_defaults_are_the_sixth_selections_cells_of_0_1_m_tolerance_1_sector
         (0.1, 1, "sector", 0.25, 10, "free")
     # one sector a scan (no neighbour: read on its axis), the robot at (0.05, 0.05); two scans with an echo
     # at (0.93, 0.05): its cell (9, 0) hit twice in one visit, one step (y = 1/2 with tau = 2, alpha = 1),
-    # never crossed; the ray, sampled every 0.05 m up to 0.1 m short of it (15 samples, x 0.075 to 0.775),
-    # crosses (0..7, 0) twice
+    # never crossed; the ray, walked up to 0.1 m short of it (to x = 0.83), crosses (0..8, 0) twice
     robot = (0.05, 0.05, 0.0)
     det = HabituatingMap(tau=2.0, alpha=1.0, top=1).fit([scan((0.93, 0.05), robot=robot)] * 2)
     v = det.novelty([scan(echo, robot=robot) for echo in ((0.55, 0.05), (0.93, 0.05), (1.03, 0.05), (0.55, 0.35))])
@@ -258,12 +258,13 @@ def test_fewer_steps_leave_every_cell_at_least_as_novel_as_a_step_a_scan():
 
 def test_with_an_arc_each_echo_is_spread_over_its_cone_at_its_range():
     # arc 0.4 rad, range 2 m, cells 1 m: 1 + ceil(0.4 * 2 / 0.5) = 3 rays at -0.2, 0, 0.2 rad; their ends
-    # (2.060, -0.297), (2.1, 0.1), (2.060, 0.497) lie in cells (2, -1) and (2, 0); sampled at 0.25 and
-    # 0.75 m (up to one cell short of the echo) they cross (0, 0) and, at (0.835, -0.049), (0, -1)
+    # (2.060, -0.297), (2.1, 0.1), (2.060, 0.497) lie in cells (2, -1) and (2, 0); walked up to one cell
+    # short of the echo, to (1.080, -0.099), (1.1, 0.1) and (1.080, 0.299), they cross (0, 0), (0, -1) (the
+    # first below y = 0 at x = 0.598), (1, -1), and (1, 0)
     det = HabituatingMap(evidence="hits", **{**EXACT, "arc": 0.4}).fit([scan((2.1, 0.1))])
-    assert det.cells_.tolist() == sorted([cell(0, -1), cell(0, 0), cell(2, -1), cell(2, 0)])
+    assert det.cells_.tolist() == sorted([cell(0, -1), cell(0, 0), cell(1, -1), cell(1, 0), cell(2, -1), cell(2, 0)])
     assert state(det, 2, -1) == (0.5, 0.0) and state(det, 2, 0) == (0.5, 0.0)
-    assert state(det, 0, -1) == (1.0, 1.0) and state(det, 0, 0) == (1.0, 1.0)
+    assert state(det, 0, -1) == state(det, 0, 0) == state(det, 1, -1) == state(det, 1, 0) == (1.0, 1.0)
     axis = HabituatingMap(evidence="hits", **EXACT).fit([scan((2.1, 0.1))])
     assert cell(2, -1) not in axis.cells_ and cell(0, -1) not in axis.cells_
 
@@ -460,7 +461,7 @@ def test_map_explore_is_the_fourth_selections_choice_written_out_whatever_the_de
     assert isinstance(det, HabituatingMap)
     chosen = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
               "tolerance": 0, "unseen": 0.5, "arc": 0.0, "tau_neighbour": None, "min_passes": 0,
-              "evidence_lag": 0, "visit_gap": 0}
+              "evidence_lag": 0, "visit_gap": 0, "max_range": 10.0, "max_scan_cells": 1_000_000}
     assert {k: det.get_params()[k] for k in chosen} == chosen
     # every setting is written out (but the threshold and contamination of predict): no default leaks in
     assert set(chosen) == set(HabituatingMap().get_params()) - {"threshold", "contamination"}
@@ -469,3 +470,54 @@ def test_map_explore_is_the_fourth_selections_choice_written_out_whatever_the_de
     # a parameter given replaces its value; the rest stay the preset's
     other = novelty.make("map-explore", tolerance=1)
     assert (other.tolerance, other.cell_size, other.unseen) == (1, 0.2, 0.5)
+
+
+# ------------------------------------------------------------------ bounds: what one row may cost
+def far_row(distance, sectors=180):
+    """One points row: the robot at the origin, sectors over its front half, each with an echo ``distance``
+    m away (a long-range lidar, or a bad pose)."""
+    bearings = np.linspace(-math.pi / 2, math.pi / 2, sectors)
+    return [0.0, 0.0, 0.0, *[0.5] * sectors, *(distance * np.cos(bearings)), *(distance * np.sin(bearings))]
+
+
+def peak_memory_mb(work):
+    tracemalloc.start()
+    try:
+        out = work()
+        return out, tracemalloc.get_traced_memory()[1] / 2**20
+    finally:
+        tracemalloc.stop()
+
+
+def test_echoes_beyond_max_range_are_cut_to_it_and_read_as_no_echo_with_a_warning():
+    # end points 100 m, 1 km and 10 km away cost 100 s and 1.9 GB, 18.7 GiB, 1.8 TiB when each ray was
+    # sampled every half cell, across its cone too; cut to max_range = 10 m they cost what a 10 m scan costs
+    rows = [far_row(100.0), far_row(1e3), far_row(1e4)]
+    with pytest.warns(MapRangeWarning, match="540 sectors of 3 scans end beyond max_range = 10 m"):
+        det, peak = peak_memory_mb(lambda: HabituatingMap().fit(rows))
+    assert peak < 200
+    assert det.efficacy_.min() == 1.0                  # no echo learned: each was beyond reach
+    i, j = (det.cells_ >> 32) - (1 << 30), (det.cells_ & 0xFFFFFFFF) - (1 << 31)
+    assert np.hypot(i, j).max() * 0.1 <= 10.0 + 0.2    # every cell met within reach (a cell's diagonal)
+    assert det.passes_.min() >= 1
+
+
+@pytest.mark.filterwarnings("ignore::novelty.maps.habituating_map.MapRangeWarning")
+def test_a_scan_that_would_touch_more_than_max_scan_cells_is_refused_before_anything_is_learned():
+    det = HabituatingMap(max_range=1e4).fit([far_row(2.0)])
+    before = (det.cells_.copy(), det.efficacy_.copy(), det.passes_.copy(), det.scans_)
+    for distance in (100.0, 1e3, 1e4):
+        with pytest.raises(ValueError, match="more than max_scan_cells = 1000000.*nothing was learned"):
+            det.partial_fit([far_row(2.0), far_row(distance)])
+    assert np.array_equal(det.cells_, before[0]) and np.array_equal(det.efficacy_, before[1])
+    assert np.array_equal(det.passes_, before[2]) and det.scans_ == before[3]
+    with pytest.raises(ValueError, match="max_scan_cells"):
+        det.novelty([far_row(1e4)])
+
+
+def test_a_ray_costs_the_cells_it_passes_through_linear_in_its_length():
+    for distance in (10.0, 100.0, 1000.0):
+        det = HabituatingMap(arc=0.0, max_range=2e3, evidence="hits").fit([far_row(distance, sectors=1)])
+        # one ray straight ahead (bearing -pi/2 with one sector: down the y axis), its cells to one short of
+        # the echo, and the echo's
+        assert det.cells_.size == round(distance / 0.1) + 1
