@@ -321,6 +321,7 @@ detectors = Registry(
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",
         "som-distance": "novelty.baselines.som_distance:SOMDistance",
         "nearest-memory": "novelty.baselines.nearest_memory:NearestMemory",
+        "occupancy-grid": "novelty.baselines.occupancy_grid:OccupancyGrid",
         "context": "novelty.context:SequenceContext",
         "parzen": "novelty.baselines.parzen:ParzenDetector",
         "isolation-forest": "novelty.baselines.sklearn_outlier:IsolationForestDetector",

@@ -155,7 +155,7 @@ from .._validation import Interval, Options
 from ..detector import NoveltyDetector
 from ..habituation.stanley import euler_steps
 from .grid_walk import walk_lengths, walk_rays
-from .points import split_points
+from .points import MAX_COORDINATE, example_rows, split_points
 
 #: The packed offsets of a cell's eight neighbours.
 _NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
@@ -167,8 +167,6 @@ __all__ = ["HabituatingMap", "MapRangeWarning", "cell_keys", "sector_width", "ma
 class MapRangeWarning(UserWarning):
     """Sectors ending beyond a map's ``max_range`` were cut to it and read as no echo."""
 
-#: Coordinates (m) beyond which a row is refused: the packed cell indices stay exact.
-MAX_COORDINATE = 1e6
 _SHIFT_I, _SHIFT_J = np.int64(1 << 30), np.int64(1 << 31)
 
 
@@ -330,22 +328,8 @@ class HabituatingMap(NoveltyDetector):
 
     @classmethod
     def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
-        """Rows of the points input for generic checks: a robot driving along a corridor 4 m wide.
-
-        Eight sectors all round; the walls at y = +-2 m, the robot's lateral
-        position and heading wandering by a seeded random walk, no echo beyond 4 m.
-        """
-        rng = np.random.default_rng(seed)
-        x = np.linspace(0.0, 0.1 * n, n)
-        y = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -1.0, 1.0)
-        heading = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -0.5, 0.5)
-        bearings = heading[:, None] + np.arange(8) * (np.pi / 4)
-        s = np.sin(bearings)
-        with np.errstate(divide="ignore"):
-            r = np.where(s > 0, (2.0 - y[:, None]) / s, np.where(s < 0, (-2.0 - y[:, None]) / s, np.inf))
-        r = np.minimum(r, 4.0)
-        X = np.c_[x, y, heading, 1.0 - r / 4.0, x[:, None] + r * np.cos(bearings), y[:, None] + r * s]
-        return X
+        """Rows of the points input for generic checks (:func:`novelty.maps.points.example_rows`)."""
+        return example_rows(seed, n)
 
     def _validate_params(self) -> None:
         super()._validate_params()
@@ -356,10 +340,7 @@ class HabituatingMap(NoveltyDetector):
     # ------------------------------------------------------------------ the rows
     def _rows(self, X: np.ndarray, bounds: bool = True):
         """The rows as (poses, nearness, end points); with ``bounds``, each scan's cost checked first."""
-        poses, near, ends = split_points(X, type(self).__name__)
-        if np.abs(poses[:, :2]).max() > MAX_COORDINATE or np.abs(ends).max() > MAX_COORDINATE:
-            raise ValueError(f"{type(self).__name__}: a pose or end point lies more than {MAX_COORDINATE:g} m "
-                             "from the world's origin; give poses in metres in a local frame (odom or map).")
+        poses, near, ends = split_points(X, type(self).__name__, bounded=True)
         if bounds:
             self._check_sizes(poses, near, ends)
         return poses, near, ends
