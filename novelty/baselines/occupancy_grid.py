@@ -75,7 +75,6 @@ import numpy as np
 from .._component import StateError, check_array_state, check_int_state
 from .._validation import Interval, Options
 from ..detector import NoveltyDetector
-from ..maps.habituating_map import MapRangeWarning
 from ..maps.points import MAX_COORDINATE, example_rows, split_points
 from ..maps.tiles import TILE_CELLS, GridFullWarning, TileIndex
 
@@ -287,20 +286,7 @@ class OccupancyGrid(NoveltyDetector):
         warn of sectors cut at ``max_range``. Returns the longest walk of a ray (cells)."""
         from ..maps import _grid_kernels as grid
 
-        sizes = np.empty(X.shape[0], dtype=np.int64)
-        longest, cut = grid.scan_sizes(X, n, float(self.cell_size), float(self.max_range), 0.0, 0.0,
-                                       int(self.max_scan_cells), sizes)
-        over = np.flatnonzero(sizes > self.max_scan_cells)
-        if over.size:
-            raise ValueError(f"{type(self).__name__}: the scan of row {over[0]} would touch {sizes[over[0]]} "
-                             f"cells or more, more than max_scan_cells = {self.max_scan_cells} (its beams up to "
-                             f"max_range = {self.max_range:g} m, in cells of {self.cell_size:g} m); nothing was "
-                             "learned. Lower max_range, or raise cell_size or max_scan_cells.")
-        if cut:
-            warnings.warn(f"{cut} sectors end beyond max_range = {self.max_range:g} m from the robot: "
-                          f"{type(self).__name__} reads each as no echo, free up to max_range (set max_range to "
-                          "the sensor's range to read them whole).", MapRangeWarning, stacklevel=4)
-        return int(longest)
+        return grid.check_costs(X, self, 0.0, 0.0, what="beams")[1]
 
     def _check_layout(self) -> None:
         """What the compiled loop indexes by, checked before every call (a state set or replaced since)."""

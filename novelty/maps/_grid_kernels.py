@@ -18,6 +18,8 @@ cached on disk after, cost about a second).
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from numba import njit
 
@@ -27,7 +29,7 @@ from . import scan_rays as _scan
 from .tiles import TILE_CELLS, TILE_SHIFT
 
 __all__ = ["walk", "length", "rays", "ray_count", "table_of", "find", "add", "unit", "tile_key", "bits_for",
-           "tiles_crossed", "scan_sizes"]
+           "tiles_crossed", "scan_sizes", "check_costs"]
 
 #: the cells of one ray into ``out[:n]``, in order; returns n (``walk_into`` compiled)
 walk = compiled(walk_into)
@@ -140,3 +142,26 @@ def scan_sizes(X, n_sectors, c, max_range, arc, margin, most, out):
                 longest = max(longest, n)
         out[r] = total
     return longest, cut
+
+
+def check_costs(X, grid, arc: float, margin: float, what: str = "rays") -> tuple[np.ndarray, int]:
+    """Refuse rows with a scan that would touch more than ``grid.max_scan_cells`` cells, before anything is
+    learned (a ValueError naming the row), and warn of sectors cut at ``grid.max_range``
+    (:class:`~novelty.maps.scan_rays.MapRangeWarning`). ``grid``: the component whose bounds these are (its
+    ``cell_size``, ``max_range``, ``max_scan_cells``). Returns each row's cells and the longest walk of a ray."""
+    n = (X.shape[1] - 3) // 3
+    sizes = np.empty(X.shape[0], dtype=np.int64)
+    longest, cut = scan_sizes(X, n, float(grid.cell_size), float(grid.max_range), arc, margin,
+                              int(grid.max_scan_cells), sizes)
+    name = type(grid).__name__
+    over = np.flatnonzero(sizes > grid.max_scan_cells)
+    if over.size:
+        raise ValueError(f"{name}: the scan of row {over[0]} would touch {sizes[over[0]]} cells or more, more than "
+                         f"max_scan_cells = {grid.max_scan_cells} (its {what} up to max_range = "
+                         f"{grid.max_range:g} m, in cells of {grid.cell_size:g} m); nothing was learned. Lower "
+                         "max_range, or raise cell_size or max_scan_cells.")
+    if cut:
+        warnings.warn(f"{cut} sectors end beyond max_range = {grid.max_range:g} m from the robot: {name} reads each "
+                      "as no echo, its free space up to max_range (set max_range to the sensor's range to read "
+                      "them whole).", _scan.MapRangeWarning, stacklevel=5)
+    return sizes, int(longest)

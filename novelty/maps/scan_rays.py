@@ -36,7 +36,11 @@ import math
 
 import numpy as np
 
-__all__ = ["scan_rays", "ray_count", "sector_width", "cone_rays"]
+__all__ = ["scan_rays", "ray_count", "sector_width", "cone_rays", "MapRangeWarning"]
+
+
+class MapRangeWarning(UserWarning):
+    """Sectors ending beyond a grid's ``max_range`` were cut to it and read as no echo."""
 
 
 def sector_width(x, y, ex, ey):

@@ -93,10 +93,13 @@ class TileIndex:
 
     def find(self, keys: np.ndarray) -> np.ndarray:
         """The order of each key's tile, -1 where there is none."""
+        keys = np.asarray(keys, dtype=np.int64)
+        if self._sorted.size == 0:
+            return np.full(keys.shape, -1, dtype=np.int64)
         at = np.searchsorted(self._sorted, keys)
         known = at < self._sorted.size
         known[known] = self._sorted[at[known]] == keys[known]
-        return np.where(known, self._order[np.minimum(at, max(self._sorted.size - 1, 0))], -1)
+        return np.where(known, self._order[np.minimum(at, self._sorted.size - 1)], -1)
 
     def units(self, i, j) -> np.ndarray:
         """Each cell's unit by (1), -1 for a cell of a tile not held."""

@@ -13,9 +13,8 @@ import pytest
 
 from novelty.baselines.occupancy_grid import OccupancyGrid
 from novelty.maps.grid_walk import walk_cells
-from novelty.maps.habituating_map import MapRangeWarning
 from novelty.maps.points import example_rows
-from novelty.maps.scan_rays import scan_rays
+from novelty.maps.scan_rays import MapRangeWarning, scan_rays
 from novelty.maps.tiles import GridFullWarning
 
 EXACT = {"cell_size": 1.0, "l_occ": 1.0, "l_free": -0.5, "l_min": -2.0, "l_max": 2.0, "tolerance": 0}
