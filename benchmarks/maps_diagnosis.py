@@ -17,7 +17,7 @@ carries the pairs it wins. Each familiar scan is put in the first of these class
 1. ``object edge``: one of its scoring cells holds an echo off an object (the object seen on fewer beams
    than the label's three, or from a scan labelled for another object);
 2. ``first visit``: the robot stands where it never stood before (no earlier pose within 1 m facing within
-   90 degrees: novelty.io.objects.tasks.familiar_places): a place first met;
+   90 degrees: novelty.tasks.objects.object_tasks.familiar_places): a place first met;
 3. ``one cell off a known surface, along the beam``: every scoring cell has a cell hit before next to it
    along the beam from the robot (the cell half a cell nearer or farther along the ray through its
    centre): a surface the map knows, its echo landing short or long (range noise, pose error);
@@ -55,11 +55,11 @@ import numpy as np
 
 from novelty.bench.holdout.metrics import roc_auc
 from novelty.data import FAMILIAR
-from novelty.io.objects import cast_all
-from novelty.io.objects.placement import object_from_fields
-from novelty.io.objects.radish import radish_objects_exploration
-from novelty.io.objects.tasks import LABEL_DEFAULTS, familiar_places, read_drive
-from novelty.io.radish import radish_log
+from novelty.tasks.objects import cast_all
+from novelty.tasks.objects.placement import object_from_fields
+from novelty.tasks.radish import radish_objects_exploration
+from novelty.tasks.objects.object_tasks import LABEL_DEFAULTS, familiar_places, read_drive
+from novelty.tasks.radish import radish_log
 from novelty.maps import HabituatingMap, habituating_map, split_points
 from novelty.maps.habituating_map import cell_keys
 

@@ -21,9 +21,9 @@ folder), in the shapes real robots record:
 - ``fixed (ROS 2)``: the ``fixed`` scans in a ROS 2 SQLite bag;
 - ``fixed (MCAP, zstd chunks)`` and ``fixed (ROS 2, zstd messages)``: the
   same stored compressed, every compressed part checked before rosbags
-  inflates it (:mod:`novelty.io.ros2_inflation`), a second inflation.
+  inflates it (:mod:`novelty.io.ros2.inflation`), a second inflation.
 
-For each, the time of :func:`novelty.io.recording.read_rings` (opening the
+For each, the time of :func:`novelty.io.read_rings` (opening the
 bag, decoding, assembling, placing, posing, merging, reducing each sweep to
 16 sectors) is set against rosbags' ``AnyReader`` opening the same bag and
 deserializing every message the reader reads (the scans, and ``/tf`` where
@@ -49,7 +49,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))   # this checkout's novelty, not an installed one
 
-from novelty.io.recording import read_rings  # noqa: E402
+from novelty.io import Reading, read_rings  # noqa: E402
 
 TARGET = 1.5
 
@@ -180,7 +180,7 @@ def rosbags_deserializes(path: Path, topics) -> int:
 
 
 def ours_reads(path: Path, options) -> int:
-    return sum(1 for _ in read_rings(path, options.get("topic"), sectors=16))
+    return sum(1 for _ in read_rings(path, Reading(topic=options.get("topic"), sectors=16)))
 
 
 def _cpu(fn, *args) -> tuple[float, int]:

@@ -1,4 +1,4 @@
-"""Results tables in README.md and docs/, generated from the committed results of their suites.
+"""Results tables in README.md, docs/ and studies/, generated from the committed results of their suites.
 
 A table in a document is a region between two markers::
 
@@ -270,10 +270,10 @@ def regenerate(text: str, cache: dict | None = None) -> str:
 
 
 def documents() -> list[Path]:
-    """README.md and the markdown pages of docs/ (not the built site or the API pages)."""
+    """README.md, the markdown pages of docs/ (not the built site or the API pages) and the studies' reports."""
     pages = [p for p in sorted((ROOT / "docs").rglob("*.md"))
              if not {"_build", "api"} & set(p.relative_to(ROOT / "docs").parts[:-1])]
-    return [ROOT / "README.md", *pages]
+    return [ROOT / "README.md", *pages, *sorted((ROOT / "studies").rglob("*.md"))]
 
 
 def differences(paths=None) -> dict[Path, str]:

@@ -28,7 +28,7 @@ OBJECTS_INSPECTION, OBJECTS_EXPLORATION = "objects-inspection", "objects-explora
 #: the detectors of the points input (the robot's pose with each scan): their exploration and their guard
 MAPS_EXPLORATION, MAPS_DETECTION = "maps-exploration", "maps-detection"
 SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION, MAPS_EXPLORATION, MAPS_DETECTION)
-#: the answer before the rule of benchmarks/selection/learning-answer.md (the sonar ring alone)
+#: the answer before the rule of studies/learning_answer/learning-answer.md (the sonar ring alone)
 BEFORE = "explore"
 
 
@@ -48,7 +48,7 @@ ANSWERS = (
            "its settings were chosen on the detection suite's selection seeds 5-9, which no table reports"),
     Answer("learning", "a robot that keeps learning: flag a feature at first sight, then let it grow familiar",
            "map-explore",
-           "chosen by a rule fixed before its run (`benchmarks/selection/learning-answer.md`) against `explore` "
+           "chosen by a rule fixed before its run (`studies/learning_answer/learning-answer.md`) against `explore` "
            "and `habituating-map` on seeds 100-104 of the simulated open door, tour and patrol and the six objects "
            "tasks: the one candidate that stays above chance frozen on every hold-out task (seeds 5-9 and 105-109)",
            "a map of 0.2 m cells in the world frame, each with the paper's habituating synapse; it needs the "
@@ -56,7 +56,7 @@ ANSWERS = (
            "the-scan-was-taken-ours))"),
     Answer("no-pose", "the same, on a robot that does not know its pose (the sonar ring alone)",
            "gwr-explore-wang-hsu",
-           "chosen by a rule fixed before its run (`benchmarks/selection/learning-answer-no-pose.md`) among the 13 "
+           "chosen by a rule fixed before its run (`studies/learning_answer/learning-answer-no-pose.md`) among the 13 "
            "habituating detectors of the ring, on the same tasks and seeds: the one that stays above chance frozen "
            "on every hold-out task (seeds 5-9 and 105-109), by 0.008",
            "a growing network with the Wang-Hsu long-term synapse, on the sonar ring"),

@@ -20,6 +20,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+from . import _moved
 from . import registry as _registries
 from ._markup import plain_descriptions
 from ._version import __version__
@@ -64,6 +65,8 @@ _LAZY = {
     "ScanRangeWarning": "novelty.filter",
 }
 
+
+_moved.install()   # module paths that moved keep working, with a FutureWarning
 
 #: subpackages reachable as attributes after ``import novelty`` alone, imported on first use
 _SUBPACKAGES = ("datasets", "sonar", "bench", "baselines", "clusterers", "habituation", "testing",

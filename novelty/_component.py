@@ -156,9 +156,7 @@ class Component(BaseEstimator):
                 values[name] = {"__strings__": [str(v) for v in value.tolist()]}
             elif isinstance(value, np.generic):
                 values[name] = value.item()
-            elif isinstance(value, _JSON_SCALARS) or (
-                isinstance(value, (list, tuple)) and all(isinstance(v, _JSON_SCALARS) for v in value)
-            ):
+            elif _is_json_value(value):
                 values[name] = list(value) if isinstance(value, tuple) else value
             else:
                 raise StateError(
@@ -178,8 +176,12 @@ class Component(BaseEstimator):
             if not _is_state_name(name):
                 raise StateError(f"'{name}' is not a learned-state attribute name.")
         for name, value in values.items():
-            if isinstance(value, dict) and set(value) == {"__strings__"}:
+            if isinstance(value, dict) and set(value) == {"__strings__"} and _is_json_value(value["__strings__"]):
                 value = np.asarray(value["__strings__"], dtype=object)
+            elif not _is_json_value(value):
+                # only what _export_state writes: a value it could not write back is not a model's
+                raise StateError(f"{type(self).__name__}.{name} is {value!r}; a model file holds a number, a "
+                                 "string or a flat list of them there.")
             setattr(self, name, value)
         for name, value in arrays.items():
             setattr(self, name, np.array(value))  # own, writable copy
@@ -193,6 +195,12 @@ class Component(BaseEstimator):
 
     def _rebuild_scratch(self) -> None:
         """Recompute private caches (names starting with ``_``) from the state."""
+
+
+def _is_json_value(value) -> bool:
+    """Whether a model file's JSON holds ``value`` as it is: a scalar, or a flat list (tuple) of them."""
+    return isinstance(value, _JSON_SCALARS) or (
+        isinstance(value, (list, tuple)) and all(isinstance(v, _JSON_SCALARS) for v in value))
 
 
 #: the largest count a model file may hold (steps, unit ids): exact in float64, and more than

@@ -105,7 +105,7 @@ def gwr_explore(**params) -> HabituatingFilter:
     """GWR for exploration: flags a new feature on first sight, then habituates to it as it recurs.
 
     ``gwr-novelty`` set up for a robot that keeps learning while it
-    explores (ours, chosen on simulated explorations, see below):
+    explores (ours):
 
     - ``insertion_radius=1.5``: a unit only for a scan farther than 1.5
       sigma from its winner (``gwr-novelty``: 1 sigma), so that the next
@@ -119,11 +119,8 @@ def gwr_explore(**params) -> HabituatingFilter:
 
     What makes a recurring feature familiar: the units placed at it at its
     first encounter move onto it (the mismatch falls) and their synapses
-    habituate (the efficacy falls). Chosen on ``exploration-open-door``
-    seeds 5-19 and measured on seeds 0-4: the excess novelty of the opened
-    door over the familiar scans at its 3rd exposure is 0.22 of its first
-    (first-encounter ROC AUC 0.84); with the synapses held at 1
-    (``stimulus=0``: the network's mismatch alone) it is 0.32 (AUC 0.80).
+    habituate (the efficacy falls). How the settings were chosen and what
+    they measure: ``studies/exploration/``.
     """
     return _compose("gwr", "stanley", params, _GWR_EXPLORE)
 
@@ -142,21 +139,11 @@ def gwr_explore_wang_hsu(**params) -> HabituatingFilter:
     Every stimulation lowers the speed of recovery ``z``, so a unit that
     stands for a feature met before settles lower, ``alpha z y0 / (alpha z +
     beta S)``, and recovers more slowly (``som-wang-hsu`` shows the faster
-    re-habituation). Set up for exploration (ours, chosen on simulated
-    explorations): ``tau_winner=5.0``, ``beta=3.0`` (habituation rate;
-    ``tau_winner`` must be at least ``alpha l + beta`` for the Euler step)
-    and ``gamma=0.9`` (the largest value tried; the Euler step needs
-    ``gamma < 1 / l``); Wang & Hsu's other values as ``wang-hsu`` has them.
-
-    Measured on ``exploration-open-door``: chosen on seeds 5-39 (first-
-    encounter ROC AUC 0.857, excess of the door over the familiar scans at
-    its 3rd exposure 0.16 of its first; ``gwr-explore`` 0.849 and 0.17);
-    on seeds 0-4, 0.854 and 0.21 (``gwr-explore`` 0.836 and 0.22). The eight
-    settings tried (``tau_winner=5``, ``beta`` 2 or 3, ``gamma`` 0.1-0.9) all
-    reach 0.853-0.856 there, at 3rd/1st 0.21-0.30; seeds 0-4 of two of them
-    were seen before the choice, and the rule fixed beforehand (highest AUC
-    with 3rd/1st <= 0.25 on seeds 5-39) picks ``gamma=0.1, beta=3`` (0.855,
-    0.26 on seeds 0-4).
+    re-habituation). Set up for exploration (ours): ``tau_winner=5.0``,
+    ``beta=3.0`` (habituation rate; ``tau_winner`` must be at least
+    ``alpha l + beta`` for the Euler step) and ``gamma=0.9`` (the Euler step
+    needs ``gamma < 1 / l``); Wang & Hsu's other values as ``wang-hsu`` has
+    them. How the settings were chosen: ``studies/exploration/``.
     """
     return _compose("gwr", "wang-hsu", params, _GWR_EXPLORE_WANG_HSU)
 
@@ -176,9 +163,8 @@ def gwr_explore_staddon_higa(**params) -> HabituatingFilter:
     slowly, towards 0.04, so a feature met again keeps getting more familiar
     after the fast memory has done its part. The synapse's own defaults
     otherwise (gains 0.8, ``others="hold"``; ours). With ``others="forget"``
-    the slow memory makes forgetting rate-sensitive, but on the exploration
-    tasks (selection seeds 5-9) such detectors did not habituate (3rd/1st
-    0.44-0.62); see the exploration guide. Given the recent past it is
+    the slow memory makes forgetting rate-sensitive (what that does on the
+    exploration tasks: ``studies/exploration/``). Given the recent past it is
     ``explore``.
     """
     return _compose("gwr", "staddon-higa", params, _GWR_EXPLORE_STADDON_HIGA)
@@ -268,30 +254,10 @@ def explore(**params) -> SequenceContext:
     ``gwr-explore-staddon-higa``. A scan's novelty depends on the scans before
     it, so scans must come in the order they were perceived.
 
-    Chosen by a rule written down before the selection run (the exploration
-    guide gives it in full): on ``exploration-open-door``, ``-tour`` and
-    ``-patrol``, seeds 5-9 (the patrol 5-8 as the rule was written; seed 9
-    changes no rank), order the candidates by the tasks on which they both
-    flag (first-encounter ROC AUC >= 0.85) and habituate (3rd/1st excess <=
-    0.25), each with a first-exposure separation >= 0.5; then by how many of
-    these six criteria they meet; then by their lowest AUC; take the first
-    that stays above chance (mean ROC AUC > 0.5, seeds 5-9) on every hold-out
-    task of the detection suite. The two ranked above it, which flag and
-    habituate on the open door only, fall below chance there
-    (``gwr-explore-wang-hsu`` on ``uci-sonar-mines``, 0.497;
-    ``gwr-explore-staddon-higa`` alone on ``paper-a-to-b``, 0.446). This one
-    habituates on all three tasks (3rd/1st 0.07, 0.13, 0.11) and flags none
-    (AUC 0.785, 0.797, 0.793; lowest hold-out mean 0.520). It replaced the
-    first ``explore``, ``gwr-explore-wang-hsu`` with the same context, which
-    met the same three criteria at a lower least AUC (0.811, 0.768, 0.776).
-    The numbers on seeds 0-4 are in the exploration guide.
-
-    It was the answer of "Which detector?" for a robot that keeps learning
-    until the rule of benchmarks/selection/learning-answer.md, which let the
-    detectors of the ``points`` input compete: on that rule's new guard seeds
-    105-109 it falls below chance on ``paper-a-to-b`` (0.470), and
-    :func:`~novelty.maps.habituating_map.map_explore`, which needs the
-    robot's pose with each scan, is the answer now.
+    Chosen among the habituating detectors of the sonar ring by a rule
+    written before its run: ``studies/exploration/``. For a robot that knows
+    its pose with each scan, "Which detector?" answers
+    :func:`~novelty.maps.habituating_map.map_explore` (docs/guide/which-detector.md).
     """
     context = {k: params.pop(k) for k in _CONTEXT_PARAMS if k in params}
     return SequenceContext(gwr_explore_staddon_higa(**params), **{"delay": 3, "lag": 2, **context})

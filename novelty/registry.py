@@ -33,6 +33,8 @@ from importlib.metadata import entry_points
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
+from ._validation.parameters import unknown_parameters
+
 __all__ = [
     "Registry",
     "RegistryError",
@@ -92,17 +94,9 @@ def valid_parameters(factory: Callable) -> list[str] | None:
 
 def check_parameters(what: str, given: Mapping[str, Any], valid: list[str]) -> None:
     """Raise :class:`InvalidParameterError` naming the valid parameters."""
-    unknown = [name for name in given if name not in valid]
-    if not unknown:
-        return
-    hints = []
-    for name in unknown:
-        close = difflib.get_close_matches(name, valid, n=1)
-        hints.append(f"'{name}'" + (f" (did you mean '{close[0]}'?)" if close else ""))
-    raise InvalidParameterError(
-        f"Unknown parameter{'s' if len(unknown) > 1 else ''} {', '.join(hints)} for {what}. "
-        f"Valid parameters: {', '.join(sorted(valid)) or '(none)'}."
-    )
+    message = unknown_parameters(what, given, valid)
+    if message is not None:
+        raise InvalidParameterError(message)
 
 
 class Registry:
@@ -323,6 +317,7 @@ detectors = Registry(
         "gmm": "novelty.baselines.gmm:GaussianMixtureDetector",
         "som-distance": "novelty.baselines.som_distance:SOMDistance",
         "nearest-memory": "novelty.baselines.nearest_memory:NearestMemory",
+        "knn": "novelty.baselines.knn:KNNDetector",
         "occupancy-grid": "novelty.baselines.occupancy_grid:OccupancyGrid",
         "context": "novelty.context:SequenceContext",
         "parzen": "novelty.baselines.parzen:ParzenDetector",
@@ -359,18 +354,18 @@ _DATASETS = {
     "uci-sonar": "novelty.datasets.uci:uci_sonar",
     "uci-sonar-mines": "novelty.datasets.uci:uci_sonar_mines",
     "files": "novelty.datasets.files:files",
-    "recording": "novelty.io.tasks:recording_task",
-    "exploration-radish-intel": "novelty.io.radish:radish_intel",
-    "exploration-radish-aces": "novelty.io.radish:radish_aces",
-    "exploration-radish-csail": "novelty.io.radish:radish_csail",
-    "inspection-objects": "novelty.io.objects.tasks:inspection_task",
-    "exploration-objects": "novelty.io.objects.tasks:exploration_task",
-    "inspection-objects-radish-intel": "novelty.io.objects.radish:inspection_objects_intel",
-    "inspection-objects-radish-aces": "novelty.io.objects.radish:inspection_objects_aces",
-    "inspection-objects-radish-csail": "novelty.io.objects.radish:inspection_objects_csail",
-    "exploration-objects-radish-intel": "novelty.io.objects.radish:exploration_objects_intel",
-    "exploration-objects-radish-aces": "novelty.io.objects.radish:exploration_objects_aces",
-    "exploration-objects-radish-csail": "novelty.io.objects.radish:exploration_objects_csail",
+    "recording": "novelty.tasks.recordings:recording_task",
+    "exploration-radish-intel": "novelty.tasks.radish:radish_intel",
+    "exploration-radish-aces": "novelty.tasks.radish:radish_aces",
+    "exploration-radish-csail": "novelty.tasks.radish:radish_csail",
+    "inspection-objects": "novelty.tasks.objects.object_tasks:inspection_task",
+    "exploration-objects": "novelty.tasks.objects.object_tasks:exploration_task",
+    "inspection-objects-radish-intel": "novelty.tasks.radish:inspection_objects_intel",
+    "inspection-objects-radish-aces": "novelty.tasks.radish:inspection_objects_aces",
+    "inspection-objects-radish-csail": "novelty.tasks.radish:inspection_objects_csail",
+    "exploration-objects-radish-intel": "novelty.tasks.radish:exploration_objects_intel",
+    "exploration-objects-radish-aces": "novelty.tasks.radish:exploration_objects_aces",
+    "exploration-objects-radish-csail": "novelty.tasks.radish:exploration_objects_csail",
 }
 
 datasets = Registry("dataset", group="novelty.datasets", builtins=_DATASETS)

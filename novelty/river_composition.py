@@ -46,7 +46,7 @@ def register_with_river(detector_class: type) -> bool:
     """Register ``detector_class`` as a River anomaly detector if River is installed (True if it was).
 
     River is an optional dependency; importing ``river.base`` after this
-    package's own imports costs about 9 ms of CPU (measured), paid only
+    package's own imports has a cost (docs/guide/performance.md), paid only
     where River is installed.
     """
     if importlib.util.find_spec("river") is None:

@@ -305,7 +305,7 @@ def test_unfitted_threshold_attributes_raise_not_fitted():
         assert not hasattr(det, name)
 
 
-@pytest.mark.parametrize("name", ["kohonen-filter", "autoencoder-filter", "gmm", "lof", "parzen"])
+@pytest.mark.parametrize("name", ["kohonen-filter", "autoencoder-filter", "gmm", "lof", "knn", "parzen"])
 def test_baselines_fitted_with_contamination_flag_that_fraction(name):
     X = np.random.default_rng(3).normal(size=(100, 3))
     det = novelty.make(name, contamination=0.1).fit(X)
@@ -420,6 +420,7 @@ def test_a_fit_that_fails_keeps_the_previous_model(name, monkeypatch):
         ("gmm", r"minimum of 2 is required"),
         ("elliptic-envelope", r"minimum of 2 is required"),
         ("lof", r"needs at least 2 samples .*n_samples = 1"),
+        ("knn", r"more training inputs than n_neighbors=5 .*n_samples = 1"),
     ],
 )
 def test_a_refit_on_too_few_samples_names_the_need_and_keeps_the_model(name, message):

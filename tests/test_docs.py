@@ -1,5 +1,5 @@
-"""Every example of the README and of the guide pages runs, as a user would run it, and prints
-what its comments say.
+"""Every example of the README, of the guide pages and of the studies' reports runs, as a user
+would run it, and prints what its comments say.
 
 Each fenced block is run in a fresh interpreter (``python -c``) or shell
 (``bash``), in a temporary folder holding a copy of ``examples/``, with only the
@@ -33,7 +33,9 @@ from . import printed
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
-PAGES = [ROOT / "README.md", DOCS / "index.md", *sorted((DOCS / "guide").rglob("*.md"))]
+#: the pages whose blocks run: the README, the guides and the studies' reports
+PAGES = [ROOT / "README.md", DOCS / "index.md", *sorted((DOCS / "guide").rglob("*.md")),
+         *sorted((ROOT / "studies").rglob("*.md"))]
 #: a fenced block, with the HTML comment on the line before it, if any
 FENCE = re.compile(r"(?:^<!-- (?P<note>[^\n]*?) -->\n(?:\n)?)?^```(?P<lang>[^\n`]*)\n(?P<code>.*?)^```\s*$",
                    flags=re.S | re.M)

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from novelty.bench.holdout.metrics import roc_auc
-from novelty.io.objects.shapes import Cylinder
+from novelty.tasks.objects.shapes import Cylinder
 from novelty.maps import habituating_map
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 from novelty.maps.habituating_map import cell_keys
 
 ROOT = Path(__file__).resolve().parents[1]

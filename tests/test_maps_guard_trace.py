@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from novelty.maps import habituating_map
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 
 ROOT = Path(__file__).resolve().parents[1]
 _spec = importlib.util.spec_from_file_location("maps_guard_trace", ROOT / "benchmarks" / "maps_guard_trace.py")

@@ -1103,3 +1103,27 @@ def test_loading_a_fifo_is_refused_without_blocking(tmp_path):
     os.mkfifo(tmp_path / "m.npz")  # no writer: opening it would block forever
     with pytest.raises(ModelFileError, match="is a FIFO .*not a regular file"):
         novelty.load(tmp_path / "m.npz")
+
+
+@pytest.mark.parametrize("value", [[[]], [[1, 2]], {"a": 1}, [{"b": 2}], {"__strings__": [[1]]}])
+def test_a_model_file_value_its_writer_cannot_write_is_refused(tmp_path, value):
+    """A JSON value that a saved model never holds (a nested list, an object) is a ModelFileError at
+    load, not a model that loads and then cannot be saved again."""
+    det = novelty.make("gmm", n_components=1).fit(np.random.default_rng(0).random((30, 3)))
+    det.save(tmp_path / "m.npz")
+    entries = read_entries(tmp_path / "m.npz")
+    meta = meta_of(entries)
+    meta["root"]["values"]["n_iter_"] = value
+    bad = write_entries(tmp_path / "bad.npz", with_meta(entries, meta))
+    with pytest.raises(ModelFileError, match=r"n_iter_|Unexpected object"):
+        novelty.load(bad)
+
+
+def test_a_count_of_iterations_must_be_an_int(tmp_path):
+    det = novelty.make("gmm", n_components=1).fit(np.random.default_rng(0).random((30, 3)))
+    det.save(tmp_path / "m.npz")
+    entries = read_entries(tmp_path / "m.npz")
+    meta = meta_of(entries)
+    meta["root"]["values"]["n_iter_"] = [1, 2]
+    with pytest.raises(ModelFileError, match=r"n_iter_ must be an int"):
+        novelty.load(write_entries(tmp_path / "bad.npz", with_meta(entries, meta)))

@@ -7,7 +7,7 @@ the nearest echo in each, thresholded at 4 m, normalised, inverted), and
 streamed through detectors that score each scan before learning it. The
 corrected poses say which scans are a first visit of their place (no
 earlier pose within ``--radius`` m, or only ones of the current visit) and
-which revisit it (:func:`novelty.io.tasks.visit_counts`).
+which revisit it (:func:`novelty.tasks.recordings.visit_counts`).
 
 Printed: for each log and detector, the ROC AUC of novelty separating
 first visits from revisits over the whole log and over its second half
@@ -27,8 +27,8 @@ import numpy as np
 from sklearn.metrics import roc_auc_score
 
 import novelty
-from novelty.io import read_recording
-from novelty.io.tasks import visit_counts
+from novelty.io import Reading, read_recording
+from novelty.tasks.recordings import visit_counts
 
 LOGS = ("intel", "aces", "csail")
 ONLINE = ("hsom", "hsom-mismatch", "som-wang-hsu", "gwr-explore", "gwr-novelty", "gng-stanley",
@@ -97,8 +97,7 @@ def variants(folder: Path, radius: float) -> None:
                                            (16, 10, 4.0), (16, "min", 2.0), (16, "min", 8.0),
                                            (16, "min", 16.0)]:
             clip = threshold if reduce != "min" else None
-            X = read_recording(folder / f"{log}-corrected.log.gz", sectors=sectors, reduce=reduce,
-                               threshold=threshold, clip=clip).X
+            X = read_recording(folder / f"{log}-corrected.log.gz", Reading(sectors=sectors, reduce=reduce, threshold=threshold, clip=clip)).X
             h, m = scores(stream("hsom", X), visits), scores(stream("nearest-memory", X), visits)
             print(f"| {log} | {sectors} | {reduce} | {threshold:g} | {h['auc']:.3f} | {h['auc_late']:.3f} "
                   f"| {m['auc']:.3f} |")
@@ -110,7 +109,7 @@ def figure(folder: Path, out: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from novelty.io.plotting import plot_path
+    from novelty.io.recording.plotting import plot_path
 
     data = read_recording(folder / "intel-corrected.log.gz")
     visits = visit_counts(data.poses, 1.0)

@@ -34,8 +34,8 @@ def check_template(detector) -> None:
         check(detector.synapse, detector.stimulus)
         return
     # A registered name's synapse, with its defaults, is one value per factory: its range
-    # under a stimulus is checked once (building it at every call was 40 us of a 90 us
-    # stream of one scan, hsom)
+    # under a stimulus is checked once (building it at every call was a large share of a
+    # one-scan stream: docs/guide/performance.md)
     key = (detector.synapse, of_kind("synapse").get(detector.synapse), float(detector.stimulus)) \
         if isinstance(detector.synapse, str) else None
     try:

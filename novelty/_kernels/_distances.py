@@ -90,13 +90,13 @@ def distances_cols(WT, x, acc, out, n_units):
     Weights as (features, units); ``acc`` (8, units) is scratch. Where ``WT``,
     ``out`` and ``acc`` have the columns, the units are counted up to a whole
     number of vectors (:data:`VECTOR`): the columns past ``n_units`` get values
-    no one reads, and the loop no scalar remainder (100 units: 12 vectors and
-    4 units one at a time took a fifth longer than 13 vectors).
+    no one reads, and the loop no scalar remainder (a remainder taken one unit
+    at a time was slower than one more vector: docs/guide/performance.md).
     """
     whole = min(n_units + (-n_units) % VECTOR, WT.shape[1], out.shape[0], acc.shape[1])
     if WT.shape[0] == 16:
         # The paper's 16 sonar readings: with the block size a constant, LLVM
-        # drops the other cases and their checks (about 1.4x faster).
+        # drops the other cases and their checks (faster: docs/guide/performance.md).
         block_cols(WT, x, out, acc, 0, 16, whole)
     else:
         block_cols(WT, x, out, acc, 0, WT.shape[0], whole)

@@ -4,8 +4,8 @@ numba lets LLVM vectorise loops only (its straight-line vectoriser is off),
 so a short run of neighbouring values, such as the three units of a SOM's
 grid row moved towards a scan, stays one value at a time: :func:`move_four`
 moves four neighbouring columns of a row in one vector (the online HSOM's
-stream about 11 % faster than :func:`move_four_plain`, CPU time, medians of
-runs in alternation).
+stream measurably faster than with :func:`move_four_plain`:
+docs/guide/performance.md).
 
 The vector is written in LLVM's own terms through numba's extension API
 (:func:`numba.extending.intrinsic`), with opaque pointers as llvmlite's

@@ -160,8 +160,8 @@ def _aligned(rows, cols, like):
     """An empty (rows, cols) array of ``like``'s dtype starting on a 64-byte boundary.
 
     numba aligns its arrays to 32 bytes: a 64-byte vector load then splits
-    across two cache lines in every other process (measured up to 2x slower
-    on the pre-filter's scratch).
+    across two cache lines in every other process (measured slower on the
+    pre-filter's scratch: docs/guide/performance.md).
     """
     buf = np.empty(rows * cols + 64, like.dtype)  # 64 items: at least 64 bytes of room
     off = ((64 - buf.ctypes.data % 64) % 64) // buf.itemsize
@@ -197,7 +197,7 @@ def _prefilter(Wm, wn, XT, S, acc, s1, s2, arg):
     A function of its own (not inlined): in the caller's body LLVM vectorised
     it less well; its fast-math flags (:data:`PREFILTER_MATH`) stay in it. No
     helper taking arrays is inlined into its loops: compiled in the process
-    that runs it (not loaded from numba's cache) such a loop ran 10x slower.
+    that runs it (not loaded from numba's cache) such a loop ran many times slower.
     """
     n_units, n = Wm.shape
     end8 = n - n % 8
@@ -235,7 +235,7 @@ def _prefilter(Wm, wn, XT, S, acc, s1, s2, arg):
 @njit(cache=True, nogil=True, error_model="numpy", fastmath=PREFILTER_MATH)
 def _prefilter16(Wm, wn, XT, S, acc, s1, s2, arg):
     """:func:`_prefilter` for the paper's 16 features: each lane's sum in registers
-    (two chains of eight products), no pass through ``acc``; about 1.5x faster."""
+    (two chains of eight products), no pass through ``acc``; faster than the general loop."""
     n_units = Wm.shape[0]
     for b in range(LANES):
         s1[b] = np.inf
@@ -393,7 +393,7 @@ def units_cleared(d, n_units, total):
     ``total`` (at most :data:`CLEARED`) put every unit within the norm bound
     (:data:`novelty._validation.scans.MAX_SCAN_NORM`, which ``Clusterer._check_norm`` holds
     units to): the single-scan calls' check of the weights, one comparison a unit where a
-    check of every value cost one per weight (0.19 us of a 1.5 us learning call, 100 x 16).
+    check of every value cost one per weight (a large share of a learning call).
 
     By the triangle inequality ``|w_j| <= |x| + sqrt(D_j)`` for the exact distance ``D_j``,
     so ``d_j <= (MAX - sqrt(total))^2 (1 - 1e-6)`` puts unit ``j`` within the bound: the

@@ -3,8 +3,8 @@
 numba counts the references to an array's memory: every array handed to an
 inlined step function is counted in and out again, and numba's pruning of
 those pairs gives up on loops, so a driver's loop did some twenty atomic
-operations a scan (the online HSOM's stream about 8 % slower with them,
-CPU time, medians of runs in alternation). :func:`uncounted_aliases` gives
+operations a scan (the online HSOM's stream measurably slower with them:
+docs/guide/performance.md). :func:`uncounted_aliases` gives
 aliases that numba does not count (no memory owner: counting one is a test
 for null), and views of them are not counted either. The caller keeps the
 owners alive until the loop is done, and lets no alias outlive them

@@ -86,7 +86,7 @@ def _child(code: str, args: list[str], env_extra: dict | None = None, stderr=Non
     working directory. It is told whether the kernels' tricks are in use
     (:mod:`.tricks`), so that it compiles what this process decided.
     """
-    import subprocess  # a local import: 3 ms of `import novelty` for a cold cache only
+    import subprocess  # a local import: a share of `import novelty` that only a cold cache needs
 
     if not sys.executable:
         return None

@@ -17,10 +17,10 @@ they were compiling for. A process that ends while a child compiles does not
 wait for it: the child is a process of its own and finishes writing numba's
 cache; the modules still queued are handed to one last child, which compiles
 them one by one after the process is gone, and the next process loads them
-(``novelty bench --quick`` with an empty cache took 6.3x its warm time when
-five compilers ran at once and the command waited for them at exit, 1.8x
-now: medians of three on a shared two-core machine; it needs none of its
-kernels to be fast, its cells are short).
+(``novelty bench --quick`` with an empty cache took far longer when five
+compilers ran at once and the command waited for them at exit:
+docs/guide/performance.md; it needs none of its kernels to be fast, its cells
+are short).
 The children stay in the caller's process group, so Ctrl-C stops them too
 (nothing is cached then; a later process compiles again).
 :meth:`Compiled.wait` compiles a module that is still queued at once, in a
@@ -195,7 +195,7 @@ class Compiled:
 
         In a thread of this process numba's compiler holds the GIL for long
         stretches: the main thread, learning with the reference meanwhile, was
-        measured 40x slower. A child that fails leaves no cache; the import in
+        measured many times slower. A child that fails leaves no cache; the import in
         the thread then compiles after all.
         """
         self.child = children.spawn([self])

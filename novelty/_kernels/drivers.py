@@ -32,7 +32,7 @@ field per parameter (``p.learning_rate``), packed by
 :func:`novelty._kernels.params.pack`, whose type is written into the driver
 (``C_PARAMS``, ``S_PARAMS``). The records are handed over as their bytes
 (``cp``, ``sp``, viewed as the records in the driver): numba types a byte array
-at once, a structured array by a slower path (0.1 us a call each).
+at once, a structured array by a slower path, at every call.
 
 Why a generated file per pair: numba caches a compiled function on disk only
 when it is defined at module level in a real file and calls the step

@@ -21,8 +21,8 @@ distances to every unit vectorise over the units): ``weights_`` is the view
 ``WT[:, :n].T``, so it is not C-contiguous (numpy reads and writes it as any
 array; :func:`numpy.ascontiguousarray` copies it where a caller needs rows in
 memory). Keeping the weights transposed between calls, instead of transposing
-them in and out on every call, saves a single scan about 1 us (100 units of
-16 features). Giving the parts views counts as changes, which the engine
+them in and out on every call, saves a share of every single-scan call
+(docs/guide/performance.md). Giving the parts views counts as changes, which the engine
 takes as seen; the counters are written back through ``vars``, uncounted.
 
 **Growth.** The driver stops when an input needs a unit it has no room for;
@@ -133,7 +133,7 @@ class CompiledEngine(ReferenceEngine):
         self._counters = np.array(self._read_counters(c), dtype=np.int64).reshape(-1)
         # the parameters as the driver takes them: the bytes of their records (.params.pack),
         # which the driver views as the records again (numba types a plain byte array at once; a
-        # structured array by a slower path, 0.1 us a call each)
+        # structured array by a slower path, at every call)
         self.c_record, self.s_record = records if records is not None else (pack(c), pack(s))
         self._head = (self._WT, *self._c_arrays, self._counters, self.c_record.view(np.uint8),
                       *self._s_arrays, self.s_record.view(np.uint8))
@@ -153,8 +153,8 @@ class CompiledEngine(ReferenceEngine):
 
     def value_arrays(self) -> list:
         """The arrays :meth:`check_values` sums: the engine's own buffers in place of the parts'
-        views of them (contiguous, one dot each: the transposed ``weights_`` view took einsum
-        3.4 us, its buffer's dot 1.1 us, 100 units of 16 features), and any other float state
+        views of them (contiguous, one dot each: faster than einsum on the transposed ``weights_``
+        view), and any other float state
         as the parts hold it. The room past the units is zero or a unit the driver moved (a
         value that passed): it adds nothing a check would refuse."""
         buffers = {id(b): b for b in getattr(self, "_arrays", ())}
@@ -264,7 +264,7 @@ class CompiledEngine(ReferenceEngine):
     def _score_few(self, X, rows, distances):
         """A short batch (at most :data:`FEW` scans, checked) scan by scan by the driver's
         ``score_one`` against the weights as learning holds them: the batch kernel copies the
-        weights into rows first (``weights_`` is a transposed view of them), 8 us of a 15 us
+        weights into rows first (``weights_`` is a transposed view of them), over half of a
         call that scores one scan. The same winners and distances (both exact, the first of the
         least), or None when the driver's own check refuses a scan (a unit that passed
         :meth:`check_values` but not the driver's cheaper bound): then the batch kernel."""
@@ -279,7 +279,7 @@ class CompiledEngine(ReferenceEngine):
     def _score_held(self, x) -> bool:
         """One scan against the weights as learning holds them (``WT``), checked first as
         :meth:`_learn_one` checks it, the state's values and the scan, by the driver module's
-        ``score_one`` (one call: the checks cost 0.2 us, a second call from Python 0.5 us)."""
+        ``score_one`` (one call: its checks cost less than a second call from Python would)."""
         return self._score_one(*self._arrays, self.n, x, self.scored1) == 0
 
 
@@ -302,13 +302,12 @@ def _roomy(a: np.ndarray, square: bool, n: int, capacity: int) -> np.ndarray:
     return b
 
 
-@functools.lru_cache(maxsize=64)  # compiling one costs 60 us, a tenth of a short stream call
+@functools.lru_cache(maxsize=64)  # compiling one is slow next to a short stream call
 def _counter_writer(names: tuple[str, ...]) -> Callable:
     """``write(d, values)``: ``d[name] = value`` for the counters' names and values, as one
     unpacking assignment compiled for these names (as :func:`collections.namedtuple` compiles
-    its class): 0.1 us a single scan for the SOM's two counters, where ``d.update(zip(names,
-    values))`` took 0.35 us. The names are quoted as string literals (``repr``), so any name
-    is only ever a key."""
+    its class): faster for a single scan than ``d.update(zip(names, values))``. The names are
+    quoted as string literals (``repr``), so any name is only ever a key."""
     if not names:
         return lambda d, values: None
     targets = "".join(f"d[{name!r}], " for name in names)
@@ -320,17 +319,17 @@ def _counter_writer(names: tuple[str, ...]) -> Callable:
 #: the units of a vector in the distance loops (``novelty._kernels._distances.VECTOR``, which
 #: imports numba, as this module must not: a test keeps the two equal)
 VECTOR = 8
-#: the longest batch :meth:`CompiledEngine._score` scores scan by scan (about 2 us a scan that
-#: way; the batch kernel 11 us for one scan, 11 for two, 11 for four, where scan by scan took
-#: 9, 7 and 16: hsom 100 x 16, timeit, min of 7)
+#: the longest batch :meth:`CompiledEngine._score` scores scan by scan (the batch kernel's fixed
+#: cost is more than one or two scans scored one by one, less than four:
+#: docs/guide/performance.md)
 FEW = 2
 
 
 def whole_vectors(capacity: int) -> int:
     """``capacity`` rounded up to whole vectors: the distance loops then run over whole
     vectors of columns, the room past the units zero (finite: no slow path on garbage), with
-    no scalar remainder (100 units: 12 vectors and 4 units one at a time took a fifth longer
-    than 13 vectors)."""
+    no scalar remainder (a remainder taken one unit at a time was slower than one more
+    vector: docs/guide/performance.md)."""
     return capacity + (-capacity) % VECTOR
 
 

@@ -12,8 +12,8 @@ def _own_mapping(environ):
     ``os.environ._data``), when it holds exactly what ``environ`` shows; else None.
 
     :func:`disabled` is read on every learning call, where ``os.environ.get`` of a missing
-    variable raises and catches a KeyError: a single scan's ``score_learn_one`` took 5.2 us
-    that way against 4.3 us through the mapping (CPU time, medians of runs in alternation).
+    variable raises and catches a KeyError: a single scan's ``score_learn_one`` was measurably
+    slower that way than through the mapping (docs/guide/performance.md).
     Checked once, here; anything else (another Python, another layout) reads ``os.environ``.
     """
     data = getattr(environ, "_data", None)

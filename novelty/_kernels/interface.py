@@ -43,8 +43,8 @@ this engine go on reading the parts (every call, :func:`~.choice.engine_of`);
 timestamps, calibration), which only :mod:`novelty._filter.single_scan` asks.
 Folded into one comparison of the watched objects, every write to the owner
 (``last_time_``, at every timestamped call) would make ``engine_of`` check
-the state and build another engine: 1.4 ms for hsom, against 0.34 ms for a
-whole timestamped call of 10 scans (timeit, hsom 100 x 16); folded the other
+the state and build another engine, several times the cost of a whole
+timestamped call of 10 scans (docs/guide/performance.md); folded the other
 way (``holds`` and a separate comparison of the owner's counts), a single
 scan would make two comparisons where it makes one.
 """
@@ -136,7 +136,7 @@ class Engine:
         number: then :meth:`take_parameters`, and the parts are seen. Anything else it set (an
         array, a counter, another attribute) leaves the parts unseen: the next call has another
         engine chosen after the full check (:func:`~.state.check_state`), as after any other
-        change. Choosing one after every calibrating scan cost 0.3-0.4 ms a scan.
+        change. Choosing one after every calibrating scan cost far more than learning the scan.
         """
         clusterer = self.clusterer
         before = dict(vars(clusterer))
@@ -185,8 +185,8 @@ class Engine:
         every row's norm within the bound (a sum of non-negative squares bounds each of them,
         and the margin covers rounding); NaN, infinity and too large values all fail the
         comparison, and then the checks that name what is wrong run. The arrays are listed
-        again only when a part was set since (a count per part): listing them cost 5 us of a
-        15 us call that scores one scan."""
+        again only when a part was set since (a count per part): listing them at every call
+        was a large share of a call that scores one scan."""
         counts = tuple(map(_CHANGES, self.parts))
         if counts != self._values_seen:
             self._values = self.value_arrays()
@@ -222,8 +222,8 @@ class CheckedCopy:
     with their counts of changes at that time. While nothing was set on them since
     (:meth:`covers`), the copy's first call takes its engine after the layout alone
     (:func:`~.state.check_layout`: types and shapes, which a copy made while a thread
-    learned may tear) instead of the whole check (80-170 us, of a call that learns 1000
-    scans in 300-600 us), as the original goes on with its engine: values written into an
+    learned may tear) instead of the whole check (a large share of a call that learns a thousand
+    scans), as the original goes on with its engine: values written into an
     array in place are checked before every call by both (:meth:`Engine.check_values`)."""
 
     def __init__(self, clusterer, synapse, width: int):

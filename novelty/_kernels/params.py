@@ -148,8 +148,8 @@ def _fields(component, name: str, value) -> list[tuple[str, object, object]]:
 @functools.lru_cache(maxsize=1024)
 def _kind(cls: type, name: str) -> tuple:
     """``(fitted type or None, *field_kind)`` of a parameter of ``cls``, read once: a class's
-    rules and kernel declaration are its own, set in its body (reading them afresh took
-    15-30 us of every engine made, which packs its parts' records)."""
+    rules and kernel declaration are its own, set in its body (reading them afresh was
+    a large share of every engine made, which packs its parts' records)."""
     fitted = dict(cls.__dict__["_kernel"].fitted).get(name)
     return (fitted, None, (), False, False) if fitted is not None else (None, *field_kind(cls, name))
 
@@ -189,7 +189,7 @@ def pack(component) -> np.ndarray:
 
 @functools.lru_cache(maxsize=256)
 def _record_type(fields: tuple) -> np.dtype:
-    """The record's dtype of ``(field, type)`` pairs, made once for each (10 us a dtype)."""
+    """The record's dtype of ``(field, type)`` pairs, made once for each (a dtype is slow to build)."""
     return np.dtype(list(fields), align=True)
 
 

@@ -27,7 +27,7 @@ import numpy as np
 __all__ = ["score", "threads"]
 
 #: scans per kernel call: from two chunks on, threads share the work (8192: a chunk is
-#: about 0.4 ms of one core, small enough to share 200,000 scans evenly)
+#: short enough to share a batch of 200,000 scans evenly: docs/guide/performance.md)
 CHUNK = 8192
 
 _lock = threading.Lock()

@@ -92,8 +92,7 @@ def check_layout(detector) -> tuple:
 
     Alone, for a deep copy of a checked state (:class:`~.interface.CheckedCopy`), so that a
     copy torn by a thread learning while it was made (arrays copied before and after the
-    network grew) is refused, not read past: 17-25 us, where the whole check takes 94-132 (som,
-    gng, gwr; timeit, min of 5)."""
+    network grew) is refused, not read past, at a fraction of the whole check's cost."""
     owner = type(detector).__name__
     n_features = check_int_state(detector, "n_features_in_", low=1)
     clusterer, synapse = _part(detector, "clusterer_", "clusterer"), _part(detector, "synapse_", "synapse")

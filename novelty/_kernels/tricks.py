@@ -1,20 +1,19 @@
 """Whether the drivers use their two tricks on numba's internals: decided by a self-check, once.
 
 Two pieces of the compiled loop lean on numba and llvmlite beyond ``@njit``,
-each for a measured gain on the online HSOM's stream (CPU time, medians of
-runs in alternation with the plain kernel): arrays that numba does not
-reference-count (:mod:`._uncounted`, about 8 %) and four weights moved in one
-LLVM vector (:mod:`._lanes`, about 11 %). A numba that changed what they
-rely on could turn them into wrong numbers or a crash, so each has a plain
-twin written on ``@njit`` alone, and the tricks are used only while a
-self-check passes: before the first driver is compiled with them (per
-numba, llvmlite and package sources, :func:`key`), a child process compiles
-:mod:`._probe` and runs each trick against its twin, bit for bit, with
-numba's allocation counts balanced. A child that fails the check, cannot
-compile it or crashes turns the tricks off: one ``RuntimeWarning`` says so,
-and every driver compiles plain (the same numbers, about a fifth slower).
-The verdict is kept in a file beside the generated drivers, so later
-processes read it instead of checking again.
+each for a gain measured on the online HSOM's stream against the plain kernel
+(docs/guide/performance.md): arrays that numba does not reference-count
+(:mod:`._uncounted`) and four weights moved in one LLVM vector
+(:mod:`._lanes`). A numba that changed what they rely on could turn them into
+wrong numbers or a crash, so each has a plain twin written on ``@njit`` alone,
+and the tricks are used only while a self-check passes: before the first
+driver is compiled with them (per numba, llvmlite and package sources,
+:func:`key`), a child process compiles :mod:`._probe` and runs each trick
+against its twin, bit for bit, with numba's allocation counts balanced. A
+child that fails the check, cannot compile it or crashes turns the tricks off:
+one ``RuntimeWarning`` says so, and every driver compiles plain (the same
+numbers, more slowly). The verdict is kept in a file beside the generated
+drivers, so later processes read it instead of checking again.
 
 ``NOVELTY_KERNEL_TRICKS=0`` turns the tricks off (for comparisons); a
 compiling child is told its parent's choice through the same variable. No
@@ -61,8 +60,8 @@ def decide(ok: bool, why: str = "") -> None:
     if not ok:
         warnings.warn(
             f"novelty: the compiled kernels' tricks on numba's internals failed their self-check "
-            f"({why}); using the plain kernels, which give the same results about a fifth more "
-            "slowly.", RuntimeWarning, stacklevel=2)
+            f"({why}); using the plain kernels, which give the same results more slowly.",
+            RuntimeWarning, stacklevel=2)
 
 
 def key(package_digest: str) -> str:

@@ -16,7 +16,7 @@ scans and their norm bound :data:`MAX_SCAN_NORM`
 """
 
 from .names import _dict_values, _name_mismatch, _type_name, check_feature_names, frame_names, scan_names  # noqa: F401
-from .parameters import Bounds, Instance, Interval, Options, validate_parameters
+from .parameters import Bounds, Instance, Interval, Options, unknown_parameters, validate_parameters
 from .scans import (_MAX_SQUARED_NORM, _NOT_REAL, MAX_SCAN_NORM, _dtype_kinds,  # noqa: F401
                     _refuse_not_real, _too_large, check_batch, check_one)
 from .timestamps import check_timestamps, last_timestamp, pass_timestamps
@@ -27,6 +27,7 @@ __all__ = [
     "Instance",
     "Bounds",
     "validate_parameters",
+    "unknown_parameters",
     "check_batch",
     "check_one",
     "check_timestamps",

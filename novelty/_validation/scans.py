@@ -119,7 +119,7 @@ def cleared(a: np.ndarray) -> bool:
     infinity and too large values fail. Overflow is an answer here, never a warning: a short
     contiguous float64 array (1 to 4096 values) by BLAS's ``ddot`` as scipy gives it, which
     sets no numpy error state (numpy's ``dot`` warns on overflow, and its ``errstate``
-    context cost 1.6 us, more than the sum, of a call that scores one scan in 15 us); else
+    context cost more than the sum itself in a call that scores one scan); else
     under ``np.errstate``, by einsum's loop over a strided matrix (the compiled engine's
     ``weights_``, a transposed view, is not copied) or over the values (a long array: BLAS
     may split it over threads, whose wake-up was seen to cost milliseconds on a busy
@@ -142,8 +142,8 @@ def cleared(a: np.ndarray) -> bool:
 
 
 def _ddot():
-    """scipy's BLAS ``ddot``, imported at its first use (scipy.linalg takes 0.35 s to import;
-    fitting a model imports it anyway, through scikit-learn)."""
+    """scipy's BLAS ``ddot``, imported at its first use (scipy.linalg is slow to import,
+    docs/guide/performance.md; fitting a model imports it anyway, through scikit-learn)."""
     global _DDOT
     if _DDOT is None:
         from scipy.linalg.blas import ddot

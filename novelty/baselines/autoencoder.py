@@ -40,7 +40,7 @@ import warnings
 import numpy as np
 from sklearn.exceptions import ConvergenceWarning
 
-from .._component import StateError, check_array_state
+from .._component import StateError, check_array_state, check_int_state
 from .._validation import Instance, Interval, Options, check_batch
 from ._calibration import CalibratedDetector
 
@@ -140,7 +140,7 @@ class AutoencoderFilter(CalibratedDetector):
             )
 
     def _fit_model(self, X: np.ndarray) -> None:
-        # deferred: sklearn.neural_network takes 0.07 s to import, needed only to fit
+        # deferred: sklearn.neural_network is slow to import, needed only to fit
         from sklearn.neural_network import MLPRegressor
 
         hidden = self.hidden_layer_sizes
@@ -192,6 +192,7 @@ class AutoencoderFilter(CalibratedDetector):
 
     def _check_state(self) -> None:
         super()._check_state()
+        check_int_state(self, "n_iter_")
         sizes = getattr(self, "layer_sizes_", None)
         if not (isinstance(sizes, list) and len(sizes) >= 3
                 and all(isinstance(s, int) and not isinstance(s, bool) and s >= 1 for s in sizes)

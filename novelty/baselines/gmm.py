@@ -133,7 +133,7 @@ class GaussianMixtureDetector(CalibratedDetector):
         self.contamination = contamination
 
     def _mixture(self, k: int):
-        # deferred: sklearn.mixture takes 0.4 s to import, needed only to fit
+        # deferred: sklearn.mixture is slow to import, needed only to fit
         from sklearn.mixture import GaussianMixture
 
         return GaussianMixture(n_components=k, covariance_type=self.covariance_type, reg_covar=self.reg_covar,
@@ -189,6 +189,7 @@ class GaussianMixtureDetector(CalibratedDetector):
     def _check_state(self) -> None:
         super()._check_state()
         k = check_int_state(self, "n_components_", low=1)
+        check_int_state(self, "n_iter_")
         d = self.n_features_in_
         w = check_array_state(self, "weights_", 1, shape=(k,))
         check_array_state(self, "means_", 2, shape=(k, d))

@@ -3,7 +3,7 @@
 The world is cut into square cells of side ``c``; each holds the log-odds
 ``l`` that it is occupied, 0 (even odds) until a ray meets it (Moravec & Elfes
 1985; Thrun, Burgard & Fox 2005, chapter 9, the log-odds form of table 9.1).
-A scan of the ``points`` input (:mod:`novelty.maps.points`: the robot's pose
+A scan of the ``points`` input (:mod:`novelty.io.scans.points`: the robot's pose
 and each sector's end point in the world) is read as one beam per sector, from
 the robot to its end point (:mod:`novelty.maps.scan_rays`; a sector ending
 beyond ``max_range`` is cut to it and read as no echo). The inverse sensor
@@ -75,7 +75,7 @@ import numpy as np
 from .._component import StateError, check_array_state, check_int_state
 from .._validation import Interval, Options
 from ..detector import NoveltyDetector
-from ..maps.points import MAX_COORDINATE, example_rows, split_points
+from ..io.scans.points import MAX_COORDINATE, example_rows, split_points
 from ..maps.tiles import TILE_CELLS, GridFullWarning, TileIndex
 
 __all__ = ["OccupancyGrid"]
@@ -144,7 +144,7 @@ class OccupancyGrid(NoveltyDetector):
     [0.0, 0.5]
     """
 
-    #: the rows it reads: the ``points`` input (:mod:`novelty.maps.points`)
+    #: the rows it reads: the ``points`` input (:mod:`novelty.io.scans.points`)
     input_layout = "points"
 
     _parameter_rules = {
@@ -183,7 +183,7 @@ class OccupancyGrid(NoveltyDetector):
 
     @classmethod
     def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
-        """Rows of the points input for generic checks (:func:`novelty.maps.points.example_rows`)."""
+        """Rows of the points input for generic checks (:func:`novelty.io.scans.points.example_rows`)."""
         return example_rows(seed, n)
 
     def _first_novelty(self) -> float:

@@ -46,7 +46,7 @@ version to version): at most :data:`MAX_REFIT_SAMPLES` training inputs and
 default 256), for the one-class SVM at most :data:`MAX_REFIT_KERNEL_WORK`
 inputs^2 x features (its kernel matrix) and for the elliptic envelope at most
 :data:`MAX_REFIT_COVARIANCE_WORK` inputs x features^2 (its covariances).
-Each cap is a load of about 10 s on two busy cores. A model beyond the caps is refused by ``save`` (which reads
+Each cap is a load of seconds on a small machine (docs/guide/performance.md). A model beyond the caps is refused by ``save`` (which reads
 the file back as ``load`` does) and by ``load``, before anything is fitted;
 fitting it is not limited. A :class:`SklearnOutlierDetector`
 wrapping an arbitrary estimator instance cannot be saved (its parameter is
@@ -293,7 +293,7 @@ class IsolationForestDetector(SklearnOutlierDetector):
             )
 
     def _build_estimator(self):
-        # deferred: sklearn.ensemble takes 0.4 s to import, needed only by this detector
+        # deferred: sklearn.ensemble is slow to import, needed only by this detector
         from sklearn.ensemble import IsolationForest
 
         return IsolationForest(n_estimators=self.n_estimators, max_samples=self.max_samples,
@@ -354,7 +354,7 @@ class OneClassSVMDetector(SklearnOutlierDetector):
         self._check_refit_work(n * n * d, MAX_REFIT_KERNEL_WORK, "inputs^2 x features")
 
     def _build_estimator(self):
-        # deferred: sklearn.svm takes 0.15 s to import, needed only by this detector
+        # deferred: sklearn.svm is slow to import, needed only by this detector
         from sklearn.svm import OneClassSVM
 
         return OneClassSVM(kernel=self.kernel, gamma=self.gamma, nu=self.nu, degree=self.degree,
@@ -399,7 +399,7 @@ class LocalOutlierFactorDetector(SklearnOutlierDetector):
         self.contamination = contamination
 
     def _build_estimator(self):
-        # deferred: sklearn.neighbors takes 0.3 s to import, needed only by this detector
+        # deferred: sklearn.neighbors is slow to import, needed only by this detector
         from sklearn.neighbors import LocalOutlierFactor
 
         return LocalOutlierFactor(n_neighbors=self.n_neighbors, metric=self.metric, p=self.p,
@@ -458,7 +458,7 @@ class EllipticEnvelopeDetector(SklearnOutlierDetector):
         self._check_refit_work(n * d * d, MAX_REFIT_COVARIANCE_WORK, "inputs x features^2")
 
     def _build_estimator(self):
-        # deferred: sklearn.covariance takes 0.1 s to import, needed only by this detector
+        # deferred: sklearn.covariance is slow to import, needed only by this detector
         from sklearn.covariance import EllipticEnvelope
 
         return EllipticEnvelope(support_fraction=self.support_fraction, assume_centered=self.assume_centered,

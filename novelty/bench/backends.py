@@ -75,7 +75,7 @@ def run_watched(cells: list[Cell], jobs: int) -> Iterator[tuple]:
     were running beside it start again (a cell is a pure function, so a
     restart changes nothing but time).
     """
-    # deferred: joblib (0.35 s to import) only for the process backend
+    # deferred: joblib, slow to import, only for the process backend
     from joblib.externals.loky import get_reusable_executor
 
     pending = list(reversed(cells))

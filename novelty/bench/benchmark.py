@@ -40,7 +40,7 @@ import numpy as np
 
 from ..baselines.wrapping import as_detector
 from ..data import Dataset
-from ..datasets.labels import check_both_classes, check_labels
+from ..io.tables.labels import check_both_classes, check_labels
 from ..datasets.resampling import ResampledTask
 from .compare import compare_on_task, comparison_text
 from .protocol import get_protocol

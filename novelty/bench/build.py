@@ -22,7 +22,7 @@ from sklearn.base import clone
 
 from .._validation import pass_timestamps
 from ..datasets import load, registry
-from ..maps.points import POSE_COLUMNS
+from ..io.scans.points import POSE_COLUMNS
 from ..registry import detectors, of_kind
 from . import river
 from .specs import Cell, DetectorSpec
@@ -78,7 +78,7 @@ def check_input_layout(det, data, label: str) -> None:
     """Refuse a task whose rows are not the input the detector reads (its ``input_layout``).
 
     The habituating maps read the ``points`` input (the robot's pose, the ring,
-    the end points: :mod:`novelty.maps.points`), whose width alone cannot tell
+    the end points: :mod:`novelty.io.scans.points`), whose width alone cannot tell
     it from any other rows of ``3 + 3n`` values (the UCI sonar's 60). A task
     says what its rows are in ``metadata["inputs"]`` (a task given
     ``inputs="points"`` does), or names its columns (``metadata["columns"]``,
@@ -97,7 +97,7 @@ def check_input_layout(det, data, label: str) -> None:
     what = f"rows of the {given!r} input" if given is not None else "rows that do not say what they are"
     raise CellError(f"{type(det).__name__} reads rows of the {layout!r} input (the robot's pose with each scan); "
                     f"task {label!r} gives {what}. Give the task inputs={layout!r} if it has the robot's poses, or "
-                    f"for rows of your own in that layout set metadata['inputs'] = {layout!r} (novelty.maps.points).")
+                    f"for rows of your own in that layout set metadata['inputs'] = {layout!r} (novelty.io.scans.points).")
 
 
 def make_detector(cell: Cell):

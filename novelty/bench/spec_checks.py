@@ -6,7 +6,7 @@ from typing import Any
 
 from .._component import Component
 from ..datasets import load, registry
-from ..datasets.tables import check_data_file
+from ..io.tables.table import check_data_file
 from ..registry import RegistryError, check_parameters
 from .build import build_detector
 from .exploration.prequential import check_policy, default_policy

@@ -29,7 +29,7 @@ def one_line(exc: BaseException) -> str:
 
 def user_errors() -> tuple[type[BaseException], ...]:
     """Exceptions that mean the input was wrong, not the program."""
-    # deferred: the benchmark and the model files import scikit-learn (2-3 s); `novelty --help` does not
+    # deferred: the benchmark and the model files import scikit-learn, slow to import; `novelty --help` does not
     from ..bench.backends import BackendError
     from ..bench.specs import SuiteError
     from ..persistence import ModelFileError

@@ -63,8 +63,8 @@ def add_parser(subparsers):
                         help="output folder (default: ./novelty-bench)")
     parser.add_argument("--quick", action="store_true",
                         help="the embedded default suite: the recommended detectors, the paper's and "
-                        "baselines, 10 x 2 tasks x 2 seeds; about two minutes of CPU the first time (numba "
-                        "compiles and caches its kernels), 15-20 s after")
+                        "baselines, 10 x 2 tasks x 2 seeds; slower the first time, as numba "
+                        "compiles and caches its kernels")
     parser.add_argument("--detector", action="append", metavar="'NAME [k=v ...]'",
                         help="a detector with its parameters (repeatable; replaces the suite's)")
     parser.add_argument("--task", action="append", metavar="'NAME [k=v ...]'",

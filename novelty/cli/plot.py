@@ -69,7 +69,7 @@ _COLUMNS = ("novelty", "distance", "y", "x", "alarm", "run")
 
 def _read_run_output(path: Path) -> dict:
     # deferred: `novelty --help` does not read files
-    from ..datasets.tables import bounded_lines
+    from ..io.tables.table import bounded_lines
 
     if path.suffix.lower() == ".npz":
         with np.load(path, allow_pickle=False) as npz:
@@ -131,7 +131,7 @@ def _plot_path(data: dict, path: Path, plt):
     """The robot's path coloured by novelty, and the novelty scan by scan below it; alarms on both."""
     # deferred: plotting imports matplotlib; `novelty --help` does not
     from ..bench.reports.route import ALARM, plot_route
-    from ..io.plotting import plot_path
+    from ..io.recording.plotting import plot_path
 
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 8.4), gridspec_kw={"height_ratios": [3, 1]})
     placed = ~np.isnan(data["x"]) & ~np.isnan(data["position_y"])

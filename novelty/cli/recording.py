@@ -1,4 +1,9 @@
-"""Recordings (CARMEN logs, ROS bags) on the command line: their options, and streaming their rings."""
+"""Recordings (CARMEN logs, ROS bags) on the command line: their options as a Reading, and streaming their rings.
+
+:func:`add_recording_options` adds the options that say how a recording is
+read; :func:`recording_reading` makes of them the
+:class:`~novelty.io.recording.reading.Reading` every reader takes.
+"""
 
 from __future__ import annotations
 
@@ -12,8 +17,8 @@ import numpy as np
 from .._atomic import write_atomically
 from ._common import UserError, format_cell
 
-__all__ = ["add_recording_options", "recording_rings", "recording_points", "pose_columns", "RowSink",
-           "POINTS_SECTORS"]
+__all__ = ["add_recording_options", "recording_reading", "recording_rings", "recording_points", "pose_columns",
+           "RowSink", "POINTS_SECTORS"]
 
 #: the points input's sectors unless --sectors says: the habituating maps were measured on lasers with
 #: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
@@ -94,34 +99,47 @@ def _fragments(text: str):
     return n
 
 
-def _reading(args, report) -> tuple:
-    """``(topic, threshold, options)``: which messages of ``--data`` are read and how, as both inputs read them."""
+def recording_reading(args, inputs: str = "ring"):
+    """The :class:`~novelty.io.recording.reading.Reading` the command line's options say, for ``inputs``.
+
+    The points input's sectors, unless ``--sectors`` says, are
+    :data:`POINTS_SECTORS` (one a beam for a sensor of fewer: see
+    :func:`recording_points`). A value the options do not allow is a
+    :class:`UserError` with the reading's own message.
+    """
+    # deferred: the readers are loaded only for a recording
+    from ..io.recording.reading import Reading
     from ..sonar.preprocessing import PAPER_THRESHOLD
 
     topic = None if args.topic is None else (args.topic.split(",") if "," in args.topic else args.topic)
-    threshold = PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold
-    options = dict(pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
-                   fragments=_fragments(getattr(args, "fragments", "auto")), mounts=getattr(args, "mount", None),
-                   echo=getattr(args, "echo", "first"), tolerance=getattr(args, "tolerance", 0.1), report=report)
-    return topic, threshold, options
+    sectors = args.sectors if args.sectors is not None else (POINTS_SECTORS if inputs == "points" else 16)
+    try:
+        return Reading(topic=topic, pose_topic=args.pose_topic, base_frame=getattr(args, "base_frame", None),
+                       mounts=getattr(args, "mount", None), fragments=_fragments(getattr(args, "fragments", "auto")),
+                       echo=getattr(args, "echo", "first"), tolerance=getattr(args, "tolerance", 0.1),
+                       sectors=sectors, reduce=_reduce(args.reduce), limits=_limits(args.limits),
+                       front=math.radians(args.front), inputs=inputs, stamps=bool(getattr(args, "stamps", False)),
+                       threshold=PAPER_THRESHOLD if args.range_threshold is None else args.range_threshold)
+    except ValueError as exc:
+        if inputs == "points" and "apply to the ring only" in str(exc):
+            raise UserError("The points input reads each sector's nearest echo over the whole scan, placed in the "
+                            "world by the robot's pose: no --reduce, --limits or --front.") from None
+        raise UserError(str(exc)) from None
 
 
 def recording_rings(args, report=None):
     """``(time, x, pose)`` for each ring of the recording ``--data``, ``x`` preprocessed; read as it goes.
 
-    ``report`` (a :class:`novelty.io.report.ReadReport`) is filled as the reading goes.
+    ``report`` (a :class:`novelty.io.bags.report.ReadReport`) is filled as the reading goes.
     """
     # deferred: the readers are loaded only for a recording
-    from ..io.recording import read_rings
+    from ..io.recording.readers import read_rings
     from ..sonar.preprocessing import preprocess
 
-    topic, threshold, options = _reading(args, report)
+    reading = recording_reading(args)
     try:
-        rings = read_rings(args.data, topic, sectors=16 if args.sectors is None else args.sectors,
-                           reduce=_reduce(args.reduce), limits=_limits(args.limits),
-                           front=math.radians(args.front), **options)
-        for ring in rings:
-            yield ring.time, preprocess(ring.ranges, threshold), ring.pose
+        for ring in read_rings(args.data, reading, report=report):
+            yield ring.time, preprocess(ring.ranges, reading.threshold), ring.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
 
@@ -130,31 +148,30 @@ def recording_points(args, report=None):
     """``(time, row, pose)`` for each scan of ``--data`` that has a pose, ``row`` the ``points`` input.
 
     The input of the detectors that read the robot's pose with each scan
-    (the habituating maps, :mod:`novelty.maps.points`): the pose, each
+    (the habituating maps, :mod:`novelty.io.scans.points`): the pose, each
     sector's nearness and its end point in the world frame
-    (:func:`novelty.io.objects.points.sweep_points`). Scans before the pose
-    source's first message are left out, and ``report`` says how many; a
-    recording with no pose at all is an error that says where poses come from.
+    (:func:`novelty.io.scans.points.sweep_points`), :data:`POINTS_SECTORS`
+    sectors unless ``--sectors`` says (one a beam for a sensor of fewer).
+    Scans before the pose source's first message are left out, and
+    ``report`` says how many; a recording with no pose at all is an error
+    that says where poses come from.
     """
     # deferred: the readers are loaded only for a recording
-    from ..io.objects.points import sweep_points
-    from ..io.sweeps import read_sweeps
+    from ..io.recording.readers import read_sweeps
+    from ..io.scans.points import sweep_points
 
-    if args.reduce != "min" or args.limits is not None or args.front != 0.0:
-        raise UserError("The points input reads each sector's nearest echo over the whole scan, placed in the "
-                        "world by the robot's pose: no --reduce, --limits or --front.")
-    topic, threshold, options = _reading(args, report)
-    sectors, without, scored = args.sectors, 0, 0
+    reading = recording_reading(args, "points")
+    sectors = args.sectors
+    without, scored = 0, 0
     try:
-        sweeps = read_sweeps(args.data, topic, **options)
-        for sweep in sweeps:
+        for sweep in read_sweeps(args.data, reading, report=report):
             if sweep.pose is None:
                 without += 1
                 continue
             if sectors is None:
-                sectors = min(POINTS_SECTORS, len(sweep.ranges))
+                sectors = min(reading.sectors, len(sweep.ranges))
             scored += 1
-            yield sweep.time, sweep_points([sweep], sectors, threshold)[0], sweep.pose
+            yield sweep.time, sweep_points([sweep], sectors, reading.threshold)[0], sweep.pose
     except ImportError as exc:   # the optional rosbags: a message to install it, not a traceback
         raise UserError(str(exc)) from None
     if without and not scored:

@@ -135,7 +135,7 @@ def _run_file(det, args, alarm: Alarm | None) -> int:
 
 def _is_recording(path: str) -> bool:
     # deferred: the readers are loaded only for a recording
-    from ..io.recording import is_recording
+    from ..io.recording.readers import is_recording
 
     return is_recording(path)
 
@@ -143,7 +143,7 @@ def _is_recording(path: str) -> bool:
 def _run_recording(det, args, alarm: Alarm | None) -> int:
     """Score and learn a recording's rings as they are read, writing each ring's row at once."""
     # deferred: the readers are loaded only for a recording
-    from ..io.report import ReadReport
+    from ..io.bags.report import ReadReport
 
     if not getattr(det, "supports_online", True):
         raise UserError(f"{args.detector} learns in batch only; it cannot stream a recording.")
@@ -184,11 +184,14 @@ def _run_stream(det, args, alarm: Alarm | None) -> int:
         raise UserError("--passes and --bin-length need the whole file; not with --data -.")
     if args.out not in (None, "-"):
         raise UserError("With --data - the novelty goes to standard output (no --out).")
+    # deferred: `novelty --help` does not read files
+    from ..io.tables.stream import StreamReader
+
     scans = StreamReader(sys.stdin, columns=args.columns, label=args.label, time=args.time,
                          preprocess=args.preprocess, threshold=args.range_threshold)
     writer = None
     n = 0
-    for x, extras in scans:
+    for x, extras in _checked(scans):
         novelty = det.score_learn_one(x, extras.get("time"))
         row = {"scan": n, "novelty": novelty}
         if alarm is not None:
@@ -205,69 +208,9 @@ def _run_stream(det, args, alarm: Alarm | None) -> int:
     return n
 
 
-class StreamReader:
-    """Scans from CSV lines as they arrive: a header line (or none), then one scan a line.
-
-    Yields ``(scan, extras)``: the sensor values (chosen and preprocessed as
-    for a file) and the carried values of that line (``y``, ``distance``,
-    ``run``, ``time`` in seconds). Nothing is read ahead of the line scored.
-    """
-
-    def __init__(self, lines, columns=None, label=None, time=None, preprocess=None, threshold=None):
-        self.lines = lines
-        self.options = dict(columns=columns, label=label, time=time)
-        self.preprocess, self.threshold = preprocess, threshold
-
-    def __iter__(self):
-        # deferred: `novelty --help` does not read files
-        from ..datasets.files import header_of, plan_columns, sensors_to_scans
-        from ..datasets.tables import bounded_lines, csv_rows
-
-        source = "standard input"
-        rows = csv_rows(csv.reader(bounded_lines(self.lines, source)), source)
-        layout = None
-        for number, row in enumerate(rows, start=1):
-            if not row or not any(c.strip() for c in row):
-                continue
-            if layout is None:
-                header = header_of(row)
-                layout = plan_columns(header or [f"s{i}" for i in range(len(row))], **self.options)
-                if header:
-                    continue
-            if len(row) != len(layout.names):
-                raise UserError(f"standard input, line {number}: {len(row)} values, expected "
-                                f"{len(layout.names)}.")
-            where = f"standard input, line {number}"
-            try:
-                raw = np.array([[self._number(layout, j, row[j], where) for j in layout.sensors]])
-                x = sensors_to_scans(raw, self.preprocess, self.threshold,
-                                     lambda i, k, where=where, layout=layout: f"{where}, {layout.column(layout.sensors[k])}")[0]
-                extras = self._extras(layout, row, where)
-            except ValueError as exc:
-                raise UserError(str(exc)) from None
-            yield x, extras
-
-    @staticmethod
-    def _number(layout, j: int, cell: str, where: str) -> float:
-        try:
-            return float(cell)
-        except ValueError:
-            raise layout.not_a_number(j, cell, where) from None
-
-    @classmethod
-    def _extras(cls, layout, row, where: str) -> dict:
-        extras = {}
-        for name in ("label", "distance", "run", "time"):
-            j = getattr(layout, name)
-            if j is None:
-                continue
-            value = cls._number(layout, j, row[j], where)
-            if not np.isfinite(value):
-                raise ValueError(f"{where}, {layout.column(j)}: expected a finite number, got {value}.")
-            if name == "label":
-                extras["y"] = int(value != 0)
-            elif name == "run":
-                extras["run"] = int(value)
-            else:
-                extras[name] = value * (layout.time_scale if name == "time" else 1.0)
-        return extras
+def _checked(scans):
+    """The scans of a stream, a line that cannot be read a :class:`UserError` (its message, no traceback)."""
+    try:
+        yield from scans
+    except ValueError as exc:
+        raise UserError(str(exc)) from None

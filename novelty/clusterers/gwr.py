@@ -259,7 +259,7 @@ class GrowWhenRequired(Clusterer):
         self.firing_ = self._new_firing_counters().initialize(2)
         if self.activity_threshold == "auto":
             # The first scans only: the nearest-neighbour distances cost the square
-            # of their number (a 10,000-scan first batch took 20 s).
+            # of their number (a long first batch is slow: docs/guide/performance.md).
             first = X[:_CALIBRATION_SCANS]
             self.calibrate(ScaleCalibration(first, first.shape[0], 0.9).scale)
         else:

@@ -19,10 +19,10 @@ Built in:
   exposure count (:mod:`novelty.datasets.exploration`): ``exploration-tour``,
   ``exploration-open-door``, ``exploration-patrol``, ``exploration-irregular``,
   ``exploration-return``, ``exploration-moving``; from the Radish robot logs
-  (:mod:`novelty.io.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
+  (:mod:`novelty.tasks.radish`, read from ``path=`` or ``$NOVELTY_DATA_DIR``):
   ``exploration-radish-intel``, ``exploration-radish-aces``,
   ``exploration-radish-csail``;
-- virtual objects placed in a recording (:mod:`novelty.io.objects`):
+- virtual objects placed in a recording (:mod:`novelty.tasks.objects`):
   ``inspection-objects`` and ``exploration-objects`` for any recording with
   poses (``path=``, ``objects=`` a CSV or TOML file, or objects drawn by the
   seed), and the Radish logs' ``inspection-objects-radish-intel``,

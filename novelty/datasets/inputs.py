@@ -4,7 +4,7 @@ The simulated robot (:data:`novelty.sonar.robot.NOMAD_200`) has 16 sonars
 at known bearings, each ``sonar_ring_radius`` from its centre, and every
 simulated task knows the robot's pose at each scan. :func:`with_inputs`
 turns such a task's rings into the ``points`` input of
-:mod:`novelty.maps.points` (the pose, the ring, each sonar's echo in the
+:mod:`novelty.io.scans.points` (the pose, the ring, each sonar's echo in the
 world frame along its axis), the same rows for every detector on the task;
 its labels, splits and columns stay as they were.
 """
@@ -16,7 +16,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..data import Dataset
-from ..maps.points import points_columns, ring_points
+from ..io.scans.points import points_columns, ring_points
 from ..sonar.robot import NOMAD_200
 
 __all__ = ["INPUTS", "with_inputs"]

@@ -2,9 +2,8 @@
 
 A published benchmark states how each of its runs draws its data; the same
 statement here is a :class:`Resampling`, given to the ``files`` task as
-options (``novelty bench --task 'files path=6_cardio.npz resample=stratified
-test=0.3 ...'``) or to :func:`resampled` for arrays in Python. Its steps, in
-this order:
+options (``novelty bench --task 'files path=6_cardio.npz resample=adbench'``)
+or to :func:`resampled` for arrays in Python. Its steps, in this order:
 
 1. ``min_rows``, ``max_rows`` (with ``resample`` only): a table of fewer than
    ``min_rows`` rows is bootstrapped up to ``min_rows`` (rows drawn with
@@ -15,8 +14,11 @@ this order:
 2. ``resample``: a train/test split drawn for each seed, ``stratified`` (each
    class split in the proportion ``test``, scikit-learn's
    ``train_test_split(..., stratify=y)``) or ``shuffled`` (rows split at
-   random, classes as they fall). Without it the task keeps the split its
-   source gives (the first rows, a column, a second file).
+   random, classes as they fall), both drawn from a generator seeded by the
+   seed and the task's name; or ``adbench``: steps 1 and 2 drawn exactly as
+   ADBench's code draws them (:func:`adbench_split`), the same rows for the
+   same seed. Without ``resample`` the task keeps the split its source gives
+   (the first rows, a column, a second file).
 3. ``training``: ``contaminated`` (the default: novel scans stay in the
    training part, unlabelled, as in unsupervised outlier detection and
    ADBench) or ``clean`` (novel scans are dropped from the training part:
@@ -25,6 +27,12 @@ this order:
    step 3) and applied to both parts (scikit-learn's ``MinMaxScaler`` and
    ``StandardScaler``); ``none`` (the default) leaves the values as read.
    Test values may fall outside the training part's range.
+
+``resample=adbench`` takes ADBench's values for the options not given
+(:data:`ADBENCH_DEFAULTS`: ``test=0.3 min_rows=1000 max_rows=10000
+scale=minmax``; ``training`` is ``contaminated`` by default anyway), so that
+the one option is ADBench's unsupervised protocol; any option given
+explicitly overrides its default.
 
 :meth:`Resampling.describe` says all of it in one line, which the files task
 keeps in its metadata (``split_description``) and the benchmark summary
@@ -45,13 +53,13 @@ from dataclasses import asdict, dataclass, replace
 import numpy as np
 
 from ..data import Dataset
-from .labels import check_labels
+from ..io.tables.labels import check_labels
 
-__all__ = ["Resampling", "ResampledTask", "resampled", "ADBENCH", "RESAMPLE", "SCALES", "TRAINING",
-           "OPTIONS"]
+__all__ = ["Resampling", "ResampledTask", "resampled", "adbench_split", "ADBENCH", "ADBENCH_DEFAULTS", "RESAMPLE",
+           "SCALES", "TRAINING", "OPTIONS"]
 
 #: the ways a split is drawn for each seed
-RESAMPLE = ("stratified", "shuffled")
+RESAMPLE = ("stratified", "shuffled", "adbench")
 #: the scalers fitted on the training part
 SCALES = ("none", "minmax", "standard")
 #: what the training part keeps of the novel scans
@@ -61,11 +69,12 @@ OPTIONS = ("resample", "test", "min_rows", "max_rows", "scale", "training")
 #: the default test fraction of a drawn split
 DEFAULT_TEST = 0.3
 
-#: ADBench's unsupervised protocol (Han et al. 2022): a stratified 70/30 split for each seed,
-#: tables bootstrapped to 1,000 rows or subsampled to 10,000, min-max scaled on the
-#: training part, anomalies left in the training part
-ADBENCH = {"resample": "stratified", "test": 0.3, "min_rows": 1000, "max_rows": 10000, "scale": "minmax",
-           "training": "contaminated"}
+#: the options ``resample="adbench"`` fills in when they are not given: ADBench's values
+ADBENCH_DEFAULTS = {"test": 0.3, "min_rows": 1000, "max_rows": 10000, "scale": "minmax"}
+#: ADBench's unsupervised protocol (Han et al. 2022), drawn as its code draws it: a stratified
+#: 70/30 split for each seed, tables bootstrapped to 1,000 rows or subsampled to 10,000,
+#: min-max scaled on the training part, anomalies left in the training part
+ADBENCH = {"resample": "adbench", **ADBENCH_DEFAULTS, "training": "contaminated"}
 
 
 def _scaler(name: str):
@@ -106,11 +115,16 @@ class Resampling:
         """This protocol with its defaults filled in; a bad option is a ``ValueError`` naming it."""
         if self.resample is not None and self.resample not in RESAMPLE:
             raise ValueError(f"resample must be one of {', '.join(RESAMPLE)}; got {self.resample!r}.")
+        if self.resample == "adbench":
+            return replace(self, **{k: v for k, v in ADBENCH_DEFAULTS.items() if getattr(self, k) is None})._checked()
+        return self._checked()
+
+    def _checked(self) -> "Resampling":
         drawn = self.resample is not None
         for name in ("test", "min_rows", "max_rows"):
             if getattr(self, name) is not None and not drawn:
-                raise ValueError(f"{name}= sizes a split drawn for each seed; give resample=stratified or "
-                                 "resample=shuffled with it.")
+                raise ValueError(f"{name}= sizes a split drawn for each seed; give resample=stratified, "
+                                 "shuffled or adbench with it.")
         test = DEFAULT_TEST if self.test is None and drawn else self.test
         if test is not None and (isinstance(test, bool) or not isinstance(test, numbers.Real) or not 0 < test < 1):
             raise ValueError(f"test must be the fraction of rows tested, in (0, 1); got {test!r}.")
@@ -136,25 +150,26 @@ class Resampling:
         if data.y is None:
             raise ValueError(f"resample={self.resample} needs labels for every row (a y or label column).")
         y = check_labels(data.y, f"{data.name}, labels")
+        if self.resample == "adbench":
+            train, test = adbench_split(y, seed, self.test, self.min_rows, self.max_rows)
+        else:
+            train, test = self._split(y, seed, data.name)
+        rows = np.concatenate([train, test])
+        drawn = data.subset(rows)
+        # drawn rows have no order: no route, no clock (a timestamp would run backwards)
+        return replace(drawn, y=y[rows], distance=None, run=None, poses=None,
+                       columns={k: v for k, v in drawn.columns.items() if k != "time"},
+                       split=np.array(["train"] * len(train) + ["test"] * len(test)))
+
+    def _split(self, y: np.ndarray, seed: int, name: str) -> tuple[np.ndarray, np.ndarray]:
+        """Steps 1 and 2 of ``stratified`` and ``shuffled``: drawn from the seed and the table's name."""
         # imported here: the command line reads the files task and starts without scikit-learn
         from sklearn.model_selection import train_test_split
 
-        rng = np.random.default_rng(np.random.SeedSequence([int(seed), _tag(data.name)]))
-        n = len(data)
-        if self.min_rows is not None and n < self.min_rows:
-            rows = rng.choice(n, self.min_rows, replace=True)
-        elif self.max_rows is not None and n > self.max_rows:
-            rows = rng.choice(n, self.max_rows, replace=False)
-        else:
-            rows = np.arange(n)
-        train, test = train_test_split(rows, test_size=self.test, shuffle=True,
-                                       random_state=int(rng.integers(2**31 - 1)),
-                                       stratify=y[rows] if self.resample == "stratified" else None)
-        drawn = data.subset(np.concatenate([train, test]))
-        # drawn rows have no order: no route, no clock (a timestamp would run backwards)
-        return replace(drawn, y=y[np.concatenate([train, test])], distance=None, run=None, poses=None,
-                       columns={k: v for k, v in drawn.columns.items() if k != "time"},
-                       split=np.array(["train"] * len(train) + ["test"] * len(test)))
+        rng = np.random.default_rng(np.random.SeedSequence([int(seed), _tag(name)]))
+        rows = _resized(rng, len(y), self.min_rows, self.max_rows)
+        return train_test_split(rows, test_size=self.test, shuffle=True, random_state=int(rng.integers(2**31 - 1)),
+                                stratify=y[rows] if self.resample == "stratified" else None)
 
     def finish(self, data: Dataset) -> Dataset:
         """Steps 3 and 4 on a split task: clean training, then the scaler fitted on the training part."""
@@ -186,7 +201,9 @@ class Resampling:
         protocol = self.check()
         if protocol.draws:
             cut = f"{round(100 * (1 - protocol.test))}/{round(100 * protocol.test)}"
-            parts = [f"a {protocol.resample} {cut} train/test split drawn for each seed"]
+            parts = [f"a {protocol.resample} {cut} train/test split drawn for each seed" if protocol.resample != "adbench"
+                     else f"a stratified {cut} train/test split drawn for each seed as ADBench's code draws it "
+                          "(numpy's RandomState(seed))"]
             sizes = []
             if protocol.min_rows is not None:
                 sizes.append(f"bootstrapped to {protocol.min_rows:,} rows when fewer")
@@ -201,6 +218,77 @@ class Resampling:
         if protocol.scale != "none":
             parts.append(f"{'min-max' if protocol.scale == 'minmax' else 'standard'} scaled by the training part")
         return "; ".join(parts)
+
+
+def adbench_split(y, seed: int, test: float = 0.3, min_rows: int | None = 1000,
+                  max_rows: int | None = 10000) -> tuple[np.ndarray, np.ndarray]:
+    """The rows ADBench draws for ``seed``: training and test rows, as indices into ``y``.
+
+    ADBench's data generator (Han et al. 2022; ``DataGenerator.generator`` in
+    its code) seeds numpy's global random state with the seed
+    (``np.random.seed``), then
+
+    1. bootstraps a table of fewer than ``min_rows`` rows,
+       ``np.random.choice(n, min_rows, replace=True)``, or subsamples one of
+       more than ``max_rows``, ``np.random.choice(n, max_rows,
+       replace=False)``, seeding again first (nothing was drawn since the
+       first seeding, so either way the stream starts at the seed);
+    2. splits with ``train_test_split(X, y, test_size=test, shuffle=True,
+       stratify=y)`` and no ``random_state``, so that scikit-learn draws from
+       the same global state, where step 1 left it.
+
+    A ``numpy.random.RandomState(seed)`` draws the same numbers as
+    ``np.random.seed(seed)`` followed by ``np.random`` calls (numpy's legacy
+    stream, which numpy keeps unchanged from version to version, NEP 19), and
+    scikit-learn draws from it as from the global state when it is given as
+    ``random_state``. So these are ADBench's rows, and numpy's global state
+    is neither read nor changed.
+
+    Parameters
+    ----------
+    y : array-like of shape (n_rows,)
+        The table's labels, 0 normal and 1 anomaly (the split is stratified by them).
+    seed : int
+        The seed, in [0, 2**32) as numpy's legacy generator takes it.
+    test : float, default=0.3
+        The fraction of the (resized) rows tested.
+    min_rows, max_rows : int or None, default=1000 and 10000
+        The sizes below which the table is bootstrapped and above which it is
+        subsampled (None: never).
+
+    Returns
+    -------
+    train, test : ndarray of int
+        Row indices into ``y``, in the order of ADBench's ``X_train`` and
+        ``X_test``; a bootstrapped row may appear several times, on both sides.
+
+    Examples
+    --------
+    >>> y = np.r_[np.zeros(16), np.ones(4)]
+    >>> train, test = adbench_split(y, seed=1, min_rows=40)
+    >>> len(train), len(test), len(set(train.tolist()) | set(test.tolist())) <= 20
+    (28, 12, True)
+    """
+    if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**32:
+        raise ValueError(f"resample=adbench seeds numpy's legacy generator as ADBench does: the seed must be an "
+                         f"integer in [0, 2**32); got {seed!r}.")
+    # imported here: the command line reads the files task and starts without scikit-learn
+    from sklearn.model_selection import train_test_split
+
+    y = np.asarray(y)
+    rng = np.random.RandomState(int(seed))
+    rows = _resized(rng, len(y), min_rows, max_rows)
+    train, tested = train_test_split(rows, test_size=test, shuffle=True, stratify=y[rows], random_state=rng)
+    return train, tested
+
+
+def _resized(rng, n: int, min_rows: int | None, max_rows: int | None) -> np.ndarray:
+    """Step 1: the rows of a table of ``n`` rows, bootstrapped or subsampled by ``rng`` (either numpy generator)."""
+    if min_rows is not None and n < min_rows:
+        return rng.choice(n, min_rows, replace=True)
+    if max_rows is not None and n > max_rows:
+        return rng.choice(n, max_rows, replace=False)
+    return np.arange(n)
 
 
 def _tag(name: str) -> int:
@@ -232,7 +320,8 @@ def resampled(X, y, name: str = "arrays", **protocol) -> ResampledTask:
     ``protocol`` takes the options of :class:`Resampling` (``resample``,
     ``test``, ``min_rows``, ``max_rows``, ``scale``, ``training``);
     ``resample`` is required, since arrays carry no split of their own.
-    ``resampled(X, y, **ADBENCH)`` is ADBench's protocol.
+    ``resampled(X, y, resample="adbench")`` (or ``**ADBENCH``) is ADBench's
+    protocol, drawn as its code draws it.
 
     >>> import numpy as np
     >>> X, y = np.arange(40.0).reshape(20, 2), np.r_[np.zeros(16), np.ones(4)]
@@ -245,8 +334,8 @@ def resampled(X, y, name: str = "arrays", **protocol) -> ResampledTask:
         raise TypeError(f"resampled() got an unknown option {unknown[0]!r}; options: {', '.join(OPTIONS)}.")
     checked = Resampling(**protocol).check()
     if not checked.draws:
-        raise ValueError("resampled() needs resample='stratified' or 'shuffled': arrays carry no split of "
-                         "their own.")
+        raise ValueError("resampled() needs resample='stratified', 'shuffled' or 'adbench': arrays carry no "
+                         "split of their own.")
     X = np.asarray(X, dtype=np.float64)
     if X.ndim != 2:
         raise ValueError(f"X must be 2-D (scans by features); got shape {X.shape}.")

@@ -27,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..data import Dataset
-from ._files import read_rows, resolve_data_file
+from ..io.tables.data_files import read_rows, resolve_data_file
 
 __all__ = ["uci_wall_following", "uci_wall_following_novelty", "uci_sonar", "uci_sonar_mines",
            "WALL_FOLLOWING_CLASSES"]

@@ -3,7 +3,7 @@
 Marsland, Nehmzow & Shapiro (2000) present a scan to a clusterer whose winning
 unit's habituating synapse gives the novelty. Here the units are the world
 itself, cut into square cells of side ``c``, and a scan of the ``points``
-input (:mod:`novelty.maps.points`: the robot's pose and each sector's end point
+input (:mod:`novelty.io.scans.points`: the robot's pose and each sector's end point
 in the world) wins every cell its echoes fall in: several winners a scan, each
 stimulated as the paper's winner through its own synapse, any registered
 synapse (:class:`~novelty.maps.habituating_map.HabituatingMap` composes the two).
@@ -79,7 +79,7 @@ import numpy as np
 from .._component import Component, KernelSpec, StateError, check_array_state, check_int_state
 from .._validation import Interval, Options
 from .grid_walk import walk_rays
-from .points import MAX_COORDINATE, split_points
+from ..io.scans.points import MAX_COORDINATE, split_points
 from .scan_rays import ray_count, scan_rays
 from .tiles import TILE_CELLS, TileIndex, cell_of_unit, tile_keys
 

@@ -6,7 +6,7 @@ habituating synapses; the efficacy of the winner's synapse is the novelty.
 (:class:`~novelty.maps.cells.WorldCells`, registered as ``world-cells``: every
 cell a scan's echoes fall in wins) with any registered synapse (Stanley's, as
 in the paper, by default; Wang & Hsu's long-term memory, Staddon & Higa's two
-time scales, a plugin's), on the ``points`` input (:mod:`novelty.maps.points`).
+time scales, a plugin's), on the ``points`` input (:mod:`novelty.io.scans.points`).
 Each winner is stimulated by the synapse's own step (``Synapse.step`` with
 several winners; compiled, its ``advance``), and the scan's novelty is the
 cells' readout of their efficacies (equations (1) and (2) of
@@ -54,7 +54,7 @@ from ..habituation.base import Synapse
 from ..registry import build
 from .cells import WorldCells, _unpack, cell_pack
 from .engine import choose, warn_full
-from .points import MAX_COORDINATE, example_rows, split_points
+from ..io.scans.points import MAX_COORDINATE, example_rows, split_points
 from .scan_rays import MapRangeWarning
 from .scan_rays import sector_width as _sector_width
 
@@ -144,7 +144,7 @@ class HabituatingMap(NoveltyDetector):
     [0.0, 0.316]
     """
 
-    #: the rows it reads: the ``points`` input (:mod:`novelty.maps.points`), not any rows
+    #: the rows it reads: the ``points`` input (:mod:`novelty.io.scans.points`), not any rows
     input_layout = "points"
 
     _parameter_rules = {
@@ -193,7 +193,7 @@ class HabituatingMap(NoveltyDetector):
 
     @classmethod
     def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
-        """Rows of the points input for generic checks (:func:`novelty.maps.points.example_rows`)."""
+        """Rows of the points input for generic checks (:func:`novelty.io.scans.points.example_rows`)."""
         return example_rows(seed, n)
 
     def __getstate__(self):

@@ -1,6 +1,6 @@
 """One scan of the ``points`` input as the rays a grid of the world reads: where each echo lies, and the free space before it.
 
-A row of :mod:`novelty.maps.points` gives the robot's position ``p`` and each
+A row of :mod:`novelty.io.scans.points` gives the robot's position ``p`` and each
 sector's end point ``e_k`` in the world: its nearest echo when its nearness is
 above 0, else as far as its beams saw free space. :func:`scan_rays` turns it
 into rays from ``p``:

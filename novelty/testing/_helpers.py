@@ -20,7 +20,7 @@ def _rows(component, seed: int = 0, n: int = 120) -> np.ndarray:
     """Rows ``component`` reads: :func:`_data`, or its own example where it reads a layout of its own.
 
     A detector that reads rows of a stated layout (``input_layout``, e.g. the
-    ``points`` input of :mod:`novelty.maps.points`) gives example rows of it
+    ``points`` input of :mod:`novelty.io.scans.points`) gives example rows of it
     (``_example_rows(seed, n)``) for the checks.
     """
     if getattr(component, "input_layout", None) is not None:

@@ -2,7 +2,7 @@
 
 It composes with a synapse in a :class:`~novelty.maps.habituating_map.HabituatingMap`, which the
 detector checks run on its own; these check the clusterer in it, on the ``points`` input
-(:func:`novelty.maps.points.example_rows`): a fresh map is empty, the same rows give the same map,
+(:func:`novelty.io.scans.points.example_rows`): a fresh map is empty, the same rows give the same map,
 and its compiled loop (:mod:`novelty.maps.engine`) equals the numpy reference bit for bit, with a
 forgetting Stanley synapse, neighbours, a visit gap and irregular timestamps (skipped without
 numba, ``unittest.SkipTest``).
@@ -19,7 +19,7 @@ from .. import _kernels
 from ..habituation.stanley import StanleySynapse
 from ..maps.engine import wait
 from ..maps.habituating_map import HabituatingMap
-from ..maps.points import example_rows
+from ..io.scans.points import example_rows
 from ._helpers import _check, _state_arrays
 
 __all__ = ["check_cells_start_empty", "check_map_deterministic", "check_map_compiled_equals_reference"]

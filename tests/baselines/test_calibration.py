@@ -12,7 +12,7 @@ from novelty.baselines import GaussianMixtureDetector, KohonenNoveltyFilter, Par
 from novelty.baselines._calibration import _MAX_REFERENCE, summarise_reference
 
 BASELINES = ["kohonen-filter", "autoencoder-filter", "gmm", "som-distance", "parzen", "isolation-forest",
-             "one-class-svm", "lof", "elliptic-envelope"]
+             "one-class-svm", "lof", "knn", "elliptic-envelope"]
 
 
 def test_comparable_by_hand():

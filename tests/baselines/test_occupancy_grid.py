@@ -13,7 +13,7 @@ import pytest
 
 from novelty.baselines.occupancy_grid import OccupancyGrid
 from novelty.maps.grid_walk import walk_cells
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 from novelty.maps.scan_rays import MapRangeWarning, scan_rays
 from novelty.maps.tiles import GridFullWarning
 

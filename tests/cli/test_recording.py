@@ -10,8 +10,9 @@ import pytest
 
 from novelty.cli import main
 from novelty.cli.recording import recording_rings
+from novelty.io import Reading
 
-from ..io.test_carmen import LOG
+from ..io.carmen.test_log import LOG
 
 
 def table(text: str) -> list[dict]:
@@ -43,7 +44,7 @@ def test_wrong_options_for_a_recording(tmp_path, capsys):
 def bag(request, tmp_path_factory):
     pytest.importorskip("rosbags", reason="reading ROS bags needs the optional extra: pip install "
                         "'novelty-habituation[ros]'")
-    from ..io.bags import write_bag
+    from ..io.bag_files import write_bag
 
     return write_bag(tmp_path_factory.mktemp(request.param), request.param)
 
@@ -65,14 +66,14 @@ def test_a_map_reads_the_points_input_of_a_bag_with_its_poses(bag, tmp_path, cap
     # map-explore reads the robot's pose with each scan: novelty run gives it the points input, here one
     # sector a beam (the bag's laser has four), each row scored then learned as a script would
     import novelty
-    from novelty.io.objects.points import sweep_points
-    from novelty.io.sweeps import read_sweeps
+    from novelty.io.scans.points import sweep_points
+    from novelty.io.recording.readers import read_sweeps
 
     out = tmp_path / "map.csv"
     assert main(["run", "map-explore", "--data", str(bag), "--topic", "/scan", "--pose-topic", "/odom",
                  "--out", str(out)]) == 0
     rows = table(out.read_text())
-    sweeps = list(read_sweeps(bag, "/scan", pose_topic="/odom"))
+    sweeps = list(read_sweeps(bag, Reading(topic="/scan", pose_topic="/odom")))
     det = novelty.make("map-explore")
     expected = [det.score_learn_one(r) for r in sweep_points(sweeps, sectors=4)]
     assert [float(r["novelty"]) for r in rows] == pytest.approx(expected, abs=1e-9)
@@ -88,7 +89,7 @@ def test_a_map_reads_the_points_input_of_a_bag_with_its_poses(bag, tmp_path, cap
 
 def test_a_map_on_a_recording_without_poses_says_where_poses_come_from(tmp_path, capsys):
     pytest.importorskip("rosbags", reason="the bag is written with rosbags' writers (the ros extra)")
-    from ..io.objects.test_bags import robot_bag
+    from ..tasks.objects.test_bags import robot_bag
 
     bag = robot_bag(tmp_path / "no-poses", False)   # no /tf: its poses are on /odom, read only when named
     assert main(["run", "map-explore", "--data", str(bag)]) == 2
@@ -115,7 +116,7 @@ def test_a_file_that_is_not_a_bag(tmp_path, capsys):
 
 
 def test_without_rosbags_the_message_names_the_extra(tmp_path, capsys, monkeypatch):
-    from novelty.io import rosbag
+    from novelty.io.bags import rosbag
 
     def missing():
         raise ImportError("Reading ROS bags needs the optional package rosbags: pip install "
@@ -180,7 +181,7 @@ def _empty_topic_bag(path):
     """A ROS 1 bag whose /scan holds no message (its odometry does)."""
     from rosbags.rosbag1 import Writer
 
-    from ..io.bags import _messages, store
+    from ..io.bag_files import _messages, store
 
     ts = store("ros1")
     with Writer(path) as writer:

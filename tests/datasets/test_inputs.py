@@ -7,7 +7,7 @@ import pytest
 
 from novelty.datasets.inputs import with_inputs
 from novelty.datasets.paper import paper_a_to_a_star
-from novelty.maps.points import split_points
+from novelty.io.scans.points import split_points
 from novelty.sonar.robot import NOMAD_200
 
 

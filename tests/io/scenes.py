@@ -12,7 +12,7 @@ import shutil
 
 import numpy as np
 
-from .bags import _header, _make, store
+from .bag_files import _header, _make, store
 
 #: the room: x from -3 to 5, y from -2 to 4, with a box from (1, 1) to (2, 1.5)
 WALLS = [((-3, -2), (5, -2)), ((5, -2), (5, 4)), ((5, 4), (-3, 4)), ((-3, 4), (-3, -2)),

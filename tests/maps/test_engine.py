@@ -9,7 +9,7 @@ import pytest
 from novelty import _kernels
 from novelty.maps import HabituatingMap
 from novelty.maps.engine import wait
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 from novelty.maps.tiles import GridFullWarning
 from novelty.registry import synapses
 

@@ -18,7 +18,7 @@ from novelty._component import StateError
 from novelty.maps.habituating_map import HabituatingMap, MapRangeWarning, cell_keys, habituating_map, sector_width
 from novelty.habituation.stanley import StanleySynapse
 from novelty.maps.cells import WorldCells
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 from novelty.persistence import load, save
 
 ROBOT = (0.1, 0.1, 0.0)

@@ -9,7 +9,7 @@ import pytest
 
 import novelty
 from novelty.registry import clusterers, synapses
-from novelty.maps.points import example_rows
+from novelty.io.scans.points import example_rows
 from novelty.testing import conformance_checks, installed_detectors
 
 from ..registered import detector_params

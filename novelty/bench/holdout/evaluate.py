@@ -6,7 +6,7 @@ For a task whose scans are split into a training and a test part:
    ``train_passes`` times (``partial_fit``, novelty computed before each scan
    is learned, exactly as a robot repeating its route). A batch-only detector
    (``supports_online = False``) is ``fit`` once on the training scans.
-   The test labels must be 0 or 1, both present (:mod:`novelty.datasets.labels`);
+   The test labels must be 0 or 1, both present (:mod:`novelty.io.tables.labels`);
    a score that is not finite, the detector's own raw score included, fails
    the cell with their count (a calibrated +inf reads as a constant).
 2. Threshold. The training scans are scored without learning; the alarm
@@ -39,7 +39,7 @@ import tracemalloc
 
 import numpy as np
 
-from ...datasets.labels import check_both_classes, check_labels
+from ...io.tables.labels import check_both_classes, check_labels
 from ..build import (check_finite, check_input_layout, check_raw_finite, load_task, make_detector, n_units, resting_novelty,
                      train_detector)
 from ..specs import Cell

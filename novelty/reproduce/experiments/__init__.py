@@ -6,7 +6,7 @@ markdown) and a figure; ``novelty reproduce --experiment NAME`` runs one,
 ``docs/reproduction.md`` (``--report``). What each one varies is ours, not
 the paper's, unless it says otherwise:
 
-- ``table1``: the paper's protocol on seeds 0-9, Table 1 beside ours, and
+- ``table1``: the paper's protocol on every seed, Table 1 beside ours, and
   each of the paper's claims checked seed by seed;
 - ``synthetic``: the paper's map on corridors of K exactly repeating
   perceptions and of one perception with small noise;

@@ -95,7 +95,7 @@ def traversal(environment, seed: int, run: int, options: tuple = ()) -> np.ndarr
 
 
 def span(seeds) -> str:
-    """``"0-9"`` for seeds 0 to 9."""
+    """``"0-9"`` for ``range(10)``."""
     seeds = list(seeds)
     return f"{seeds[0]}-{seeds[-1]}" if len(seeds) > 1 else str(seeds[0])
 

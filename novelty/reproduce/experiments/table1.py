@@ -14,10 +14,11 @@ import numpy as np
 
 from novelty.reproduce import PAPER_TABLE1, is_resting, run_protocol
 
-from ._common import Result, parallel, pyplot
+from ._common import Result, parallel, pyplot, span
 
 NAME = "table1"
-TITLE = "Table 1 on seeds 0-9 and the paper's claims"
+#: the title, with the span of the seeds run ("0-9")
+TITLE = "Table 1 on seeds {} and the paper's claims"
 
 #: The door of A* (m along the route) and how far either side the sonar hears it; door G of B.
 DOOR, DOOR_G, REACH = 3.0, 3.6, 1.0
@@ -161,7 +162,7 @@ def run(out: Path, seeds=range(10), jobs: int = 1) -> Result:
     protocols, own = [p for p, _ in both], [o for _, o in both]
     rows = table_rows(protocols, own)
     claims = claim_rows(protocols, own)
-    return Result(NAME, TITLE, rows, [], _plot(rows, out / f"{NAME}.png"),
+    return Result(NAME, TITLE.format(span(seeds)), rows, [], _plot(rows, out / f"{NAME}.png"),
                   f"Integrated output above the resting activity; 'seed 0' is the guide's table (docs/guide/paper.md), "
                   f"'mean' and 'range' over seeds {seeds[0]}-{seeds[-1]}; the last column (not the paper's "
                   "map) gives the SOM's neighbours a learning rate of 0.05.", tables={"claims": claims})

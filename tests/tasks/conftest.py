@@ -1,0 +1,3 @@
+"""The Radish logs' fixture of the readers' tests, for the tasks built on them."""
+
+from ..io.conftest import radish  # noqa: F401
