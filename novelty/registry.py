@@ -33,7 +33,7 @@ from importlib.metadata import entry_points
 from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
-from ._validation.parameters import unknown_parameters
+from ._messages import unknown_parameters
 
 __all__ = [
     "Registry",

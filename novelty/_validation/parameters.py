@@ -7,7 +7,6 @@ Messages follow scikit-learn's form::
 
 from __future__ import annotations
 
-import difflib
 import math
 import numbers
 import operator
@@ -16,6 +15,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+
+from .._messages import unknown_parameters
 
 __all__ = ["Interval", "Options", "Instance", "Bounds", "validate_parameters", "unknown_parameters"]
 
@@ -183,18 +184,3 @@ def _stable(rule, kind: type) -> bool:
                                       for alt in alternatives)
 
 
-def unknown_parameters(what: str, given, valid) -> str | None:
-    """The message refusing the names of ``given`` that are not in ``valid`` (a close one suggested); None if none.
-
-    >>> unknown_parameters("Reading", {"sector": 8}, ["sectors", "topic"])
-    "Unknown parameter 'sector' (did you mean 'sectors'?) for Reading. Valid parameters: sectors, topic."
-    """
-    unknown = [name for name in given if name not in valid]
-    if not unknown:
-        return None
-    hints = []
-    for name in unknown:
-        close = difflib.get_close_matches(name, valid, n=1)
-        hints.append(f"'{name}'" + (f" (did you mean '{close[0]}'?)" if close else ""))
-    return (f"Unknown parameter{'s' if len(unknown) > 1 else ''} {', '.join(hints)} for {what}. "
-            f"Valid parameters: {', '.join(sorted(valid)) or '(none)'}.")
