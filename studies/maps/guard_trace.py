@@ -1,7 +1,7 @@
 """Why a habituating map fails the detection guard: door G on paper-a-to-b, the open door on paper-a-to-a-star.
 
-    taskset -c 1 python benchmarks/maps_guard_trace.py                       # the defaults, seeds 105-109
-    taskset -c 1 python benchmarks/maps_guard_trace.py --param tolerance=0 --param unseen=0.25
+    taskset -c 1 python studies/maps/guard_trace.py                       # the defaults, seeds 105-109
+    taskset -c 1 python studies/maps/guard_trace.py --param tolerance=0 --param unseen=0.25
 
 The guard (benchmarks/suites/maps-detection.toml) gives ``habituating-map`` the simulated sonar ring's 16
 echoes in the world (the ``points`` input). On each seed the map learns the task's training part and
@@ -149,7 +149,7 @@ def main(argv=None) -> None:
                         help="every guard task: the share of familiar and novel scans scored as new as can be")
     args = parser.parse_args(argv)
     if any(s in REPORTED for s in args.seeds):
-        sys.exit("maps_guard_trace: seeds 0-9 are reported seeds; trace on development seeds (105-109).")
+        sys.exit("guard_trace: seeds 0-9 are reported seeds; trace on development seeds (105-109).")
     params = {k: _value(v) for k, v in (p.split("=", 1) for p in args.param)}
     print(f"habituating-map {params or '(defaults)'}, seeds {args.seeds}")
     if args.saturation:

@@ -1,7 +1,7 @@
 """Why a habituating map, learning as it drives, does not flag first sight: which familiar scans outrank it.
 
-    NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --seeds 100 101 102 103 104
-    NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --param tolerance=0   # as in the guide
+    NOVELTY_DATA_DIR=/data taskset -c 1 python studies/maps/diagnosis.py --seeds 100 101 102 103 104
+    NOVELTY_DATA_DIR=/data taskset -c 1 python studies/maps/diagnosis.py --param tolerance=0   # as in the guide
 
 On the exploration tasks with objects (``exploration-objects-radish-*``, the ``points`` input with 180
 sectors), every scan is scored by ``habituating-map`` (its defaults, or ``--param name=value``) before it

@@ -1,7 +1,4 @@
-"""benchmarks/maps_guard_trace.py: its trace of a scan's most novel cell, and its refusal of reported seeds."""
-
-import importlib.util
-from pathlib import Path
+"""studies/maps/guard_trace.py: its trace of a scan's most novel cell, and its refusal of reported seeds."""
 
 import numpy as np
 import pytest
@@ -9,10 +6,7 @@ import pytest
 from novelty.maps import habituating_map
 from novelty.io.scans.points import example_rows
 
-ROOT = Path(__file__).resolve().parents[1]
-_spec = importlib.util.spec_from_file_location("maps_guard_trace", ROOT / "benchmarks" / "maps_guard_trace.py")
-trace = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(trace)
+from . import guard_trace as trace
 
 
 @pytest.mark.parametrize("params", [{"arc": 0.0}, {"tolerance": 0, "unseen": 0.25, "arc": 0.0},

@@ -1,7 +1,4 @@
-"""benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall, its cells and its trace."""
-
-import importlib.util
-from pathlib import Path
+"""studies/maps/diagnosis.py: its split of the first-encounter AUC's shortfall, its cells and its trace."""
 
 import numpy as np
 import pytest
@@ -12,10 +9,7 @@ from novelty.maps import habituating_map
 from novelty.io.scans.points import example_rows
 from novelty.maps.habituating_map import cell_keys
 
-ROOT = Path(__file__).resolve().parents[1]
-_spec = importlib.util.spec_from_file_location("maps_diagnosis", ROOT / "benchmarks" / "maps_diagnosis.py")
-diagnosis = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(diagnosis)
+from . import diagnosis
 
 
 def test_the_pairs_each_familiar_scan_wins_sum_to_the_aucs_shortfall():
