@@ -165,41 +165,52 @@ def sweep_points(sweeps: Sequence, sectors: int = 16, threshold: float = 4.0) ->
     if isinstance(sectors, bool) or not isinstance(sectors, (int, np.integer)) or sectors < 1:
         raise ValueError(f"The points input needs one number of sectors (an int >= 1); got {sectors!r}.")
     maker = RingMaker(int(sectors), "min")
+    sectors_of: dict[bytes, np.ndarray] = {}   # the sector of each beam, once a beam geometry
     rows = []
     for sweep in sweeps:
         if sweep.pose is None:
             raise ValueError(f"The sweep at t={sweep.time} has no pose: the points input places each echo in the "
                              "world frame (give the recording's poses, pose_topic=).")
         near = preprocess(maker(sweep), threshold)
-        ends = _sector_ends(sweep, int(sectors), threshold)
+        angles = np.asarray(sweep.angles, dtype=np.float64)
+        key = angles.tobytes()
+        if key not in sectors_of:
+            sectors_of[key] = sector_index(angles, int(sectors))
+        ends = _sector_ends(sweep, sectors_of[key], int(sectors), threshold)
         x, y, yaw = (float(v) for v in sweep.pose)
         c, s = math.cos(yaw), math.sin(yaw)
         world_x = x + c * ends[:, 0] - s * ends[:, 1]
         world_y = y + s * ends[:, 0] + c * ends[:, 1]
         heading = (yaw + math.pi) % (2 * math.pi) - math.pi
-        rows.append(np.r_[x, y, heading, near, world_x, world_y])
+        rows.append(np.concatenate([(x, y, heading), near, world_x, world_y]))
     return np.array(rows, dtype=np.float64).reshape(-1, 3 + 3 * int(sectors))
 
 
-def _sector_ends(sweep, sectors: int, threshold: float) -> np.ndarray:
-    """Each sector's end point in the base frame: its nearest beam's echo, or ``threshold`` along it."""
+def _sector_ends(sweep, index: np.ndarray, sectors: int, threshold: float) -> np.ndarray:
+    """Each sector's end point in the base frame: its nearest beam's echo, or ``threshold`` along it.
+
+    ``index`` is each beam's sector. The nearest beam is the first of the
+    least distance in beam order (as ``argmin`` picks it), found for every
+    sector at once by sorting the beams by sector, then distance, then beam
+    (a stable sort); a sector without an echo takes its middle beam.
+    """
     angles = np.asarray(sweep.angles, dtype=np.float64)
     ranges = np.asarray(sweep.ranges, dtype=np.float64)
     origins = np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
     echo = np.isfinite(ranges)
-    unit = np.c_[np.cos(angles), np.sin(angles)]
+    unit = np.stack([np.cos(angles), np.sin(angles)], axis=1)
     ends = origins + np.where(echo, ranges, 0.0)[:, None] * unit
     distance = np.where(echo, np.hypot(ends[:, 0], ends[:, 1]), np.inf)
-    index = sector_index(angles, sectors)
-    out = np.empty((sectors, 2))
-    for k in range(sectors):
-        beams = np.flatnonzero(index == k)
-        j = beams[np.argmin(distance[beams])] if np.isfinite(distance[beams]).any() else beams[len(beams) // 2]
-        if distance[j] <= threshold:
-            out[k] = ends[j]
-        else:
-            direction = ends[j] if echo[j] else unit[j]
-            out[k] = threshold * direction / np.hypot(*direction)
+    counts = np.bincount(index[index >= 0], minlength=sectors)   # none empty: the ring maker refused those
+    starts = np.cumsum(counts) - counts + np.count_nonzero(index < 0)   # beams outside sort first
+    nearest = np.lexsort((distance, index))[starts]
+    middle = np.argsort(index, kind="stable")[starts + counts // 2]
+    j = np.where(np.isfinite(distance[nearest]), nearest, middle)
+    out = ends[j].copy()
+    far = ~(distance[j] <= threshold)
+    if far.any():
+        direction = np.where(echo[j][far, None], ends[j][far], unit[j][far])
+        out[far] = threshold * direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
     return out
 
 
