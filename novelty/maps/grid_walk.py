@@ -5,13 +5,13 @@ Cell ``(i, j)`` holds the points ``i c <= x < (i + 1) c``, ``j c <= y < (j + 1) 
 ``p(t) = p0 + t (p1 - p0)`` for ``t`` in [0, 1], starts in the cell of ``p0``
 and ends in the cell of ``p1``; between them it crosses ``|i1 - i0|`` vertical
 and ``|j1 - j0|`` horizontal cell boundaries, each at the ``t`` where it meets
-the boundary's line,
+the boundary's line::
 
     t_x = (b c - x0) / (x1 - x0)      b = i + 1 stepping right, b = i stepping left     (1)
 
 (``i`` the current cell's column) and likewise ``t_y``. The traversal of
 Amanatides & Woo (1987) steps, at every crossing, to the neighbour across the
-boundary met first, the one of least ``t``: so a ray visits
+boundary met first, the one of least ``t``: so a ray visits::
 
     n = |i1 - i0| + |j1 - j0| + 1                                                (2)
 
