@@ -23,7 +23,7 @@ import stat
 from pathlib import Path
 from typing import IO, Callable
 
-__all__ = ["write_atomically", "NotARegularFileError", "check_target", "not_regular"]
+__all__ = ["write_atomically", "NotARegularFileError", "check_target", "not_regular", "same_file", "inside"]
 
 _KINDS = ((stat.S_ISLNK, "a symbolic link"), (stat.S_ISDIR, "a directory"), (stat.S_ISCHR, "a character device"),
           (stat.S_ISBLK, "a block device"), (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
@@ -56,6 +56,21 @@ def check_target(path: str | os.PathLike) -> None:
     raise NotARegularFileError(
         f"Not written: {os.fspath(path)} exists and is {kind}; only a regular file is replaced "
         "(choose another path, or remove it first).")
+
+
+def same_file(a: str | os.PathLike, b: str | os.PathLike) -> bool:
+    """Whether ``a`` and ``b`` name one file: one path once resolved (links followed), or one inode (a hard link)."""
+    if Path(a).resolve() == Path(b).resolve():
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:   # one of them does not exist (yet): not one file
+        return False
+
+
+def inside(path: str | os.PathLike, folder: str | os.PathLike) -> bool:
+    """Whether ``path`` lies in ``folder`` or below it (both resolved, links followed)."""
+    return Path(folder).resolve() in Path(path).resolve().parents
 
 
 def write_atomically(path: str | os.PathLike, write: Callable[[IO], None], *, text: bool = False,

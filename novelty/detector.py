@@ -41,6 +41,7 @@ import _thread
 import functools
 import math
 import numbers
+import sys
 import threading
 from abc import abstractmethod
 from typing import Any
@@ -249,6 +250,10 @@ class NoveltyDetector(OutlierMixin, Component):
         # all but the clone's lock: this detector keeps waiting for its own
         vars(self).update({k: v for k, v in vars(new).items() if k != _LOCK})
 
+    #: one scan's novelty outside this closed interval goes to :meth:`_finite` (the default: every finite
+    #: number passes; a detector whose :meth:`_finite` checks a narrower range says so here)
+    _novelty_interval = (-sys.float_info.max, sys.float_info.max)
+
     def _finite(self, novelty: np.ndarray) -> np.ndarray:
         if not np.isfinite(novelty).all():
             raise StateError(
@@ -439,7 +444,8 @@ class NoveltyDetector(OutlierMixin, Component):
             self._validate_params()
             return self._first_novelty()
         out = self._novelty_one(check_one(x, self, self.n_features_in_, self._names()))
-        if not math.isfinite(out):
+        low, high = self._novelty_interval
+        if not low <= out <= high:   # NaN too
             self._finite(np.array([out]))
         return out
 
@@ -465,7 +471,8 @@ class NoveltyDetector(OutlierMixin, Component):
             self._validate_params()
             target._begin(x[None, :], names)
         out = float(target._learn(x[None, :], dt)[0])
-        if not math.isfinite(out):
+        low, high = target._novelty_interval
+        if not low <= out <= high:   # NaN too
             target._finite(np.array([out]))
         target._advance_clock(1, timestamps)
         if not fitted:

@@ -354,6 +354,27 @@ class HabituatingFilter(NoveltyDetector):
         # mismatch: 1 - (1 - y) e with e in (0, 1]; product: y (1 - e)
         return {"efficacy": (low, high), "mismatch": (low, 1.0), "product": (0.0, high)}[self.novelty_rule]
 
+    _novelty_interval = (0.0, 1.0)
+
+    def _finite(self, novelty: np.ndarray) -> np.ndarray:
+        """``novelty`` if finite and within the range its synapse keeps, else :class:`StateError`.
+
+        Learning cannot leave the range (:meth:`_novelty_bounds`); a novelty
+        outside it comes from a state changed in place (an ``efficacy_``
+        written to), which the checks of ``fit``, ``set_params`` and a model
+        file never saw.
+        """
+        novelty = super()._finite(novelty)
+        if novelty.size and (novelty.min() < 0.0 or novelty.max() > 1.0):
+            bounds = self._novelty_bounds()
+            slack = efficacy_range.ROUNDINGS * np.finfo(np.float64).eps
+            if bounds is not None and (novelty.min() < bounds[0] - slack or novelty.max() > bounds[1] + slack):
+                raise StateError(
+                    f"{type(self).__name__} computed a novelty from {novelty.min():.6g} to {novelty.max():.6g}, "
+                    f"outside the [{bounds[0]:.6g}, {bounds[1]:.6g}] its synapse keeps: its learned state is "
+                    "damaged (an efficacy_ written in place?). Refit it.")
+        return novelty
+
     def _check_state(self) -> None:
         check_state(self)  # what an engine reads: shapes first
         self.synapse_.check_efficacy(self.stimulus)  # before the scores are checked against its range

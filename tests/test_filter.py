@@ -13,6 +13,7 @@ from hypothesis.extra import numpy as hnp
 from sklearn.base import clone
 
 import novelty
+from novelty._component import StateError
 from novelty.clusterers.som import SOM
 from novelty.filter import HabituatingFilter
 from novelty.habituation.stanley import StanleySynapse
@@ -438,3 +439,17 @@ def test_at_the_edge_of_the_range_novelty_stays_in_it(params):
     scan = np.full(4, 0.5)
     novelties = np.array([det.score_learn_one(scan) for _ in range(200)])
     assert novelties.min() >= -1e-12 and novelties.max() <= 1.0
+
+
+@pytest.mark.parametrize("written", [-1.0, 2.0, 1e308])
+def test_an_efficacy_written_in_place_outside_its_range_is_refused_in_every_call(written):
+    # learning keeps the efficacy in [y0 - S / alpha, y0]; a value written into efficacy_ is not the novelty
+    X = np.random.default_rng(0).random((20, 4))
+    for call in ("novelty", "score_one", "score_learn_one", "stream", "predict"):
+        det = novelty.make("hsom", n_rows=2, n_columns=2).fit(X)
+        det.synapse_.efficacy_[:] = written
+        before = det.synapse_.efficacy_.copy()
+        with pytest.raises(StateError, match=r"outside the \[0.047619, 1\] its synapse keeps"):
+            getattr(det, call)(X if call in ("novelty", "stream", "predict") else X[0])
+        if call not in ("score_learn_one", "stream"):   # the learning calls learned before the novelty was read
+            np.testing.assert_array_equal(det.synapse_.efficacy_, before)

@@ -25,8 +25,6 @@ protocol, which gives the same number or leaves the scan to the general path
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .._kernels.choice import engine_of
@@ -61,7 +59,8 @@ def learn_one(detector, x: np.ndarray) -> float | None:
             out = engine.novelty1.item()
         else:
             out = float(detector._combine(engine.novelty1.copy(), engine.distance1.copy())[0])
-        if not math.isfinite(out):
+        low, high = detector._novelty_interval
+        if not low <= out <= high:   # NaN too: the filter's check says whether its synapse allows it
             detector._finite(np.array([out]))
         return out
 
@@ -85,7 +84,8 @@ def score_one(detector, x: np.ndarray) -> float | None:
         else:
             out = float(detector._novelty_of(np.array([int(row)]), np.array([distance]),
                                              np.array([efficacy]))[0])
-        if not math.isfinite(out):
+        low, high = detector._novelty_interval
+        if not low <= out <= high:   # NaN too: the filter's check says whether its synapse allows it
             detector._finite(np.array([out]))
         return out
 

@@ -280,7 +280,19 @@ def run(detectors, tasks, seeds=1, protocol: str = "holdout", backend: str = "se
         Draw the plots (with ``out`` only).
     quiet : bool, default=True
         No progress output.
+
+    Raises
+    ------
+    KeyboardInterrupt
+        Interrupted (Ctrl-C; with the serial backend, also a ``KeyboardInterrupt``
+        raised inside a cell, which runs in this process): after the finished
+        cells are written to ``out``, which a second call resumes.
     """
     suite = Suite(detector_specs(detectors), task_specs(tasks), parse_seeds(seeds), name="python",
                   threshold=threshold, memory=memory, reference=reference, protocol=protocol)
-    return run_suite(suite.check(), out, backend=backend, jobs=jobs, plots=plots, quiet=quiet)
+    results = run_suite(suite.check(), out, backend=backend, jobs=jobs, plots=plots, quiet=quiet)
+    if results.report.interrupted:   # the caller's Ctrl-C stops the caller too, as anywhere in Python
+        kept = (f"their rows are in {out}; run again with the same out= to resume" if out is not None
+                else "give out= to keep the finished cells and resume")
+        raise KeyboardInterrupt(f"novelty.bench.run was interrupted after {results.report.ran} cells ({kept}).")
+    return results

@@ -10,11 +10,13 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from .._atomic import inside, same_file
 from ..datasets.files import PREPROCESSING
 from ..registry import RegistryError
 
 __all__ = ["NoveltyParser", "UserError", "one_line", "user_errors", "parse_params", "read_scans",
-           "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell"]
+           "write_novelty", "add_command", "add_data_options", "data_options", "alarms", "format_cell",
+           "check_outputs"]
 
 
 class UserError(Exception):
@@ -63,6 +65,30 @@ def parse_params(items: Sequence[str] | None) -> dict[str, Any]:
         return parse_assignments(items or [])
     except SuiteError as exc:
         raise UserError(str(exc)) from None
+
+
+def check_outputs(reads, writes) -> None:
+    """Refuse an output that names a file the command reads, or another output, before anything is done.
+
+    ``reads`` and ``writes`` are ``(option, path)`` pairs (``("--data",
+    "scans.csv")``); a path that is None or ``-`` (standard input or output)
+    takes no part. One file is one path once resolved or one inode (a hard
+    link); a read path that is a folder (a ROS 2 bag) holds every file below it.
+    """
+    reads = [(option, path) for option, path in reads if path not in (None, "-")]
+    writes = [(option, path) for option, path in writes if path not in (None, "-")]
+    for i, (option, path) in enumerate(writes):
+        for source, read in reads:
+            if same_file(path, read):
+                raise UserError(f"{option} {path} is the file {source} names: writing it would replace what is "
+                                f"read. Choose another {option}.")
+            if Path(read).is_dir() and inside(path, read):
+                raise UserError(f"{option} {path} lies in {read}, which {source} names and is read. Choose "
+                                f"another {option}.")
+        for other, earlier in writes[:i]:
+            if same_file(path, earlier):
+                raise UserError(f"{other} and {option} name one file ({path}): one output would replace the "
+                                "other. Give each its own.")
 
 
 # ----------------------------------------------------------------- scan files

@@ -6,6 +6,9 @@ import os
 import shlex
 import sys
 
+from pathlib import Path
+
+from .._atomic import inside, same_file
 from .._markup import counted
 from ._common import UserError, add_command
 
@@ -137,6 +140,31 @@ def build_suite(args):
     return suite.check()
 
 
+#: what a bench writes in --out: files it replaces, and folders it writes files in
+WRITTEN_FILES, WRITTEN_FOLDERS = ("results.csv", "results.jsonl", "summary.md"), ("cells", "plots")
+
+
+def _check_inputs_kept(args, suite) -> None:
+    """Refuse a suite or a task's file among what the bench writes in --out, before anything is run."""
+    # deferred: the benchmark imports scikit-learn; `novelty --help` does not
+    from ..bench.specs import FILE_OPTIONS, FILES_TASK, RECORDING_FILE_OPTIONS
+
+    out = Path(args.out)
+    reads = [("the suite", args.suite)] if args.suite else []
+    for task in suite.tasks:
+        named = FILE_OPTIONS if task.name == FILES_TASK else RECORDING_FILE_OPTIONS.get(task.name, ())
+        for key in named:
+            value = task.options.get(key)
+            names = value.split(",") if isinstance(value, str) else value if isinstance(value, list) else []
+            reads += [(f"task {task.label}'s {key}", name.strip()) for name in names if isinstance(name, str)]
+    for what, path in reads:
+        if any(same_file(path, out / name) for name in WRITTEN_FILES) or any(
+                inside(path, out / folder) for folder in WRITTEN_FOLDERS):
+            raise UserError(f"{what} {path} is among the files novelty bench writes in --out {out} "
+                            f"({', '.join(WRITTEN_FILES)}, {'/, '.join(WRITTEN_FOLDERS)}/): writing them would "
+                            "replace what is read. Choose another --out, or move the file.")
+
+
 def _print_results(report, paired: bool) -> None:
     """A hold-out run: the table a reader needs first, what its columns mean, a verdict (and the paired
     comparison when ``paired``: --reference was given); an exploration run: its table and the tests."""
@@ -170,6 +198,7 @@ def run(args) -> int:
     if args.scheduler and backend != "dask":
         raise UserError("--scheduler is for --backend dask.")
     suite = build_suite(args)
+    _check_inputs_kept(args, suite)
     n_cells = len(suite.detectors) * len(suite.tasks) * len(suite.seeds)
     if not args.quiet:
         print(f"Suite {suite.name!r}: {counted(len(suite.detectors), 'detector')} x "

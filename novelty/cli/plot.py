@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from .._atomic import not_regular
-from ._common import UserError, add_command
+from ._common import UserError, add_command, check_outputs
 
 DESCRIPTION = """Plot the novelty along the route.
 
@@ -164,12 +164,22 @@ def run(args) -> int:
     if kind is not None and not path.is_dir():  # a FIFO would block the read, a device never end
         raise UserError(f"{path} is {kind}, not a regular file; expected the output of 'novelty run' or a "
                         "bench folder.")
+    check_outputs(_files_read(path), [("--out", args.out)])
     plt = _pyplot()
     try:
         return _plot(path, args, plt)
     except UnicodeDecodeError as exc:
         raise UserError(f"{path} is not UTF-8 text ({exc.reason}); expected the CSV output of 'novelty run' "
                         "or a bench folder.") from None
+
+
+def _files_read(path: Path) -> list[tuple[str, Path]]:
+    """What a plot of ``path`` reads: the file, or a bench folder's rows and per-cell arrays."""
+    folder = path if path.is_dir() else path.parent if path.name in ("results.jsonl", "results.csv") else None
+    files = [] if path.is_dir() else [("RESULTS", path)]
+    if folder is not None:
+        files += [("RESULTS", folder / "results.jsonl"), ("RESULTS", folder / "cells")]
+    return files
 
 
 def _plot(path: Path, args, plt) -> int:

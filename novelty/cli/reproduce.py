@@ -128,6 +128,13 @@ def run(args) -> int:
     return 0
 
 
+def _written_by(path: Path, out: Path, names: list[str]) -> bool:
+    """Whether ``path`` is one of the files the experiments ``names`` write in ``out``
+    (``NAME.csv``, ``NAME.md``, ``NAME.png``, ``NAME-TABLE.csv``)."""
+    return (path.resolve().parent == out.resolve()
+            and any(path.stem == name or path.stem.startswith(f"{name}-") for name in names))
+
+
 def _title(args, params: dict) -> str:
     detail = ", ".join([args.detector, f"seed {args.seed}"] + [f"{k}={v}" for k, v in params.items()])
     return (f"Table 1 ({detail}): integrated output above the resting activity and maximum output "
@@ -152,8 +159,11 @@ def _experiments(args) -> int:
         raise UserError(f"Unknown experiment {args.experiment!r}; known: {', '.join(known)}, all.")
     if args.report is not None and not Path(args.report).is_file():
         raise UserError(f"--report {args.report}: no such file.")
-    _check_matplotlib()
     names = known if args.experiment == "all" else [args.experiment]
+    if args.report is not None and _written_by(Path(args.report), Path(args.out), [*names, "summary"]):
+        raise UserError(f"--report {args.report} is a file the experiments write in --out {args.out}: the "
+                        "report would be replaced before it is filled. Choose another --out.")
+    _check_matplotlib()
     seeds = range(args.seed, args.seed + args.n_seeds)
     blocks: dict[str, str] = {}
     results = {}

@@ -10,8 +10,8 @@ import numpy as np
 from .._atomic import check_target
 from .._validation import pass_timestamps
 from ..alarms import ALARM_FORMS, Alarm, parse_alarm
-from ._common import UserError, add_command, add_data_options, format_cell, one_line, parse_params, read_scans, \
-    write_novelty
+from ._common import UserError, add_command, add_data_options, check_outputs, format_cell, one_line, parse_params, \
+    read_scans, write_novelty
 from .recording import RowSink, add_recording_options, pose_columns, recording_points, recording_rings
 
 DESCRIPTION = """Stream scans through a detector, as a robot would, learning as it goes.
@@ -44,7 +44,9 @@ pose with each scan (map-explore, habituating-map) gets the points input
 instead: the pose, each sector's nearness and its end point in the world,
 180 sectors unless --sectors says (one a beam for a sensor of fewer). What the reading found (scans
 assembled, base frame, mounts, poses) is said on standard error. A run that
-fails leaves an existing --out as it was, or (midway) keeps the rows written."""
+fails leaves an existing --out as it was, or (midway) keeps the rows written;
+an --out or --save naming the file --data names (or each other's) is refused
+before anything is read."""
 
 EXAMPLES = [
     "novelty run hsom --data scans.csv",
@@ -87,6 +89,7 @@ def run(args) -> int:
 
     if args.passes < 1:
         raise UserError(f"--passes must be at least 1; got {args.passes}.")
+    check_outputs([("--data", args.data)], [("--out", args.out), ("--save", args.save)])
     if args.save:
         check_target(args.save)  # a device or a pipe is refused before the scans are read
     det = check_detector(DetectorSpec(args.detector, parse_params(args.param)))

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from .. import load
-from ._common import UserError, add_command, add_data_options, alarms, read_scans, write_novelty
+from ._common import UserError, add_command, add_data_options, alarms, check_outputs, read_scans, write_novelty
 
 DESCRIPTION = """Score scans with a saved model, without learning anything.
 
@@ -31,6 +31,7 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
+    check_outputs([("--model", args.model), ("--data", args.data)], [("--out", args.out)])
     if not Path(args.model).is_file():
         raise UserError(f"Model file not found: {args.model}")
     det = load(args.model)

@@ -56,7 +56,7 @@ from ..data import Dataset
 from ..io.tables.labels import check_labels
 
 __all__ = ["Resampling", "ResampledTask", "resampled", "adbench_split", "ADBENCH", "ADBENCH_DEFAULTS", "RESAMPLE",
-           "SCALES", "TRAINING", "OPTIONS"]
+           "SCALES", "TRAINING", "OPTIONS", "MAX_ROWS", "MAX_VALUES"]
 
 #: the ways a split is drawn for each seed
 RESAMPLE = ("stratified", "shuffled", "adbench")
@@ -68,6 +68,10 @@ TRAINING = ("contaminated", "clean")
 OPTIONS = ("resample", "test", "min_rows", "max_rows", "scale", "training")
 #: the default test fraction of a drawn split
 DEFAULT_TEST = 0.3
+#: the most rows ``min_rows`` and ``max_rows`` say (ADBench's are 1,000 and 10,000)
+MAX_ROWS = 2**24
+#: the most values (rows x features) a bootstrapped table holds: 2**27 float64, 1 GiB, checked before it is drawn
+MAX_VALUES = 2**27
 
 #: the options ``resample="adbench"`` fills in when they are not given: ADBench's values
 ADBENCH_DEFAULTS = {"test": 0.3, "min_rows": 1000, "max_rows": 10000, "scale": "minmax"}
@@ -95,8 +99,8 @@ def _choice(value, allowed: tuple, name: str, default: str) -> str:
 def _count(value, name: str) -> int | None:
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 2:
-        raise ValueError(f"{name} must be a number of rows, at least 2; got {value!r}.")
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or not 2 <= value <= MAX_ROWS:
+        raise ValueError(f"{name} must be a number of rows, 2 to {MAX_ROWS:,}; got {value!r}.")
     return int(value)
 
 
@@ -150,6 +154,9 @@ class Resampling:
         if data.y is None:
             raise ValueError(f"resample={self.resample} needs labels for every row (a y or label column).")
         y = check_labels(data.y, f"{data.name}, labels")
+        if self.min_rows is not None and len(y) < self.min_rows and self.min_rows * data.n_sensors > MAX_VALUES:
+            raise ValueError(f"min_rows={self.min_rows:,} rows of {data.n_sensors} features make "
+                             f"{self.min_rows * data.n_sensors:,} values; at most {MAX_VALUES:,} are drawn.")
         if self.resample == "adbench":
             train, test = adbench_split(y, seed, self.test, self.min_rows, self.max_rows)
         else:

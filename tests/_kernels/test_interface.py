@@ -243,7 +243,7 @@ def test_single_scan_calls_refuse_exactly_what_the_exact_checks_refuse(call, whe
     (``units_cleared``), not value by value: a value written in place is refused iff the
     exact checks refuse it, and a state they accept gives the reference engine's novelty, bit
     for bit (also for units within the bound whose distances fail the cheap check, which the
-    general path takes)."""
+    general path takes), or its refusal of a novelty outside the range the synapse keeps."""
     x = corridor(8, n_features=4, seed=2)[5].copy()
     for every in (False, True):
         det = novelty.make("hsom", n_rows=3, n_columns=3).fit(corridor(30, n_features=4))
@@ -260,7 +260,13 @@ def test_single_scan_calls_refuse_exactly_what_the_exact_checks_refuse(call, whe
             continue
         with reference_loops():
             twin = copy.deepcopy(det)
-            want = getattr(twin, call)(x)
+            try:
+                want = getattr(twin, call)(x)
+            except StateError as refused:
+                assert "outside the" in str(refused) and where == "efficacy_"
+                with pytest.raises(StateError, match="outside the"):
+                    getattr(det, call)(x)
+                continue
         got = getattr(det, call)(x)
         assert got == want or (np.isnan(got) and np.isnan(want))
 

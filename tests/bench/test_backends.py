@@ -5,7 +5,9 @@ import pytest
 
 import faulty
 import novelty
+from novelty import bench
 from novelty.bench import DetectorSpec, Suite, TaskSpec
+from novelty.bench.results import read_rows
 from novelty.bench.runner import run_bench
 
 
@@ -77,7 +79,9 @@ LAUNCH = """
 import sys
 sys.path[:0] = [{repo!r}, {bench_tests!r}]
 import novelty, toy
+from novelty import bench
 from novelty.bench import DetectorSpec, Suite, TaskSpec
+from novelty.bench.results import read_rows
 from novelty.bench.runner import run_bench
 from novelty.datasets import registry
 
@@ -140,3 +144,12 @@ def test_a_keyboard_interrupt_in_the_bench_process_still_stops_the_bench(tmp_pat
     # serial cells run in the bench's own process: there the interrupt is the user's
     report = run_bench(toy_suite(faulty_registered, faulty.INTERRUPT, "hsom"), tmp_path, quiet=True, plots=False)
     assert report.interrupted and report.rows == []  # stopped at the first cell, which is not recorded
+
+
+def test_an_interrupted_run_in_python_raises_after_keeping_the_finished_cells(tmp_path, faulty_registered):
+    detectors = ["hsom n_rows=3 n_columns=3", f"{faulty.INTERRUPT} n_rows=3 n_columns=3"]
+    with pytest.raises(KeyboardInterrupt, match=r"interrupted after 1 cells \(their rows are in .*resume\)"):
+        bench.run(detectors, faulty_registered.TASK, out=tmp_path, plots=False)
+    assert [r["detector_name"] for r in read_rows(tmp_path / "results.jsonl")] == ["hsom"]
+    with pytest.raises(KeyboardInterrupt, match=r"after 0 cells \(give out= to keep"):
+        bench.run(detectors[::-1], faulty_registered.TASK, plots=False)

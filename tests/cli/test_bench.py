@@ -81,3 +81,16 @@ def test_every_suite_file_the_help_cites_exists():
     assert cited
     for path in cited:
         assert (root / path).is_file(), path
+
+
+def test_a_task_file_among_what_the_bench_writes_is_refused_before_any_cell_runs(tmp_path, capsys):
+    out = tmp_path / "b"
+    (out / "cells").mkdir(parents=True)
+    scans = "novel,a,b\n" + "".join(f"{i % 2},{i},{i}\n" for i in range(20))
+    for name in ("results.csv", "cells/mine.csv"):
+        (out / name).write_text(scans)
+        assert main(["bench", "--detector", "hsom", "--task", f"files path={out / name} train_rows=10 label=novel",
+                     "--seeds", "1", "--out", str(out), "--quiet"]) == 2
+        assert "is among the files novelty bench writes in --out" in capsys.readouterr().err
+        assert (out / name).read_text() == scans
+    assert not (out / "results.jsonl").exists()

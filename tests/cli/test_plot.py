@@ -55,3 +55,17 @@ def test_a_path_names_its_start_and_alarms_and_x_without_y_is_drawn_along_the_sc
     assert main(["plot", str(tmp_path / "x.csv"), "--out", str(tmp_path / "x.png")]) == 0
     assert "has an 'x' column but no 'y'" in capsys.readouterr().err
     assert drawn[1].axes[0].get_xlabel() == "scan"
+
+
+def test_a_plot_never_replaces_what_it_reads(tmp_path, capsys):
+    run_output = tmp_path / "novelty.csv"
+    run_output.write_text("scan,novelty\n0,0.5\n1,0.25\n")
+    folder = tmp_path / "bench"
+    (folder / "cells").mkdir(parents=True)
+    (folder / "results.jsonl").write_text("{}\n")
+    for results, out in ((run_output, run_output), (folder, folder / "results.jsonl"),
+                         (folder / "results.jsonl", folder / "cells" / "a.npz")):
+        assert main(["plot", str(results), "--out", str(out)]) == 2
+        assert "RESULTS names" in capsys.readouterr().err
+    assert run_output.read_text() == "scan,novelty\n0,0.5\n1,0.25\n" and (folder / "results.jsonl").read_text() == "{}\n"
+    assert not (folder / "cells" / "a.npz").exists()

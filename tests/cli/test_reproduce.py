@@ -62,3 +62,11 @@ def test_the_guide_shows_the_table_the_command_prints():
     section = (Path(__file__).resolve().parents[2] / "docs" / "guide" / "paper.md").read_text(encoding="utf-8")
     assert "novelty reproduce" in section
     assert table1_markdown(table1_rows(list(protocol(0).values()))) in section
+
+
+def test_a_report_the_experiments_would_write_over_is_refused_before_they_run(tmp_path, capsys):
+    report = tmp_path / "maxima.md"
+    report.write_text("<!-- BEGIN generated: maxima -->\n<!-- END generated: maxima -->\n")
+    assert main(["reproduce", "--experiment", "maxima", "--out", str(tmp_path), "--report", str(report)]) == 2
+    assert "is a file the experiments write in --out" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["maxima.md"]

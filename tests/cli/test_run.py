@@ -212,3 +212,47 @@ def test_binary_or_endless_stdin_is_a_user_error(stdin, message):
     err = proc.stderr.decode()
     assert proc.returncode == 2, err
     assert message in err and "internal error" not in err
+
+
+def _same_file_targets(tmp_path, data):
+    """``data`` under other names: itself, a hard link, a symbolic link, a path through a link's folder."""
+    hard = tmp_path / "hard.csv"
+    os.link(data, hard)
+    soft = tmp_path / "soft.csv"
+    soft.symlink_to(data)
+    (tmp_path / "again").symlink_to(tmp_path)
+    return [data, hard, soft, tmp_path / "again" / data.name]
+
+
+def test_an_output_naming_the_data_file_is_refused_before_anything_is_read_or_written(tmp_path, capsys):
+    data = tmp_path / "scans.csv"
+    data.write_text("a,b\n0.1,0.2\n0.3,0.4\n")
+    for target in _same_file_targets(tmp_path, data):
+        for option in ("--out", "--save"):
+            assert main(["run", "hsom", "--data", str(data), "--param", "n_rows=2", option, str(target)]) == 2
+            captured = capsys.readouterr()
+            assert f"{option} {target} is the file --data names" in captured.err and captured.out == ""
+    assert data.read_text() == "a,b\n0.1,0.2\n0.3,0.4\n"
+
+
+def test_out_and_save_naming_one_file_are_refused(tmp_path, capsys):
+    data = tmp_path / "scans.csv"
+    data.write_text("a,b\n0.1,0.2\n0.3,0.4\n")
+    model = tmp_path / "m.npz"
+    assert main(["run", "hsom", "--data", str(data), "--param", "n_rows=2", "--out", str(model),
+                 "--save", str(model)]) == 2
+    assert "--out and --save name one file" in capsys.readouterr().err
+    assert not model.exists()
+
+
+def test_a_recording_is_never_replaced_by_its_output(tmp_path, capsys):
+    bag = tmp_path / "rec.bag"
+    bag.write_bytes(b"#ROSBAG V2.0\n not read")
+    folder = tmp_path / "rosbag2"
+    folder.mkdir()
+    (folder / "metadata.yaml").write_text("not read")
+    for data, out in ((bag, bag), (folder, folder / "run_0.mcap"), (folder, folder / "metadata.yaml")):
+        assert main(["run", "hsom", "--data", str(data), "--out", str(out)]) == 2
+        assert "--data names" in capsys.readouterr().err
+    assert bag.read_bytes() == b"#ROSBAG V2.0\n not read" and (folder / "metadata.yaml").read_text() == "not read"
+    assert sorted(p.name for p in folder.iterdir()) == ["metadata.yaml"]

@@ -67,6 +67,8 @@ def test_the_protocol_says_what_it_does():
     (dict(test=0.3), "give resample=stratified"),
     (dict(resample="shuffled", test=1.5), r"in \(0, 1\)"),
     (dict(resample="shuffled", min_rows=50, max_rows=10), "must not exceed"),
+    (dict(resample="shuffled", min_rows=10**12), "min_rows must be a number of rows, 2 to 16,777,216; got 10000"),
+    (dict(resample="shuffled", max_rows=2**24 + 1), "max_rows must be a number of rows, 2 to 16,777,216"),
     (dict(resample="shuffled", scale="robust"), "scale must be one of none, minmax, standard"),
     (dict(resample="shuffled", training="dirty"), "training must be one of contaminated, clean"),
 ])
@@ -81,6 +83,14 @@ def test_arrays_need_a_drawn_split_and_valid_labels(table):
         resampled(X, y)
     with pytest.raises(ValueError, match="scikit-learn's outlier convention"):
         resampled(X, np.where(y == 1, -1, 1), resample="stratified")
+
+
+def test_a_bootstrap_beyond_the_values_bound_is_refused_before_it_is_drawn():
+    X, y = np.zeros((10, 16)), np.r_[np.zeros(8), np.ones(2)]
+    task = resampled(X, y, resample="shuffled", min_rows=2**24)   # each option within its bound
+    with pytest.raises(ValueError, match=r"min_rows=16,777,216 rows of 16 features make 268,435,456 values; "
+                                         r"at most 134,217,728"):
+        task.for_seed(0)
 
 
 # ------------------------------------------------------------------ ADBench's draw

@@ -32,6 +32,10 @@ class ReadReport:
         With several sensors: sweeps merged, sweeps left without partners.
     notes : list of str
         Anything else the user should know.
+    skipped : int
+        Transforms left out of the tf tree, as tf2 leaves them out (one frame
+        named twice, no rotation, a loop, a chain beyond the bounds);
+        ``first_skipped`` says where the first is and why.
     """
 
     assembly: dict = field(default_factory=dict)
@@ -41,6 +45,14 @@ class ReadReport:
     poses: str = ""
     merged: tuple | None = None
     notes: list = field(default_factory=list)
+    skipped: int = 0
+    first_skipped: str = ""
+
+    def skip(self, where, why: str) -> None:
+        """Count a transform left out of the tree (``where`` it is in the recording, ``why``)."""
+        self.skipped += 1
+        if self.skipped == 1:
+            self.first_skipped = f"{where}: {why}"
 
     @property
     def has_poses(self) -> bool:
@@ -62,4 +74,7 @@ class ReadReport:
         if self.merged is not None:
             out.append(f"{self.merged[0]} sweeps merged from {len(self.mounts)} sensors ({self.merged[1]} left "
                        "without partners within the tolerance)")
+        if self.skipped:
+            out.append(f"{self.skipped} transform{'s' * (self.skipped != 1)} skipped, as tf2 skips them (the first: "
+                       f"{self.first_skipped})")
         return out + list(self.notes)

@@ -8,7 +8,8 @@ checked first; ROS 2 bags through the optional package ``rosbags``
 'novelty-habituation[ros]'``; without it, opening a bag raises an
 ``ImportError`` that says so, and the rest of :mod:`novelty.io` works),
 after :mod:`novelty.io.ros2.inflation` has checked that no compressed part
-(an MCAP chunk, a compressed message or file) inflates beyond its cap.
+(an MCAP chunk, a file, the messages of the topics read) inflates beyond
+its cap.
 Every message is decoded from its bytes by :mod:`novelty.io.ros.decoders`,
 its sizes checked against :mod:`novelty.io.ros.caps` first: an error
 names the file, the topic, the message's number on it and the field.

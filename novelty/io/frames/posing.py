@@ -54,26 +54,28 @@ class Posing:
         static = [t for t in tf if t.rstrip("/").endswith("tf_static")]
         moving = [t for t in tf if t not in static]
         _check_pose_topic(bag, pose_topic, static)
-        self.tree = TfBuffer()
+        self.path, self.report = bag.path, report
+        self.tree, self.probe = TfBuffer(), None
         if static:
-            for _, _, transforms in bag.messages(static):
-                self.tree.add_all(transforms)
+            for _, where, transforms in bag.messages(static):
+                self._add(self.tree, transforms, where)
         self.probe = self._probe(bag, moving)
-        self.report = report
         self.base = self._base_frame(base_frame)
         self.source = self._source(bag, pose_topic, moving)
         self.track = TfBuffer() if self.source == "topic" else self.tree
         follow = moving if moving and (self.source == "tf" or (moving_mounts and self._moving_below_base())) else []
         self.topics = follow + ([pose_topic] if self.source == "topic" else [])
+        self.pose_from = pose_topic if self.source == "topic" else ", ".join(moving)
 
-    def feed(self, msg) -> bool:
-        """Take a message of :attr:`topics` (transforms or a pose); False for anything else."""
+    def feed(self, msg, where=None) -> bool:
+        """Take a message of :attr:`topics` (transforms or a pose; ``where`` it is, for a transform skipped);
+        False for anything else."""
         if isinstance(msg, list):
-            self.tree.add_all(msg)
+            self._add(self.tree, msg, where)
             return True
         if isinstance(msg, Pose):
-            self.track.add(Transform(msg.stamp, _WORLD, _ROBOT, (msg.x, msg.y, 0.0),
-                                     (0.0, 0.0, math.sin(msg.theta / 2), math.cos(msg.theta / 2))))
+            self._add(self.track, [Transform(msg.stamp, _WORLD, _ROBOT, (msg.x, msg.y, 0.0),
+                                             (0.0, 0.0, math.sin(msg.theta / 2), math.cos(msg.theta / 2)))], where)
             return True
         return False
 
@@ -94,10 +96,24 @@ class Posing:
             return None
         try:
             if self.source == "topic":
-                return np.array(self.track.lookup(_WORLD, _ROBOT, stamp).planar)
-            return np.array(self.track.lookup(self.track.root(self.base), self.base, stamp).planar)
+                pose = np.array(self.track.lookup(_WORLD, _ROBOT, stamp).planar)
+            else:
+                pose = np.array(self.track.lookup(self.track.root(self.base), self.base, stamp).planar)
         except TfError:
             return None
+        if not np.isfinite(pose).all():   # finite samples far apart interpolate beyond a double
+            raise ValueError(f"{self.path}: the robot's pose at {stamp:.3f} s, interpolated from {self.pose_from}, "
+                             f"is not finite (x {pose[0]}, y {pose[1]}, yaw {pose[2]}).")
+        return pose
+
+    def _add(self, tree: TfBuffer, transforms, where) -> None:
+        """Each transform into ``tree``; one it refuses is skipped and counted, as tf2 skips it."""
+        for transform in transforms:
+            try:
+                tree.add(transform)
+            except TfError as exc:
+                if self.report is not None and tree is not self.probe:
+                    self.report.skip(where, str(exc))
 
     # -------------------------------------------------------------- setting up
     def _probe(self, bag: Bag, moving: list[str]) -> TfBuffer:
@@ -108,9 +124,10 @@ class Posing:
             if parent is not None:
                 placed = self.tree.lookup(parent, child, 0.0)
                 probe.add(Transform(0.0, parent, child, placed.translation, placed.rotation, True))
+        self.probe = probe   # its refusals are counted when the tree meets them
         if moving:
-            for _, _, transforms in itertools.islice(bag.messages(moving), PROBE):
-                probe.add_all(transforms)
+            for _, where, transforms in itertools.islice(bag.messages(moving), PROBE):
+                self._add(probe, transforms, where)
         return probe
 
     def _base_frame(self, base_frame: str | None) -> str:

@@ -14,7 +14,14 @@ common ancestor and composes the edges at the time asked:
   apart, so a small hold keeps the last scans);
 - samples older than ``cache`` seconds before an edge's newest are
   forgotten (tf2's default cache is 10 s; here in batches, once they are
-  twice that old), so memory stays bounded.
+  twice that old), and samples closer in time than :attr:`TfBuffer.resolution`
+  thinned, so that an edge holds at most about
+  :data:`~novelty.io.ros.caps.MAX_TF_SAMPLES`;
+- a transform that names one frame twice, places nothing (a zero or
+  non-finite quaternion, a non-finite translation), closes a loop, or makes
+  a chain deeper than :data:`~novelty.io.ros.caps.MAX_TF_DEPTH` frames or a tree
+  of more than :data:`~novelty.io.ros.caps.MAX_TF_FRAMES` is refused, and a
+  reader skips it and counts it, as tf2 does.
 
 A lookup that fails raises :class:`TfError`, which names the frames, the
 chains found from each to its root, and the times held.
@@ -32,6 +39,7 @@ import bisect
 import math
 from dataclasses import dataclass, field
 
+from ..ros import caps
 from ..ros.messages import Transform
 from ..ros.quaternions import IDENTITY, conjugate, multiply, normalized, rotate, slerp
 
@@ -88,38 +96,68 @@ class TfBuffer:
     def __init__(self, tolerance: float = 0.2, cache: float = 10.0):
         self.tolerance, self.cache = float(tolerance), float(cache)
         self._edges: dict[str, _Edge] = {}
+        self._children: dict[str, set[str]] = {}   # each parent's children
         self._paths: dict[tuple[str, str], tuple[list[str], list[str]]] = {}   # until the tree's shape changes
+        self._chains: dict[str, list[str]] = {}   # likewise
+        self._named: set[str] = set()   # every frame an edge named: at most MAX_TF_FRAMES
+
+    @property
+    def resolution(self) -> float:
+        """Seconds within which a moving edge's samples are thinned: ``4 * cache / MAX_TF_SAMPLES``."""
+        return 4 * self.cache / caps.MAX_TF_SAMPLES
 
     # -------------------------------------------------------------- adding
     def add(self, transform: Transform) -> None:
-        """Add one transform (``static`` ones replace the edge; moving ones join its series in time order)."""
+        """Add one transform (``static`` ones replace the edge; moving ones join its series in time order).
+
+        Refused (:class:`TfError`, saying why; tf2 skips such a transform
+        with a warning): two frames that are not two, a placement that is
+        not finite or not a rotation, an edge that would make a loop, a
+        chain of more than :data:`~novelty.io.ros.caps.MAX_TF_DEPTH` frames or a
+        tree of more than :data:`~novelty.io.ros.caps.MAX_TF_FRAMES`.
+        """
         child, parent = transform.child, transform.parent
         if not child or not parent or child == parent:
             raise TfError(f"A transform needs two different frames; got {parent!r} -> {child!r}.")
-        q = transform.rotation
-        if abs(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3] - 1.0) > 1e-9:   # most arrive unit already
-            q = normalized(q)
-        value = Placement(tuple(transform.translation), tuple(q))
+        value = Placement(_translation(transform), _rotation(transform))
         edge = self._edges.get(child)
         if edge is None or edge.parent != parent or edge.static != transform.static:
             # a frame moved to another parent (or between /tf and /tf_static): the newest word wins, as in tf2
+            if edge is None or edge.parent != parent:
+                self._check_shape(transform)
+                if edge is not None:
+                    self._children[edge.parent].discard(child)
+                self._children.setdefault(parent, set()).add(child)
             edge = self._edges[child] = _Edge(parent, transform.static)
             self._paths.clear()
+            self._chains.clear()
         if transform.static:
             edge.times, edge.values = [transform.stamp], [value]
             return
+        _join(edge, transform.stamp, value, self.resolution)
         times = edge.times
-        if not times or transform.stamp >= times[-1]:   # in time order, as a recording mostly is
-            times.append(transform.stamp)
-            edge.values.append(value)
-        else:
-            at = bisect.bisect_right(times, transform.stamp)
-            times.insert(at, transform.stamp)
-            edge.values.insert(at, value)
         if times[0] < times[-1] - 2 * self.cache:   # forgotten in batches: a sample's deletion is O(samples)
             old = bisect.bisect_left(times, times[-1] - self.cache)
             # keep one sample before the window, for interpolating into it
             del times[:old - 1], edge.values[:old - 1]
+
+    def _check_shape(self, transform: Transform) -> None:
+        """Refuse a new edge that would make a loop, too deep a chain or too many frames."""
+        child, parent = transform.child, transform.parent
+        where = f"{parent} -> {child} at {transform.stamp:.3f} s"
+        up = [parent]
+        while up[-1] in self._edges and len(up) <= caps.MAX_TF_DEPTH:
+            up.append(self._edges[up[-1]].parent)
+            if up[-1] == child:
+                raise TfError(f"{where}: makes a loop ({' -> '.join(reversed(up))} -> {child}).")
+        depth = len(up) + _height(self._children, child, caps.MAX_TF_DEPTH)
+        if depth > caps.MAX_TF_DEPTH:
+            raise TfError(f"{where}: makes a chain of {depth} frames; at most {caps.MAX_TF_DEPTH} are read "
+                          f"(novelty.io.ros.caps.MAX_TF_DEPTH).")
+        if len(self._named | {child, parent}) > caps.MAX_TF_FRAMES:
+            raise TfError(f"{where}: the tree would name {len(self._named) + 1:,} frames; at most "
+                          f"{caps.MAX_TF_FRAMES:,} are read (novelty.io.ros.caps.MAX_TF_FRAMES).")
+        self._named.update((child, parent))
 
     def add_all(self, transforms) -> None:
         for t in transforms:
@@ -129,17 +167,17 @@ class TfBuffer:
     @property
     def frames(self) -> list[str]:
         """Every frame named, parents and children."""
-        return sorted(set(self._edges) | {e.parent for e in self._edges.values()})
+        return sorted(set(self._edges) | {p for p, children in self._children.items() if children})
 
     def chain(self, frame: str) -> list[str]:
-        """``frame`` and its ancestors up to its root: ``[frame, parent, ..., root]``."""
-        out = [frame]
-        while out[-1] in self._edges:
-            nxt = self._edges[out[-1]].parent
-            if nxt in out:
-                raise TfError(f"The transforms make a loop: {' -> '.join(reversed(out + [nxt]))}.")
-            out.append(nxt)
-        return out
+        """``frame`` and its ancestors up to its root: ``[frame, parent, ..., root]`` (a new list)."""
+        known = self._chains.get(frame)
+        if known is None:
+            known = [frame]
+            while known[-1] in self._edges:   # no loops: refused as they are added
+                known.append(self._edges[known[-1]].parent)
+            self._chains[frame] = known
+        return list(known)
 
     def root(self, frame: str) -> str:
         return self.chain(frame)[-1]
@@ -149,7 +187,7 @@ class TfBuffer:
         return None if edge is None else edge.parent
 
     def has(self, frame: str) -> bool:
-        return frame in self._edges or any(e.parent == frame for e in self._edges.values())
+        return frame in self._edges or bool(self._children.get(frame))
 
     def is_static(self, target: str, source: str) -> bool:
         """Whether every edge between the two frames is static (the lookup then holds at all times)."""
@@ -218,3 +256,49 @@ class TfBuffer:
         raise TfError(f"The transform {edge.parent} -> {child} is asked for at {time:.3f} s, "
                       f"{abs(time - times[end]):.3f} s {side} ({times[0]:.3f} to {times[-1]:.3f} s held, "
                       f"{self.tolerance} s tolerated).")
+
+
+def _translation(transform: Transform) -> tuple[float, float, float]:
+    t = tuple(float(v) for v in transform.translation)
+    if not all(math.isfinite(v) for v in t):
+        raise TfError(f"{transform.parent} -> {transform.child} at {transform.stamp:.3f} s: a translation that is "
+                      f"not finite {t}.")
+    return t
+
+
+def _rotation(transform: Transform) -> tuple[float, float, float, float]:
+    q = tuple(float(v) for v in transform.rotation)
+    where = f"{transform.parent} -> {transform.child} at {transform.stamp:.3f} s"
+    if not all(math.isfinite(v) for v in q):
+        raise TfError(f"{where}: a rotation that is not finite {q}.")
+    norm = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]
+    if norm < 1e-24:
+        raise TfError(f"{where}: a zero quaternion {q}, which is no rotation.")
+    return q if abs(norm - 1.0) <= 1e-9 else normalized(q)   # most arrive unit already
+
+
+def _join(edge: _Edge, stamp: float, value: Placement, resolution: float) -> None:
+    """A moving sample into its edge's series, in time order, thinned: of samples closer than
+    ``resolution``, the newest replaces the one before it, and one between two is left out."""
+    times = edge.times
+    if not times or stamp >= times[-1]:   # in time order, as a recording mostly is
+        if len(times) > 1 and stamp - times[-2] < resolution:
+            times[-1], edge.values[-1] = stamp, value
+        else:
+            times.append(stamp)
+            edge.values.append(value)
+        return
+    at = bisect.bisect_right(times, stamp)
+    if (at and stamp - times[at - 1] < resolution) or times[at] - stamp < resolution:
+        return
+    times.insert(at, stamp)
+    edge.values.insert(at, value)
+
+
+def _height(children: dict[str, set[str]], frame: str, limit: int) -> int:
+    """The frames of the longest chain from ``frame`` down through its descendants (at most ``limit + 1``)."""
+    level, height = {frame}, 0
+    while level and height <= limit:
+        height += 1
+        level = {c for f in level for c in children.get(f, ())}
+    return height

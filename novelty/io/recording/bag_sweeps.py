@@ -10,14 +10,17 @@ reads them):
 2. **The tree, the base frame and the poses** (:mod:`novelty.io.frames.posing`); a scan
    waits until the poses have moved past its time (at most :data:`WAIT`
    seconds of the recording), so that its pose is interpolated, not
-   extrapolated.
+   extrapolated, and, with several topics, until none still learns its
+   fragments (at most :data:`~novelty.io.scans.assembly.LEARN_SECONDS`);
+   the scans waiting hold at most :data:`~novelty.io.ros.caps.MAX_WAITING_BEAMS`
+   beams (beyond, the oldest go on with the pose known then).
 3. **Mounts** (:mod:`novelty.io.frames.mounts`): each sensor's frame placed in the base
    frame through the tree, or by the user's ``mounts`` where the bag holds
-   no transform (a user's mount also overrides the bag's, and says so);
-   with neither, the sensor is taken at the robot's centre facing forward,
-   and the report says so; its beams placed by the scans layer's
-   one-message step (:class:`novelty.io.scans.sweeps.SweepMaker`), as a
-   live node places them.
+   no transform (a user's mount also overrides the bag's, and says so; a
+   mount for a topic not read is refused); with neither, the sensor is
+   taken at the robot's centre facing forward, and the report says so; its
+   beams placed by the scans layer's one-message step
+   (:class:`novelty.io.scans.sweeps.SweepMaker`), as a live node places them.
 4. **Several sensors** (:mod:`novelty.io.scans.merge`): their sweeps merged within ``tolerance``.
 """
 
@@ -33,8 +36,9 @@ from ..bags.rosbag import Bag
 from ..frames.mounts import Mount
 from ..frames.posing import Posing
 from ..frames.tf import TfError
+from ..ros import caps
 from ..ros.messages import Sweep
-from ..scans.assembly import Assembler
+from ..scans.assembly import LEARN_SECONDS, Assembler
 from ..scans.merge import Merger
 from ..scans.sweeps import SweepMaker
 from .reading import Reading
@@ -56,22 +60,32 @@ def bag_sweeps(bag: Bag, topics: list[str], reading: Reading | None = None,
     if not kinds <= set(LASER_TYPES):
         raise ValueError("Sweeps are read from LaserScan, MultiEchoLaserScan or PointCloud2 topics; "
                          f"{holds(topics, kinds)}.")
+    mounts = reading.mount_map()
+    stray = sorted(t for t in mounts if t is not None and t not in topics)
+    if stray:
+        raise ValueError(f"A mount is given for {', '.join(stray)}, which is not a scan topic read "
+                         f"({', '.join(topics)}); a mount names the topic of its sensor's scans.")
     posing = Posing(bag, reading.pose_topic, reading.base_frame, report)
-    placing = _Placing(posing, reading.mount_map(), report)
+    placing = _Placing(posing, mounts, report)
     assemblers = {t: Assembler(reading.fragments, t) for t in topics}
     merger = Merger(topics, reading.tolerance) if len(topics) > 1 else None
     pending: list = []   # a heap of (stamp, count, topic, scan or cloud) waiting for the poses after their time
     counter = itertools.count()
-
-    learners = list(assemblers.values())
+    waiting = [0]   # the beams (or points) of the scans pending
 
     def release(now: float):
+        crowded = waiting[0] > caps.MAX_WAITING_BEAMS
+        # a topic still learning its fragments decides at last, LEARN_SECONDS after its first message held
+        for topic, assembler in assemblers.items():
+            if assembler.holding_since < (math.inf if crowded else now - LEARN_SECONDS):
+                for whole in assembler.settle():
+                    hold(topic, whole.stamp, whole)
         # in time order across the topics: none before a message a topic still holds (learning its fragments)
-        while learners and learners[-1].per_revolution is not None:
-            learners.pop()
-        held = min(a.holding_since for a in learners) if learners else math.inf
-        while pending and pending[0][0] <= held and (pending[0][0] < now - WAIT or posing.ready(pending[0][0])):
+        held = min(a.holding_since for a in assemblers.values())
+        while pending and pending[0][0] <= held and (pending[0][0] < now - WAIT or posing.ready(pending[0][0])
+                                                     or waiting[0] > caps.MAX_WAITING_BEAMS):
             stamp, _, topic, scan = heapq.heappop(pending)
+            waiting[0] -= _beams(scan)
             sweep = placing.sweep(topic, scan, posing.pose(stamp))
             whole = sweep if merger is None else merger.push(topic, sweep)
             if whole is not None:
@@ -79,14 +93,15 @@ def bag_sweeps(bag: Bag, topics: list[str], reading: Reading | None = None,
 
     def hold(topic, stamp, scan):
         heapq.heappush(pending, (stamp, next(counter), topic, scan))
+        waiting[0] += _beams(scan)
 
     messages = bag.messages(topics + posing.topics, nonempty=topics, echo=reading.echo)
     if merger is None and not posing.topics:
         # one sensor, nothing to wait for: each whole scan's sweep as it comes, in the topic's order
         yield from _direct(messages, topics[0], assemblers[topics[0]], placing, report)
         return
-    for topic, _, msg in messages:
-        if posing.feed(msg):
+    for topic, where, msg in messages:
+        if posing.feed(msg, where):
             continue
         if isinstance(msg, tuple):   # a point cloud (stamp, frame, points): whole as it comes
             assemblers[topic].messages += 1
@@ -119,6 +134,11 @@ def _direct(messages, topic: str, assembler: Assembler, placing: "_Placing", rep
     for whole in assembler.flush():
         yield placing.sweep(topic, whole, None)
     report.assembly[topic] = (assembler.messages, assembler.scans, assembler.incomplete, assembler.per_revolution)
+
+
+def _beams(scan) -> int:
+    """A scan's beams, or a point cloud's ``(stamp, frame, points)`` points."""
+    return len(scan[2]) if isinstance(scan, tuple) else len(scan.ranges)
 
 
 def holds(topics, kinds) -> str:

@@ -94,7 +94,15 @@ def read_sweeps(path, reading: Reading | None = None, *, report: ReadReport | No
     if not Path(path).name.lower().endswith(CARMEN_SUFFIXES):
         raise ValueError(f"{path} is neither a CARMEN log ({', '.join(CARMEN_SUFFIXES)}) nor a bag "
                          "(.bag, .db3, .mcap, a ROS 2 bag folder).")
+    _no_mounts(reading, f"{path} is a CARMEN log, whose lasers are read as it records them")
     yield from carmen_sweeps(path, reading.topics, reading.pose_topic, reading.fov)
+
+
+def _no_mounts(reading: Reading, why: str) -> None:
+    """Refuse mounts where no laser of a bag is placed by them (rather than leave them unread)."""
+    if reading.mounts:
+        raise ValueError(f"A mount places a bag's laser on the robot; {why}, and no mount would be read: give "
+                         "none (--mount, mounts=).")
 
 
 def bag_scan_topics(bag: Bag, topic) -> list[str]:
@@ -165,12 +173,13 @@ def read_rings(path, reading: Reading | None = None, *, report: ReadReport | Non
 
 
 def _bag_sonar(bag: Bag, topics: list[str], reading: Reading, report: ReadReport) -> Iterator[Ring]:
+    _no_mounts(reading, f"{', '.join(topics)} {'holds' if len(topics) == 1 else 'hold'} sonars' Range readings")
     posing = Posing(bag, reading.pose_topic, reading.base_frame, report, moving_mounts=False)
     by_topic = len(topics) > 1   # one topic a sonar, named by its topic; else the sonars told apart by frame
 
     def readings(messages):
-        for topic, _, msg in messages:
-            if not posing.feed(msg):
+        for topic, where, msg in messages:
+            if not posing.feed(msg, where):
                 yield replace(msg, sensor=topic) if by_topic or not msg.sensor else msg
 
     sensors = reading.sonar_order

@@ -12,8 +12,10 @@ documentation instead (ROS wiki, "Bags/Format/2.0"):
   record (op 4) a connection: the time and offset of each of its messages;
 - a message record (op 2) states its length.
 
-A chunk is inflated only as far as the messages read need, never beyond
-the size it states nor beyond :data:`~novelty.io.ros.caps.MAX_CHUNK_BYTES`; a
+A chunk is inflated once, only as far as the messages read need, never
+beyond the size it states nor beyond :data:`~novelty.io.ros.caps.MAX_CHUNK_BYTES`
+(its messages due after another chunk's, where chunks' times interleave,
+wait, at most :data:`~novelty.io.ros.caps.MAX_HELD_BYTES` of them); a
 message's stated length must lie within its chunk and within the cap its
 reader gives (a longer message's first bytes are read to name the field that
 asks for too much), or the message is refused (:class:`~novelty.io.ros.caps.MessageError`, naming the file,
@@ -30,7 +32,8 @@ from typing import Iterator
 
 import numpy as np
 
-from ..ros.caps import Where
+from ..ros import caps
+from ..ros.caps import MessageError, Where
 from .chunks import Inflated, Limit
 
 __all__ = ["Bag1", "Connection", "BagFormatError"]
@@ -179,22 +182,17 @@ class Bag1:
         """``(connection, time_ns, number, data)`` of each message of ``topics``, in time order.
 
         ``number`` counts the topic's messages from 1; ``limits[topic]``
-        bounds a message's length (see :data:`Limit`).
+        bounds a message's length (see :data:`Limit`). Each chunk is
+        inflated once: when its first message is due, the messages read of
+        it are taken out together, and those due after another chunk's are
+        held until then, at most :data:`~novelty.io.ros.caps.MAX_HELD_BYTES`.
         """
         wanted = {c.id for c in self.connections.values() if c.topic in topics}
         entries, chunks = self._entries(wanted)
-        numbers = dict.fromkeys(topics, 0)
-        current, inflated = -1, None
-        for time, chunk, offset, conn, extent in zip(*(entries[k].tolist() for k in
-                                                      ("time", "chunk", "offset", "conn", "extent"))):
-            connection = self.connections[conn]
-            numbers[connection.topic] += 1
-            where = Where(self.path, connection.topic, numbers[connection.topic])
-            if chunk != current:
-                inflated = None   # the previous chunk's bytes are let go before the next is inflated
-                inflated, current = Inflated(self._fh, *chunks[chunk], where), chunk
-            yield connection, time, where.number, inflated.message(offset, extent, limits[connection.topic],
-                                                                  where)
+        held = _Held(self, entries, chunks, limits)
+        for i in range(len(entries["time"])):
+            where = held.where(i)
+            yield self.connections[int(entries["conn"][i])], int(entries["time"][i]), where.number, held.take(i, where)
 
     def _entries(self, wanted: set[int]):
         """The index of the wanted connections' messages, sorted by time, with each record's room."""
@@ -229,6 +227,60 @@ class Bag1:
         entries = {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
         order = np.lexsort((entries["offset"], entries["chunk"], entries["time"]))
         return {k: v[order] for k, v in entries.items()}, chunks
+
+
+class _Held:
+    """The messages of the chunks inflated so far that are not yet due, each chunk inflated once.
+
+    A message's data, or the error reading it gave, waits here from its
+    chunk's inflation until its turn; the bytes waiting are at most
+    :data:`~novelty.io.ros.caps.MAX_HELD_BYTES`.
+    """
+
+    def __init__(self, bag: Bag1, entries: dict, chunks: list, limits: dict):
+        self.bag, self.entries, self.chunks, self.limits = bag, entries, chunks, limits
+        # each message's number on its topic, counted in time order
+        self.topic_of = {c: bag.connections[c].topic for c in np.unique(entries["conn"]).tolist()}
+        self.numbers = np.zeros(len(entries["conn"]), np.int64)
+        for topic in set(self.topic_of.values()):
+            mine = np.isin(entries["conn"], [c for c, t in self.topic_of.items() if t == topic])
+            self.numbers[mine] = np.arange(1, int(mine.sum()) + 1)
+        # each chunk's messages, by their place in it
+        order = np.lexsort((entries["offset"], entries["chunk"]))
+        bounds = np.searchsorted(entries["chunk"][order], np.arange(len(chunks) + 1))
+        self.in_chunk = {k: order[bounds[k]:bounds[k + 1]] for k in range(len(chunks))}
+        self.waiting: dict[int, bytes | MessageError] = {}
+        self.bytes = 0
+
+    def where(self, i: int) -> Where:
+        return Where(self.bag.path, self.topic_of[int(self.entries["conn"][i])], int(self.numbers[i]))
+
+    def take(self, i: int, where: Where) -> bytes:
+        """Message ``i``'s data (its chunk inflated if it was not yet), or the error reading it gave."""
+        if i not in self.waiting:
+            self._inflate(int(self.entries["chunk"][i]), where)
+        data = self.waiting.pop(i)
+        if isinstance(data, MessageError):
+            raise data
+        self.bytes -= len(data)
+        return data
+
+    def _inflate(self, chunk: int, due: Where) -> None:
+        """Take out the messages read of ``chunk`` (``due``: the message whose turn it is)."""
+        inflated = Inflated(self.bag._fh, *self.chunks[chunk], due)
+        offsets, extents = self.entries["offset"], self.entries["extent"]
+        for j in self.in_chunk.pop(chunk).tolist():
+            where = self.where(j)
+            try:
+                data = inflated.message(int(offsets[j]), int(extents[j]), self.limits[where.topic], where)
+            except MessageError as exc:
+                self.waiting[j] = exc
+                continue
+            self.waiting[j] = data
+            self.bytes += len(data)
+            if self.bytes > caps.MAX_HELD_BYTES:
+                raise where.error("chunk", f"more than {caps.MAX_HELD_BYTES:,} bytes of messages would wait for "
+                                  "their turn, their chunks' times interleaving so (novelty.io.ros.caps.MAX_HELD_BYTES).")
 
 
 def _topic_name(name: str) -> str:

@@ -2,8 +2,9 @@
 
 ``rosbags`` (pure Python, on the package index: ``pip install
 'novelty-habituation[ros]'``) reads a ROS 2 bag's storage; it decompresses
-without a limit, so :func:`~novelty.io.ros2.inflation.check_inflation`
-reads every compressed part once first. A bag written without its message
+without a limit, so :class:`~novelty.io.ros2.inflation.StoredBag` checks
+what opening the bag inflates first, and the messages of the topics read
+as they are asked for. A bag written without its message
 definitions is read with the latest ROS 2 types. :class:`Bag2` gives its
 topics, their counts, and each message's bytes in the bag's order, its
 length checked against the cap its reader gives before it is handed on.
@@ -15,7 +16,7 @@ from pathlib import Path
 from typing import Callable, Iterator, Sequence
 
 from ..ros.caps import Where
-from .inflation import check_inflation
+from .inflation import StoredBag
 
 __all__ = ["Bag2", "rosbags", "EXTRA"]
 
@@ -45,7 +46,11 @@ class Bag2:
     def __init__(self, path, reader=None):
         AnyReader, Stores, get_typestore = reader or rosbags()
         self.path = Path(path)
-        check_inflation(self.path)   # rosbags inflates without a limit: every compressed part checked first
+        # rosbags inflates without a limit: what opening inflates is checked first, the messages of the topics
+        # read as they are asked for
+        self._stored = StoredBag(self.path)
+        self._stored.check_storage()
+        self._checked: set[str] = set()   # the topics whose messages were checked
         # ROS 2 bags written without their message definitions are read with the latest ROS 2 types
         self.reader = AnyReader([self.path], default_typestore=get_typestore(Stores.LATEST))
         self.reader.open()
@@ -68,6 +73,9 @@ class Bag2:
         ``cap`` bytes has its first bytes explained (``explain(prefix,
         where)`` names the field that asks for too much) and is refused.
         """
+        if not self._checked.issuperset(topics):
+            self._stored.check_messages(topics)
+            self._checked.update(topics)
         numbers = dict.fromkeys(topics, 0)
         connections = [c for c in self.reader.connections if c.topic in topics]
         for connection, time, data in self.reader.messages(connections=connections):

@@ -8,13 +8,14 @@ finds the pattern in a topic's first messages and puts each revolution
 together before anything is reduced:
 
 - **detected**: fragments are messages of one frame whose spans tile a
-  larger span: the ``P`` geometries (first angle, beams, spacing) of a
-  topic's first messages, each starting where another ends (within half a
-  beam's spacing, modulo a whole turn), in one chain. A revolution starts at
-  the fragment that no other continues (or, all round, at the one of the
-  smallest first angle); one geometry (every message alike) is a scanner of
-  whole scans, passed through as they are, and so are geometries that do
-  not tile a revolution;
+  larger span of at most one turn: the ``P`` geometries (first angle,
+  beams, spacing) of a topic's first :data:`LEARN` messages (or of those of
+  its first :data:`LEARN_SECONDS`, when it sends fewer), each starting where
+  another ends (within half a beam's spacing, modulo a whole turn), in one
+  chain. A revolution starts at the fragment that no other continues (or,
+  all round, at the first from -pi, within half a beam); one geometry
+  (every message alike) is a scanner of whole scans, passed through as they
+  are, and so are geometries that do not tile a revolution;
 - **stated**: ``fragments=N`` says the scanner sends N messages a
   revolution (the cycle must have that length); ``fragments=1`` turns
   assembly off;
@@ -38,10 +39,13 @@ import numpy as np
 from ..ros.messages import LaserScan
 from .ranges import clean_ranges
 
-__all__ = ["Assembler", "LEARN"]
+__all__ = ["Assembler", "LEARN", "LEARN_SECONDS"]
 
 #: Messages looked at to find a topic's pattern of fragments.
 LEARN = 100
+#: Seconds of the recording after a topic's first message held for learning by which its pattern is decided
+#: from the messages held so far, however few (a topic that stops early holds back no other's scans longer).
+LEARN_SECONDS = 10.0
 
 
 class Assembler:
@@ -94,9 +98,13 @@ class Assembler:
 
     def flush(self) -> Iterator[LaserScan]:
         """The whole scans of the messages still held, when the topic has no more."""
+        yield from self.settle()
+        self._drop()
+
+    def settle(self) -> Iterator[LaserScan]:
+        """Decide the pattern from the messages held so far, however few; the whole scans they make."""
         if self.per_revolution is None and self._learning:
             yield from self._replay()
-        self._drop()
 
     @property
     def holding_since(self) -> float:
@@ -183,9 +191,10 @@ def _tiling(scans: list[LaserScan]) -> list[LaserScan] | None:
 
     They tile one when they share a frame and a spacing and each starts where
     exactly one other ends (within half a beam's spacing, modulo a whole
-    turn), in one chain through them all: open (a partial revolution, begun
-    by the one no other continues) or closed (all round, begun by the one of
-    the smallest first angle).
+    turn), in one chain through them all spanning at most one turn: open (a
+    partial revolution, begun by the one no other continues) or closed (all
+    round, begun by the one whose first angle is the first from -pi, within
+    half a beam).
     """
     inc = scans[0].angle_increment
     if len({s.frame for s in scans}) != 1 or any(not math.isclose(s.angle_increment, inc, rel_tol=1e-6) for s in scans):
@@ -200,11 +209,16 @@ def _tiling(scans: list[LaserScan]) -> list[LaserScan] | None:
     heads = set(range(len(scans))) - set(after.values())
     if len(heads) > 1:
         return None
-    first = heads.pop() if heads else int(np.argmin([(s.angle_min + math.pi) % (2 * math.pi) for s in scans]))
+    # all round: the revolution starts at -pi, within half a beam (a driver's float32(-pi) lies a hair below it)
+    first = heads.pop() if heads else int(np.argmin([(s.angle_min + math.pi + abs(inc) / 2) % (2 * math.pi)
+                                                     for s in scans]))
     chain = [first]
     while chain[-1] in after and after[chain[-1]] != first:
         chain.append(after[chain[-1]])
-    return [scans[i] for i in chain] if len(chain) == len(scans) else None
+    span = abs(inc) * sum(len(scans[i].ranges) for i in chain)
+    if len(chain) != len(scans) or span > 2 * math.pi + abs(inc) / 2:   # more than one turn is no revolution
+        return None
+    return [scans[i] for i in chain]
 
 
 def _joined(scans: list[LaserScan]) -> LaserScan:

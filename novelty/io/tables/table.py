@@ -7,9 +7,15 @@ a row at most :data:`MAX_COLUMNS` cells (a header of a few hundred MB is
 refused after reading one limit's worth, not loaded); an ``.npz`` file
 inflates to at most :data:`MAX_NPZ_BYTES` in all, and each array's declared
 shape must fit in the bytes its member holds, both checked before anything
-is inflated. A MATLAB ``.mat`` file (ODDS's format: ``X`` and ``y``, the
-MATLAB 5 format scipy reads) is held to the same total, from the shapes its
-header declares, before anything is read.
+is inflated, and a member that is not an array is refused. A MATLAB
+``.mat`` file (ODDS's format: ``X`` and ``y``, the MATLAB 5 format scipy
+reads) is held to the same total, from the shapes its header declares,
+before anything is read, each compressed variable checked to inflate to no
+more than its dimensions need, and a cell array, struct or object (whose
+size says nothing of what it holds) refused (:mod:`novelty.io.tables.matlab`). A
+vector written as one row or one column of a matrix (as scipy's ``savemat``
+writes a 1-D array) is one value a scan, and numbers stored as text are read
+as a CSV's are.
 """
 
 from __future__ import annotations
@@ -24,7 +30,9 @@ from typing import Sequence
 import numpy as np
 
 from ..._atomic import not_regular
+from .columns import LABEL_COLUMNS, ROUTE_COLUMNS, TIME_COLUMNS
 from .data_files import is_float
+from .matlab import check_variables, variables
 
 __all__ = ["Table", "header_of", "read_table", "bounded_lines", "csv_rows", "check_data_file",
            "MAX_LINE_CHARS", "MAX_COLUMNS", "MAX_NPZ_BYTES"]
@@ -35,6 +43,8 @@ MAX_LINE_CHARS = 2**22
 MAX_COLUMNS = 2**16
 #: the most bytes an .npz data file inflates to, all its arrays together
 MAX_NPZ_BYTES = 2**30
+#: the names of the columns that have a role beside X: an array of one of them is one value a scan
+ROLE_COLUMNS = LABEL_COLUMNS + TIME_COLUMNS + ROUTE_COLUMNS
 
 
 @dataclass(frozen=True)
@@ -175,7 +185,8 @@ def _check_npz_sizes(path: Path) -> None:
             raise ValueError(f"{path} inflates to {total} bytes; at most {MAX_NPZ_BYTES} are read.")
         for info in members:
             if not info.filename.endswith(".npy"):
-                continue
+                raise ValueError(f"{path}: its member {info.filename!r} is not a NumPy array (.npy); an .npz of "
+                                 "scans holds arrays only.")
             with zf.open(info) as fh:
                 version = np.lib.format.read_magic(fh)
                 read = {(1, 0): np.lib.format.read_array_header_1_0,
@@ -194,6 +205,8 @@ def _read_npz(path: Path) -> Table:
         _check_npz_sizes(path)
         npz = np.load(path, allow_pickle=False)
     except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+        if str(exc).startswith(str(path)):   # ours: already says what
+            raise
         raise ValueError(f"Cannot read {path} as an .npz file: {exc}") from None
     with npz:
         arrays = {k: npz[k] for k in npz.files}
@@ -201,33 +214,38 @@ def _read_npz(path: Path) -> Table:
 
 
 def _read_mat(path: Path) -> Table:
-    """A MATLAB 5 ``.mat`` file (ODDS's ``X`` and ``y``): its sizes checked from the header, then read."""
+    """A MATLAB 5 ``.mat`` file (ODDS's ``X`` and ``y``): its variables checked from their headers
+    (:mod:`novelty.io.tables.matlab`), then its numeric arrays read."""
     # imported here: the command line reads tables and must start without scipy (tests/test_init.py)
     from scipy import io as matlab
 
     try:
-        declared = matlab.whosmat(str(path))
-        total = sum(math.prod(shape) * 8 for _, shape, _ in declared)
+        found = variables(path)
+        total = sum(math.prod(v.shape) * 8 for v in found)
         if total > MAX_NPZ_BYTES:
             raise ValueError(f"{path} declares {total} bytes of arrays; at most {MAX_NPZ_BYTES} are read.")
-        contents = matlab.loadmat(str(path))
+        check_variables(path, found)
+        numeric = [v.name for v in found if v.kind not in ("char", "sparse")]
+        contents = matlab.loadmat(str(path), variable_names=numeric) if numeric else {}
     except NotImplementedError:  # scipy's answer to a MATLAB 7.3 file, which is HDF5
         raise ValueError(f"{path} is a MATLAB 7.3 (HDF5) file, which is not read; save it in MATLAB 5 format "
                          "(save -v7) or as an .npz of X and y.") from None
     except (OSError, ValueError, TypeError, EOFError, IndexError, KeyError) as exc:  # scipy's, on a damaged file
+        if str(exc).startswith(str(path)):   # ours: already says what
+            raise
         raise ValueError(f"Cannot read {path} as a MATLAB .mat file: {type(exc).__name__}: {exc}") from None
-    arrays = {}
-    for key, value in contents.items():
-        if key.startswith("__") or not isinstance(value, np.ndarray) or value.dtype.kind not in "biuf":
-            continue
-        arrays[key] = value.reshape(-1) if value.ndim == 2 and value.shape[1] == 1 and key != "X" else value
+    arrays = {key: value for key, value in contents.items()
+              if not key.startswith("__") and isinstance(value, np.ndarray) and value.dtype.kind in "biuf"}
     return _table_of(path, arrays)
 
 
 def _table_of(path: Path, arrays: dict) -> Table:
-    """The table of a file's arrays: ``X`` (or its one 2-D array) by columns, then each 1-D array of one value a row."""
+    """The table of a file's arrays: ``X`` (or its one 2-D array) by columns, then each array of one value a
+    row (1-D, or one row or column of a matrix, as MATLAB and scipy's ``savemat`` write a vector); numbers
+    stored as text are read as a CSV's are."""
     if "X" not in arrays:
-        two_d = [k for k, a in arrays.items() if a.ndim == 2]
+        two_d = [k for k, a in arrays.items() if a.ndim == 2 and min(a.shape) > 1] or \
+            [k for k, a in arrays.items() if a.ndim == 2]
         if len(two_d) != 1:
             raise ValueError(f"{path} has no array named 'X' (it has {', '.join(arrays) or 'none'}).")
         arrays["X"] = arrays.pop(two_d[0])
@@ -235,12 +253,28 @@ def _table_of(path: Path, arrays: dict) -> Table:
     if X.ndim != 2:
         raise ValueError(f"{path}: X must be a table of scans by sensors; got shape {X.shape}.")
     names = [f"s{j}" for j in range(X.shape[1])]
-    values = [np.asarray(X[:, j]) for j in range(X.shape[1])]
+    values = [_numbers_of(X[:, j]) for j in range(X.shape[1])]
     for key, a in arrays.items():
-        if a.ndim == 1 and a.shape[0] == X.shape[0]:
-            names.append(key.removeprefix("column_"))
-            values.append(a.astype(np.float64) if np.issubdtype(a.dtype, np.number) else a.astype(str))
+        a = a.reshape(-1) if a.ndim == 2 and 1 in a.shape else a
+        if a.ndim != 1:
+            continue
+        name = key.removeprefix("column_")
+        if a.shape[0] != X.shape[0]:
+            if name in ROLE_COLUMNS:
+                raise ValueError(f"{path}: the array {key!r} holds {a.shape[0]} values, one for each of X's "
+                                 f"{X.shape[0]} scans expected.")
+            continue
+        names.append(name)
+        values.append(a.astype(np.float64) if np.issubdtype(a.dtype, np.number) else _numbers_of(a))
     return Table(str(path), tuple(names), tuple(values))
+
+
+def _numbers_of(values: np.ndarray) -> np.ndarray:
+    """A column as a file holds it: numbers as float64, text as numbers where every cell is one (as a CSV's
+    are read), else as text."""
+    if values.dtype.kind in "US":
+        return _column([str(v) for v in values.tolist()])
+    return np.asarray(values)
 
 
 def read_table(path) -> Table:

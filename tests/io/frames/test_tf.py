@@ -1,11 +1,13 @@
 """The transform tree: chained lookups by hand, interpolation between samples, and refusals that name frames."""
 
 import math
+import tracemalloc
 
 import pytest
 
-from novelty.io.ros.messages import Transform
 from novelty.io.frames.tf import Placement, TfBuffer, TfError
+from novelty.io.ros import caps
+from novelty.io.ros.messages import Transform
 
 QUARTER = (0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4))   # 90 degrees about z
 
@@ -80,3 +82,56 @@ def test_placements_compose_and_invert():
     assert p.inverse().then(p).translation == pytest.approx((0, 0, 0), abs=1e-12)
     # a point 1 m ahead of the child is (1, 3) in the parent: the child faces +y
     assert p.then(Placement((1.0, 0.0, 0.0))).translation == pytest.approx((1.0, 3.0, 0.0))
+
+
+def test_samples_denser_than_the_resolution_are_thinned_and_still_interpolate():
+    tf = TfBuffer()
+    tracemalloc.start()
+    try:
+        for k in range(200_000):   # 0.2 s of an edge published every microsecond
+            t = 1.0 + k * 1e-6
+            tf.add(Transform(t, "odom", "base_link", (t, 2 * t, 0.0), (0, 0, 0, 1)))
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    times = tf._edges["base_link"].times
+    assert len(times) <= 0.2 / (4 * tf.cache / caps.MAX_TF_SAMPLES) * 2 + 2 and peak < 10 * 2**20
+    assert times[-1] == 1.0 + 199_999 * 1e-6   # the newest is always kept
+    assert tf.lookup("odom", "base_link", 1.1234567).translation == pytest.approx((1.1234567, 2.2469134, 0.0))
+
+
+def test_a_chain_deeper_than_the_bound_is_refused_by_the_transform_that_makes_it():
+    tf = TfBuffer()
+    for k in range(caps.MAX_TF_DEPTH - 1):
+        tf.add(Transform(0.0, f"f{k}", f"f{k + 1}", (1.0, 0, 0), (0, 0, 0, 1), static=True))
+    assert len(tf.chain(f"f{caps.MAX_TF_DEPTH - 1}")) == caps.MAX_TF_DEPTH
+    with pytest.raises(TfError, match=rf"f{caps.MAX_TF_DEPTH - 1} -> f{caps.MAX_TF_DEPTH} at 0.000 s: makes a "
+                                      rf"chain of {caps.MAX_TF_DEPTH + 1} frames; at most {caps.MAX_TF_DEPTH} are "
+                                      r"read \(novelty.io.ros.caps.MAX_TF_DEPTH\)"):
+        tf.add(Transform(0.0, f"f{caps.MAX_TF_DEPTH - 1}", f"f{caps.MAX_TF_DEPTH}", (1.0, 0, 0), (0, 0, 0, 1)))
+    # and a parent moved under a deep chain's leaf: the frames below it count too
+    with pytest.raises(TfError, match="makes a chain of"):
+        tf.add(Transform(0.0, "deep", "f0", (1.0, 0, 0), (0, 0, 0, 1), static=True))
+    assert tf.parent("f0") is None and tf.lookup("f0", f"f{caps.MAX_TF_DEPTH - 1}", 0.0).translation[0] == 99.0
+
+
+@pytest.mark.parametrize("rotation, translation, says", [
+    ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0), "a zero quaternion"),
+    ((0.0, 0.0, 0.0, math.nan), (0.0, 0.0, 0.0), "a rotation that is not finite"),
+    ((0.0, 0.0, 0.0, 1.0), (math.inf, 0.0, 0.0), "a translation that is not finite"),
+])
+def test_a_transform_without_a_placement_is_refused_saying_why(rotation, translation, says):
+    with pytest.raises(TfError, match=f"odom -> base_link at 1.000 s: {says}"):
+        TfBuffer().add(Transform(1.0, "odom", "base_link", translation, rotation))
+
+
+def test_a_loop_or_a_tree_beyond_its_frames_is_refused_by_the_transform_that_makes_it(monkeypatch):
+    tf = tree()
+    with pytest.raises(TfError, match=r"laser -> map at 2.000 s: makes a loop \(map -> odom -> base_footprint -> "
+                                      r"base_link -> laser -> map\)"):
+        tf.add(Transform(2.0, "laser", "map", (0, 0, 0), (0, 0, 0, 1)))
+    assert tf.chain("laser") == ["laser", "base_link", "base_footprint", "odom", "map"]   # as it was
+    monkeypatch.setattr(caps, "MAX_TF_FRAMES", 6)
+    tf.add(Transform(0.0, "base_link", "sonar", (0, 0, 0), (0, 0, 0, 1), static=True))
+    with pytest.raises(TfError, match=r"base_link -> camera at 0.000 s: the tree would name 7 frames; at most 6"):
+        tf.add(Transform(0.0, "base_link", "camera", (0, 0, 0), (0, 0, 0, 1), static=True))

@@ -6,15 +6,18 @@ of a centred, upright, whole-scan laser of the same room at the same poses.
 """
 
 import math
+import time
 
 import numpy as np
 import pytest
 
-from novelty.io.recording.readers import read_rings
-from novelty.io.bags.report import ReadReport
-from novelty.io.recording.readers import read_sweeps
-from novelty.io.frames.tf import TfError
 from novelty.io import Reading
+from novelty.io.bags.report import ReadReport
+from novelty.io.bags.rosbag import Bag
+from novelty.io.frames.tf import TfError
+from novelty.io.recording.readers import read_rings, read_sweeps
+from novelty.io.ros import caps
+from novelty.io.scans.assembly import LEARN
 
 pytest.importorskip("rosbags", reason="the bags are written with rosbags' writers (the ros extra)")
 
@@ -285,3 +288,101 @@ def test_sonars_are_ordered_by_their_mounting_angles_from_tf(kind, tmp_path):
     np.testing.assert_allclose(ring.ranges, expected, rtol=1e-6)
     assert report.notes == ["sonars in the order of their mounting angles from tf: sonar_b 0 deg, sonar_a 90 deg, "
                             "sonar_c 270 deg"]
+
+
+def test_a_mount_naming_no_topic_read_is_refused(tmp_path):
+    bag = write_robot_bag(tmp_path / "one.bag", "ros1", whole_scans(TIMES[:2], n=8))
+    with pytest.raises(ValueError, match=r"A mount is given for /scna, which is not a scan topic read \(/scan\)"):
+        next(read_sweeps(bag, Reading(mounts=["/scna=0.1,0,0"])))
+    assert next(read_sweeps(bag, Reading(mounts=["/scan=0.1,0,0"]))).origins[0].tolist() == [0.1, 0.0]
+
+
+def test_poses_that_interpolate_to_no_number_are_refused_with_their_topic_and_time(tmp_path):
+    # finite odometry at +-1e308: between two samples, x = p + f (q - p) overflows
+    far = [(0.0, (1e308, 0.0, 0.0)), (1.0, (-1e308, 0.0, 0.0))]
+    bag = write_robot_bag(tmp_path / "far.bag", "ros1", whole_scans([0.5], n=8) + [
+        (t, "/odom", "nav_msgs/msg/Odometry", lambda ts, t=t, p=p: odometry(ts, t, p)) for t, p in far])
+    with pytest.raises(ValueError, match=r"far.bag: the robot's pose at 0.500 s, interpolated from /odom, is not "
+                                         r"finite \(x nan"):
+        list(read_sweeps(bag, Reading(pose_topic="/odom")))
+
+
+def test_a_transform_tf2_would_skip_is_skipped_and_counted_with_where_it_is(tmp_path):
+    def bad(t, parent, child, q):
+        return (t, "/tf", TF, lambda ts: tf_message(ts, [transform(ts, t, parent, child, (0.0, 0.0, 0.0), q)]))
+
+    bag = write_robot_bag(tmp_path / "bad-tf.bag", "ros1", whole_scans(TIMES, n=8) + odom_tf(TF_TIMES) + [
+        bad(0.51, "odom", "base_link", (0.0, 0.0, 0.0, 0.0)), bad(0.53, "odom", "odom", (0.0, 0.0, 0.0, 1.0))])
+    report = ReadReport()
+    read = list(read_sweeps(bag, report=report))
+    assert len(read) == len(TIMES) and all(s.pose is not None for s in read)
+    assert f"2 transforms skipped, as tf2 skips them (the first: {bag}, topic /tf, message 27: odom -> base_link at " \
+           "0.510 s: a zero quaternion (0.0, 0.0, 0.0, 0.0), which is no rotation.)" in report.lines()
+
+
+def test_a_deep_tf_chain_costs_a_bounded_time_and_is_said(tmp_path):
+    # 2,000 frames in one chain down to the laser: each transform beyond the depth bound is skipped
+    chain = [(f"f{k}", f"f{k + 1}", (0.001, 0.0, 0.0)) for k in range(2000)] + [("f2000", "base_link")]
+    bag = write_robot_bag(tmp_path / "deep.bag", "ros1", whole_scans(TIMES[:3], n=8) + [statics(0.0, *chain)])
+    report = ReadReport()
+    started = time.process_time()
+    read = list(read_sweeps(bag, report=report))
+    assert time.process_time() - started < 10 and len(read) == 3
+    assert any(line.endswith(f"transforms skipped, as tf2 skips them (the first: {bag}, topic /tf_static, message 1: "
+                             "f99 -> f100 at 0.000 s: makes a chain of 101 frames; at most 100 are read "
+                             "(novelty.io.ros.caps.MAX_TF_DEPTH).)") for line in report.lines()), report.lines()
+
+
+@pytest.fixture
+def read(monkeypatch) -> list:
+    """The topic of each message a bag gives, as it is read."""
+    topics = []
+    messages = Bag.messages
+
+    def counted(self, *args, **kwargs):
+        for message in messages(self, *args, **kwargs):
+            topics.append(message[0])
+            yield message
+
+    monkeypatch.setattr(Bag, "messages", counted)
+    return topics
+
+
+def test_a_topic_that_stops_before_its_fragments_are_learned_holds_the_others_scans_a_bounded_time(tmp_path, read):
+    # /scan_b's 50 messages come in its first 5 s, then no more; /scan_a's scans go on for 100 s
+    a = whole_scans(np.round(np.arange(0.0, 100.0, 0.1), 3), frame="a", n=8, topic="/scan_a")
+    b = whole_scans(np.round(np.arange(0.05, 5.0, 0.1), 3), frame="b", n=8, topic="/scan_b")
+    bag = write_robot_bag(tmp_path / "stops.bag", "ros1", a + b)
+    sweeps = read_sweeps(bag, Reading(topic=["/scan_a", "/scan_b"]))
+    next(sweeps)
+    assert len(read) < 300   # before, the first sweep came after all 1,050 messages were read and held
+    assert sum(1 for _ in sweeps) == 49   # the other 49 of /scan_b's 50, merged
+
+
+def test_scans_waiting_for_poses_that_never_come_hold_a_bounded_number_of_beams(tmp_path, monkeypatch, read):
+    # 400 scans stamped alike (a driver's clock stuck at 5 s) and odometry that ends at 1 s: each scan waits
+    # for poses past its time, which never come, while the recording's time stands still
+    angles = np.linspace(-1.0, 1.0, 8)
+    stuck = [(1.0 + k * 0.01, "/scan", SCAN, lambda ts: scan_message(ts, 5.0, "laser", -1.0, angles[1] - angles[0],
+                                                                       np.ones(8))) for k in range(400)]
+    odom = [(t, "/odom", "nav_msgs/msg/Odometry", lambda ts, t=t: odometry(ts, t, path_of(t))) for t in TF_TIMES[:50]]
+    bag = write_robot_bag(tmp_path / "stuck.bag", "ros1", stuck + odom)
+    monkeypatch.setattr(caps, "MAX_WAITING_BEAMS", 80)   # ten scans of 8 beams
+    sweeps = read_sweeps(bag, Reading(topic="/scan", pose_topic="/odom"))
+    first = next(sweeps)
+    # the odometry, the messages its fragments are learned from, then ten scans waiting: before, all 450 messages
+    assert len(read) <= 50 + LEARN + 11 and first.pose is None   # its pose never came
+    assert 1 + sum(1 for _ in sweeps) == 400
+
+
+def test_a_mount_where_no_laser_is_placed_is_refused(tmp_path):
+    log = tmp_path / "tiny.log"
+    log.write_text("FLASER 4 1.0 2.0 3.0 8.0 0.0 0.0 0.0 0.0 0.0 0.0 10.0 robot 10.0\n")
+    with pytest.raises(ValueError, match=r"tiny.log is a CARMEN log, whose lasers are read as it records them, and "
+                                         r"no mount would be read: give none"):
+        next(read_rings(log, Reading(mounts="0.2,0,0")))
+    sonar = write_robot_bag(tmp_path / "sonar.bag", "ros1", [(t, "/sonar", "sensor_msgs/msg/Range", lambda ts, t=t: _make(
+        ts, "sensor_msgs/msg/Range", header=_header(ts, t, "s0"), min_range=0.1, max_range=5.0, range=1.0))
+        for t in (1.0, 2.0)])
+    with pytest.raises(ValueError, match="/sonar holds sonars' Range readings, and no mount would be read"):
+        next(read_rings(sonar, Reading(mounts="/sonar=0.2,0,0")))

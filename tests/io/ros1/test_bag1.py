@@ -12,7 +12,9 @@ from novelty.io.ros import caps
 from novelty.io.ros1.bag1 import Bag1, BagFormatError
 from novelty.io.ros.caps import MessageError
 
-from ...io.craft import Zeros, laser_prefix, ros1_bag, u32
+from novelty.io.ros1 import chunks
+
+from ...io.craft import Zeros, laser_prefix, ros1_bag, ros1_chunked_bag, u32
 
 pytest.importorskip("rosbags", reason="the reader is checked against rosbags (the ros extra)")
 
@@ -119,3 +121,39 @@ def test_files_that_are_not_ros1_bags(tmp_path):
 def _read(path):
     with Bag1(path) as bag:
         yield from bag.messages(["/scan"], {"/scan": (10**6, None)})
+
+
+def test_chunks_whose_messages_interleave_in_time_are_each_inflated_once(tmp_path, monkeypatch):
+    # two chunks of 40 scans each, their times alternating, a megabyte of other topics' room before each scan
+    n, gap = 40, 2**20
+    first = [(2 * k * 10**9 + 10**9, SCAN) for k in range(n)]
+    second = [(2 * k * 10**9 + 2 * 10**9, SCAN) for k in range(n)]
+    path = ros1_chunked_bag(tmp_path / "interleaved.bag", [first, second], compression="bz2", gap=gap)
+    assert path.stat().st_size < 30_000
+    inflated = []
+    make = chunks._decompressor
+
+    def counted(compression):
+        decompressor = make(compression)
+
+        class Counting:
+            def __getattr__(self, name):
+                return getattr(decompressor, name)
+
+            def decompress(self, data, max_length=-1):
+                out = decompressor.decompress(data, max_length=max_length)
+                inflated.append(len(out))
+                return out
+
+        return Counting()
+
+    monkeypatch.setattr(chunks, "_decompressor", counted)
+    read = [(time, number) for _, time, number, _ in _read(path)]
+    assert read == [(k * 10**9, k) for k in range(1, 2 * n + 1)]   # in time order, numbered so
+    chunk_bytes = n * (gap + 200)
+    assert sum(inflated) <= 2 * chunk_bytes   # each chunk inflated once (before: from its start at each switch)
+    # the messages taken out before their turn are held within a bound
+    monkeypatch.setattr(caps, "MAX_HELD_BYTES", 1000)
+    with pytest.raises(MessageError, match=r"interleaved.bag, topic /scan, message \d+ \(chunk\): more than 1,000 "
+                                           r"bytes of messages would wait for their turn"):
+        list(_read(path))

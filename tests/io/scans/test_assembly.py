@@ -67,3 +67,28 @@ def test_stated_counts():
         assemble(fragments(6, 3), fragments=4, topic="/scan")
     with pytest.raises(ValueError, match="fragments must be 'auto' or a count"):
         Assembler(fragments=0)
+
+
+def test_a_revolution_starting_at_float32_minus_pi_starts_there():
+    # a driver's float32 angles: the first fragment's angle_min is float32(-pi), a hair below -pi
+    inc = float(np.float32(INC))
+    scans = []
+    for k in range(6):
+        for f in range(4):
+            start = float(np.float32(-math.pi + f * 180 * inc))
+            scans.append(LaserScan(k + 0.01 * f, np.full(180, f + 10.0 * k), start, inc, frame="laser"))
+    a, out = assemble(scans)
+    assert a.per_revolution == 4 and a.incomplete == 0
+    assert [w.stamp for w in out] == [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]   # each its own revolution's first fragment
+    assert out[1].ranges[::180].tolist() == [10.0, 11.0, 12.0, 13.0]
+
+
+def test_fragments_spanning_more_than_one_turn_are_not_one_revolution():
+    # 8 fragments of 181 degrees, each starting where the one before ended: four turns and more
+    scans = [LaserScan(k + 0.01 * f, np.ones(362), math.radians((f * 181 + 180) % 360 - 180), INC)
+             for k in range(20) for f in range(8)]
+    a, out = assemble(scans)
+    assert a.per_revolution == 1 and len(out) == len(scans)
+    with pytest.raises(ValueError, match="8 fragments a revolution were stated, but its first .* messages do not "
+                                         "tile a revolution"):
+        assemble(scans, fragments=8, topic="/scan")

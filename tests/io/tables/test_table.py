@@ -5,6 +5,7 @@ import io
 import os
 import stat
 import time
+import tracemalloc
 import zipfile
 
 import numpy as np
@@ -12,6 +13,8 @@ import pytest
 
 from novelty.io.tables import table as tables
 from novelty.io.tables.table import bounded_lines, read_table
+
+from .craft import mat_cell_of_zeros, npz_with_member
 
 
 class EndlessLine(io.TextIOBase):
@@ -105,3 +108,61 @@ def test_an_odds_mat_file_reads_x_and_its_column_of_labels(tmp_path):
     (tmp_path / "broken.mat").write_bytes(b"MATLAB 5.0 MAT-file, but nothing after")
     with pytest.raises(ValueError, match="broken.mat"):
         read_scans(tmp_path / "broken.mat")
+
+
+def test_a_mat_cell_array_is_refused_by_name_without_being_read(tmp_path):
+    path = tmp_path / "cell.mat"
+    mat_cell_of_zeros(path, "X", 32 * 2**20)   # 256 MiB of zeros in a cell the header says is 1 x 1
+    assert path.stat().st_size < 400_000
+    tracemalloc.start()
+    try:
+        with pytest.raises(ValueError, match=r"cell.mat: its variable X, a 1 x 1 cell array; cell arrays, structs, "
+                                             r"objects and functions are not read"):
+            read_table(path)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 16 * 2**20
+
+
+@pytest.mark.parametrize("shape", ["row", "column"])
+def test_a_label_vector_of_one_row_or_one_column_is_a_column(tmp_path, shape):
+    from scipy.io import savemat
+
+    from novelty.datasets.files import read_scans
+
+    X, y = np.arange(12.0).reshape(6, 2), np.array([0, 0, 1, 0, 1, 0])
+    labels = y[None, :] if shape == "row" else y[:, None]
+    savemat(tmp_path / "labels.mat", {"X": X, "y": y})   # scipy writes a 1-D array as 1 x n
+    np.savez(tmp_path / "labels.npz", X=X, y=labels)
+    for name in ("labels.mat", "labels.npz"):
+        assert read_scans(tmp_path / name).y.tolist() == y.tolist(), name
+
+
+def test_a_label_vector_of_another_length_is_named(tmp_path):
+    np.savez(tmp_path / "short.npz", X=np.zeros((6, 2)), y=np.zeros((1, 5)))
+    with pytest.raises(ValueError, match=r"short.npz: the array 'y' holds 5 values, one for each of X's 6 scans "
+                                         r"expected"):
+        read_table(tmp_path / "short.npz")
+
+
+def test_numbers_stored_as_text_in_an_npz_are_read_as_a_csv_reads_them(tmp_path):
+    from novelty.datasets.files import read_scans
+
+    X = np.array([[0.5, 1.0], [2.0, 3.5], [1e-3, -4.0]])
+    np.savez(tmp_path / "text.npz", X=X.astype(str), y=np.array(["0", "1", "0"]), split=np.array(["train"] * 3))
+    data = read_scans(tmp_path / "text.npz")
+    np.testing.assert_array_equal(data.X, X)
+    assert data.y.tolist() == [0, 1, 0]
+    words = X.astype(str)
+    words[1, 1] = "n/a"
+    np.savez(tmp_path / "words.npz", X=words)
+    with pytest.raises(ValueError, match=r"words.npz, row 1, column 's1': expected a number, got text 'n/a'"):
+        read_scans(tmp_path / "words.npz")
+
+
+def test_an_npz_member_that_is_not_an_array_is_refused_by_name(tmp_path):
+    npz_with_member(tmp_path / "notes.npz", {"X": np.zeros((3, 2))}, "notes.txt", b"written by hand")
+    with pytest.raises(ValueError, match=r"notes.npz: its member 'notes.txt' is not a NumPy array \(.npy\); an .npz "
+                                         r"of scans holds arrays only"):
+        read_table(tmp_path / "notes.npz")
