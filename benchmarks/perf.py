@@ -365,6 +365,8 @@ def build_rows(quick: bool) -> tuple[list[Row], dict]:
     Xp = X[:n_pair]
     checks["pairs"] = {}
     for clusterer in sorted(novelty.available("clusterers")):
+        if "several-winners" in vars(novelty.registry.clusterers.get(clusterer)).get("_capabilities", ()):
+            continue   # the world's cells: a map of the points input, timed by benchmarks/maps_perf.py
         for synapse in sorted(novelty.available("synapses")):
             pair = f"{clusterer} x {synapse}"
             checks["pairs"][pair] = (lambda c=clusterer, s=synapse: pair_status(c, s, Xp))

@@ -24,6 +24,8 @@ CAPABILITIES = {
     "nearest-unit": "a clusterer whose winner, in match and winners alike, is the first unit of "
                     "least novelty.distances.squared_distances(weights_, x): batch scoring is "
                     "then compiled (the nearest-unit kernel) for it, with any synapse",
+    "several-winners": "a clusterer whose units are the world's cells (novelty.maps.cells): a scan wins every "
+                       "cell its echoes fall in; it composes with a synapse in novelty.maps.HabituatingMap",
 }
 
 

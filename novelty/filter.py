@@ -40,8 +40,9 @@ from ._validation import Instance, Interval, Options, check_batch
 from .clusterers.base import Clusterer
 from .detector import NoveltyDetector
 from .habituation.base import Synapse
+from .maps.habituating_map import HabituatingMap
 from .match_scale import ScaleCalibration, mismatch_novelty, product_novelty
-from .registry import build
+from .registry import build, of_kind
 
 __all__ = ["HabituatingFilter", "ScanRangeWarning", "learn_stream", "hsom"]
 
@@ -179,12 +180,17 @@ class HabituatingFilter(NoveltyDetector):
 
         Each parameter goes to whichever of the filter, the clusterer or the
         synapse takes it; ``clusterer__name`` / ``synapse__name`` settle a name
-        both components take (:mod:`novelty._filter.routing`).
+        both components take (:mod:`novelty._filter.routing`). A clusterer of
+        world cells (``"world-cells"``: several winners a scan) composes with
+        the synapse in a :class:`~novelty.maps.habituating_map.HabituatingMap`,
+        which this returns (its module says why).
 
         >>> det = HabituatingFilter.from_params("som", "stanley", n_rows=5, alpha=1.2)
         >>> det.clusterer.n_rows, det.synapse.alpha
         (5, 1.2)
         """
+        if _several_winners(clusterer):  # a map's world cells: several winners a scan
+            return HabituatingMap.from_params(clusterer, synapse, **params)
         own, built = routing.route(cls._get_param_names(), clusterer, synapse, params)
         return cls(clusterer=built["clusterer"], synapse=built["synapse"], **own)
 
@@ -218,6 +224,10 @@ class HabituatingFilter(NoveltyDetector):
     # ------------------------------------------------------------------- hooks
     def _start(self, X: np.ndarray) -> None:
         clusterer = build("clusterer", self.clusterer)
+        if not isinstance(clusterer, Clusterer):
+            raise ValueError(f"{type(clusterer).__name__} gives several winners a scan (the world's cells): it "
+                             "composes with a synapse in novelty.maps.HabituatingMap, which novelty.make("
+                             "'habituating', clusterer=..., synapse=...) builds.")
         synapse = build("synapse", self.synapse)
         clusterer.initialize(X, self.random_state)
         synapse.initialize(clusterer.n_units_)
@@ -402,6 +412,17 @@ class HabituatingFilter(NoveltyDetector):
             raise StateError(f"HabituatingFilter.match_scale_ must be None or a positive number; got {scale!r}.")
         if hasattr(self, "calibration_scans_"):
             check_array_state(self, "calibration_scans_", 2, shape=(None, self.n_features_in_))
+
+
+def _several_winners(clusterer) -> bool:
+    """Whether ``clusterer`` (a registered name or an instance) declares several winners a scan."""
+    if isinstance(clusterer, str):
+        if clusterer not in of_kind("clusterer"):
+            return False
+        cls = of_kind("clusterer").get(clusterer)
+    else:
+        cls = type(clusterer)
+    return "several-winners" in getattr(cls, "__dict__", {}).get("_capabilities", ())
 
 
 def hsom(**params) -> HabituatingFilter:

@@ -285,6 +285,7 @@ clusterers = Registry(
         "gng": "novelty.clusterers.gng:GrowingNeuralGas",
         "gwr": "novelty.clusterers.gwr:GrowWhenRequired",
         "online-kmeans": "novelty.clusterers.kmeans:OnlineKMeans",
+        "world-cells": "novelty.maps.cells:WorldCells",
     },
 )
 
@@ -321,7 +322,8 @@ detectors = Registry(
         "gng-wang-hsu": "novelty.presets:gng_wang_hsu",
         "hsom-mismatch": "novelty.presets:hsom_mismatch",
         "kmeans-stanley": "novelty.presets:kmeans_stanley",
-        "habituating-map": "novelty.maps.habituating_map:HabituatingMap",
+        "cell-map": "novelty.maps.habituating_map:HabituatingMap",
+        "habituating-map": "novelty.maps.habituating_map:habituating_map",
         "map-explore": "novelty.maps.habituating_map:map_explore",
         "kohonen-filter": "novelty.baselines.kohonen:KohonenNoveltyFilter",
         "autoencoder-filter": "novelty.baselines.autoencoder:AutoencoderFilter",
@@ -329,6 +331,7 @@ detectors = Registry(
         "som-distance": "novelty.baselines.som_distance:SOMDistance",
         "nearest-memory": "novelty.baselines.nearest_memory:NearestMemory",
         "knn": "novelty.baselines.knn:KNNDetector",
+        "occupancy-grid": "novelty.baselines.occupancy_grid:OccupancyGrid",
         "context": "novelty.context:SequenceContext",
         "parzen": "novelty.baselines.parzen:ParzenDetector",
         "isolation-forest": "novelty.baselines.sklearn_outlier:IsolationForestDetector",

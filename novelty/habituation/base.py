@@ -163,31 +163,35 @@ class Synapse(Component):
     def n_units_(self) -> int:
         return self.efficacy_.shape[0]
 
-    def step(self, winner: int, neighbours: np.ndarray, stimulus: float = 1.0, dt: float = 1.0) -> None:
-        """One time step: habituate the winner and its neighbours.
+    def step(self, winner, neighbours: np.ndarray, stimulus: float = 1.0, dt: float = 1.0) -> None:
+        """One time step: habituate the winner (or winners) and the neighbours.
 
         Parameters
         ----------
-        winner : int
-            Row of the winning unit.
+        winner : int or ndarray of int
+            Row of the winning unit; or the rows of several winners (a map's
+            cells hit by one scan: :mod:`novelty.maps.cells`), each stimulated
+            as a winner.
         neighbours : ndarray of int
-            Rows of the units that learn with it (the winner excluded).
+            Rows of the units that learn with it (no winner among them).
         stimulus : float, default=1.0
             The stimulus S presented to the winner and the neighbours.
         dt : float, default=1.0
             Elapsed time; one scan is one step.
         """
         tau_winner, tau_neighbour, tau_forget, forget = self.schedule
+        winners = np.array(winner, dtype=np.intp, ndmin=1)
         if forget:
             rest = np.ones(self.n_units_, dtype=bool)
-            rest[winner] = False
+            rest[winners] = False
             rest[neighbours] = False
             rows = np.flatnonzero(rest)
             if rows.size:
                 self._advance(rows, 0.0, tau_forget, dt)
         if len(neighbours):
             self._advance(np.asarray(neighbours, dtype=np.intp), stimulus, tau_neighbour, dt)
-        self._advance(np.array([winner], dtype=np.intp), stimulus, tau_winner, dt)
+        if winners.size:
+            self._advance(winners, stimulus, tau_winner, dt)
 
     def fire(self, row: int, stimulus: float = 1.0, dt: float = 1.0) -> None:
         """Habituate the synapse at ``row`` alone, as a winner's (``tau_winner``); the others are left as they are.

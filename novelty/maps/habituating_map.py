@@ -1,138 +1,42 @@
-"""A habituating map: the paper's novelty filter with the world's grid cells as its units (ours).
+"""A habituating map: the paper's filter with the world's grid cells as its units, several winners a scan (ours).
 
-Marsland, Nehmzow & Shapiro (2000) feed a scan to a clusterer, whose winning
-unit's habituating synapse gives the novelty; learning habituates it. Here
-the clusterer is the world itself, cut into square cells of side ``c``
-(``cell_size``), and a scan (the ``points`` input, :mod:`novelty.io.scans.points`:
-the robot's pose and each sector's end point in the world frame) stimulates
-every cell its echoes fall in. Each cell is a unit with a habituating synapse,
-Stanley's (1976) as in the paper (equation 3 of
-:mod:`novelty.habituation.stanley`, one step a scan as in the paper, or one
-a visit with ``visit_gap``, below; the cells not hit held):
+Marsland, Nehmzow & Shapiro (2000) compose a clusterer with a bank of
+habituating synapses; the efficacy of the winner's synapse is the novelty.
+:class:`HabituatingMap` composes the clusterer of world cells
+(:class:`~novelty.maps.cells.WorldCells`, registered as ``world-cells``: every
+cell a scan's echoes fall in wins) with any registered synapse (Stanley's, as
+in the paper, by default; Wang & Hsu's long-term memory, Staddon & Higa's two
+time scales, a plugin's), on the ``points`` input (:mod:`novelty.io.scans.points`).
+Each winner is stimulated by the synapse's own step (``Synapse.step`` with
+several winners; compiled, its ``advance``), and the scan's novelty is the
+cells' readout of their efficacies (equations (1) and (2) of
+:mod:`novelty.maps.cells`). ``novelty.make("habituating",
+clusterer="world-cells", synapse="wang-hsu")`` builds one.
 
-    y_c <- y_c + (dt / tau) (alpha (1 - y_c) - 1)      for every cell c hit     (1)
+Why an estimator of its own beside :class:`~novelty.filter.HabituatingFilter`:
+the filter and its engines assume one winner a scan. Its novelty is that
+winner's efficacy, combined with the winner's distance by the novelty rules;
+its compiled driver is ``match``, ``stimulate(winner, neighbours)``, ``adapt``;
+its scoring is the nearest unit; its state is checked against ``weights_`` of
+shape (units, features). A map's scan wins hundreds of cells, its novelty is a
+readout over them, and its units have no prototype in the scan's space and no
+distance. So the map keeps the filter's composition (a registered clusterer, a
+registered synapse, the synapse's step and schedule, its checks) and its own
+loop (:mod:`novelty.maps.map_engine`: numpy, the specification; and one compiled
+loop per synapse).
 
-A wall seen from anywhere falls in the same cells and habituates from every
-pass; an object standing where the robot saw free space falls in cells it
-has not hit before: novel at first sight, familiar after a few passes.
-
-Free-space evidence (ours). A cell never hit may be a wall the robot never
-saw from this side, or space it has seen through. Each cell also counts the
-scans whose rays passed through it (``passes``: from the robot's position
-towards each end point, sampled every ``c / 2``, stopping one cell short of
-an echo; a sector with no echo up to its end point). With
-``evidence="free"`` a hit cell's novelty is its efficacy weighted by that
-evidence,
-
-    v_c = y_c (1 - exp(-f_c / f0))      (f_c the cell's passes, f0 = ``free_scale``)    (2)
-
-so an echo is novel where the robot has seen free space and not yet got used
-to something there (a change), and not where it has seen nothing at all;
-``evidence="hits"`` takes ``v_c = y_c`` (every unseen cell novel, as a new
-place is to the paper's filter). Between the two (ours), ``unseen = u`` in
-[0, 1] gives a cell never seen through the weight ``u``,
-
-    v_c = y_c (u + (1 - u) (1 - exp(-f_c / f0)))                                  (2')
-
-so that a surface receding into space the map never saw (a door opened onto
-a room, a recess deeper than the map's wall) is not scored 0 by design, as
-it is with (2): ``u = 0`` is (2), ``u = 1`` is ``evidence="hits"``.
-
-The defaults, ``cell_size = 0.1``, ``tolerance = 1``, ``arc = "sector"``,
-``unseen = 0.25`` and ``visit_gap = 10``, were chosen by the sixth selection
-on development seeds (benchmarks/selection/maps-round6.md: the last two; the
-fifth, maps-round5.md, chose the first three with ``unseen = 0.5``; the
-fourth, maps-round4.md, cells of 0.2 m read alone and ``unseen``), each of
-which ranks first the settings that stay above chance on the
-simulated detection tasks: a sonar's door inset 0.35 m is apart from its
-wall at 0.1 m even read with its neighbours, a laser's range noise within
-a cell of a known surface is that surface, and an office seen through an
-opened door lies where no ray had crossed.
-
-A scan's novelty is the mean of the ``top`` largest ``v_c`` over the cells it
-hits (missing ones counted as 0: in [0, 1]), since a small object falls in a
-few of the hundreds of cells a laser scan hits; ``top=None`` takes the mean
-over all of them. A scan with no echo scores 0. ``top = 2`` is a default since
-the seventh selection (benchmarks/selection/maps-round7.md; the third to the
-sixth kept ``top = 3``): on its new seeds no candidate kept the guard's
-margin, and the two most novel cells habituated on one more objects task
-than three.
-
-Three options read the map more carefully (ours); ``tolerance = 1`` is a
-default (from the third selection, benchmarks/selection/maps-round3.md, to
-the fourth, with cells of 0.4 m; again from the fifth, with cells of
-0.1 m), the other two are off by default:
-
-- ``tolerance = t`` cells: a hit cell's efficacy is read as the least over
-  the ``(2t + 1)^2`` cells around it (itself included), so an echo landing
-  a cell or two off a surface the map knows (a pose error, a grazing ray,
-  range noise) is that surface, not a change;
-- ``min_passes = m``: a cell crossed fewer than ``m`` times gives no
-  novelty (``v_c = 0``): one glimpse through a cell is not evidence that
-  it was free;
-- ``evidence_lag = L`` scans: a scan's free space counts as evidence
-  only once it is ``L`` scans old (the last ``L`` scans are held in
-  ``pending_`` and their passes added when they leave it; their hits are
-  learned at once), so that an echo is novel where the robot saw free
-  space on an earlier pass, not where it saw through a moment ago while
-  approaching (a place met for the first time: its surfaces glimpsed
-  through by grazing rays, then hit).
-
-A fourth decides how often a cell habituates (ours):
-
-- ``visit_gap = G`` scans (10 by default since the sixth selection): a
-  hit cell takes the step of (1) only at the first hit of a visit, a hit
-  after at least ``G`` scans that did not hit it (the scans of one visit
-  hit it again and again; they are one encounter). A robot passing an object sees it on several scans of a
-  pass, more at a faster scan rate: with ``G = 0`` (every hit a step, the
-  paper's one step a scan) the object's cells have habituated before the
-  pass is over, and a sensor's rate sets how fast a feature grows
-  familiar. With ``G > 0`` it grows familiar by the visits: novel through
-  its first pass, less on each pass after. ``last_hit_`` holds the scan
-  (counted from 1 over all scans learned, ``scans_``) that last hit each
-  cell.
-
-A sonar's echo comes from anywhere in its cone, not from its axis. With
-``arc = a`` (rad, ours; 0: a laser's beam) each sector is read
-as a cone of width ``a`` centred on the direction of its end point: its
-echo is spread over the arc at its range from the robot, and its free
-space over the cone inside that range (Moravec & Elfes 1985), sampled by
-``1 + ceil(a r_max / (c / 2))`` rays evenly across it (``r_max`` the
-longest sector of the scan), so that a wall seen from elsewhere falls in
-the cells of the arc that holds it.
-
-With ``arc="sector"`` (ours; the default since the fifth selection) each scan's cone is as wide as the angle its
-sectors stand for, measured from the scan itself, so one setting reads a
-sonar ring and a laser each at its own width: the bearings of its end
-points seen from the robot's position, sorted round the circle, and the
-median gap between neighbours (a ring of 16 sonars all round: 22.5
-degrees, close to a sonar's cone; a laser's 180 sectors over 180 degrees:
-1 degree, practically its beam; the one gap across the unseen half is
-outvoted). A sector with no echo counts: its end point lies along its
-direction (:mod:`novelty.io.scans.points`), so dropping it would widen the
-cones of a scan that sees few echoes, not of one whose sectors are wider.
-The width is at most pi (the option's own bound); a scan with fewer than
-two sectors that point anywhere (an end point off the robot's position)
-is read on its axes.
-
-Learning a scan applies (1) to the cells it hits and adds one pass to the
-cells its rays crossed (a cell both hit and crossed in one scan counts as
-hit). Cells are made as they are first met; the state is three arrays over
-the cells met (their packed indices, sorted; efficacies; passes), so the
-memory grows with the area seen, not with the scans.
+Two presets: ``habituating-map`` (:func:`habituating_map`, the defaults of
+:class:`~novelty.maps.cells.WorldCells` and Stanley's synapse) and
+``map-explore`` (:func:`map_explore`, for a robot that explores); how they
+were chosen is in ``studies/maps``.
 
 References
 ----------
-Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features of
-an environment using habituation. Proc. SAB 2000 (the filter; the synapse,
-equation 1).
+Marsland, S., Nehmzow, U. & Shapiro, J. (2000). Detecting novel features of an
+environment using habituation. Proc. SAB 2000.
 
-Stanley, J. C. (1976). Computer simulation of a model of habituation.
-Nature, 261, 146-148.
-
-Moravec, H. & Elfes, A. (1985). High resolution maps from wide angle sonar.
-Proc. IEEE ICRA (cells of the world marked occupied where echoes fall and
-empty along the rays: the evidence grid behind (2)).
+Stanley, J. C. (1976). Computer simulation of a model of habituation. Nature,
+261, 146-148.
 """
 
 from __future__ import annotations
@@ -141,20 +45,21 @@ import numbers
 
 import numpy as np
 
-from .._component import StateError, check_array_state, check_int_state
-from .._validation import Interval, Options, check_one
+from .._component import Component, StateError, check_int_state, declares
+from .._filter import efficacy_range, routing
+from .._kernels.compiling import disabled
+from .._validation import Instance, Interval
 from ..detector import NoveltyDetector
-from ..habituation.stanley import euler_steps
-from ..io.scans.points import split_points
+from ..habituation.base import Synapse
+from ..registry import build
+from .cells import WorldCells, _unpack, cell_pack
+from .map_engine import choose, warn_full
+from ..io.scans.points import MAX_COORDINATE, example_rows, split_points
+from .scan_rays import MapRangeWarning
+from .scan_rays import sector_width as _sector_width
 
-#: The packed offsets of a cell's eight neighbours.
-_NEIGHBOURS = np.array([di * (1 << 32) + dj for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj], dtype=np.int64)
-
-__all__ = ["HabituatingMap", "cell_keys", "sector_width", "map_explore", "MAP_EXPLORE", "MAX_COORDINATE"]
-
-#: Coordinates (m) beyond which a row is refused: the packed cell indices stay exact.
-MAX_COORDINATE = 1e6
-_SHIFT_I, _SHIFT_J = np.int64(1 << 30), np.int64(1 << 31)
+__all__ = ["HabituatingMap", "MapRangeWarning", "habituating_map", "map_explore", "HABITUATING_MAP", "MAP_EXPLORE",
+           "cell_keys", "sector_width", "MAX_COORDINATE"]
 
 
 def cell_keys(points, cell_size: float) -> np.ndarray:
@@ -166,100 +71,74 @@ def cell_keys(points, cell_size: float) -> np.ndarray:
     >>> cell_keys([[0.1, 0.1], [0.5, -0.1]], 0.4).tolist() == [2**62 + 2**31, (2**30 + 1) * 2**32 + 2**31 - 1]
     True
     """
-    ij = np.floor(np.asarray(points, dtype=np.float64).reshape(-1, 2) / cell_size).astype(np.int64)
-    return ((ij[:, 0] + _SHIFT_I) << np.int64(32)) + (ij[:, 1] + _SHIFT_J)
+    ij = np.floor(np.asarray(points, dtype=np.float64).reshape(-1, 2) / cell_size)
+    return cell_pack(ij[:, 0], ij[:, 1])
 
 
 def sector_width(pose, ends) -> float:
-    """The angle one sector of a scan stands for (rad; ours): the median gap between its bearings round the circle.
-
-    ``pose`` the robot's (x, y, ...), ``ends`` the sectors' end points (n, 2),
-    those with no echo included (they lie along their sectors' directions).
-    End points at the robot's position have no bearing and are left out;
-    with fewer than two left the width is 0 (the axes). At most pi.
+    """The angle one sector of a scan stands for (rad): :func:`novelty.maps.scan_rays.sector_width` of
+    ``pose`` (x, y, ...) and the end points ``ends`` (n, 2).
 
     >>> round(float(np.degrees(sector_width([0.0, 0.0], [[1.0, 0.0], [0.0, 1.0], [-2.0, 0.0], [0.0, -1.0]]))), 6)
     90.0
     """
-    d = np.asarray(ends, dtype=np.float64).reshape(-1, 2) - np.asarray(pose, dtype=np.float64)[:2]
-    d = d[(d[:, 0] != 0) | (d[:, 1] != 0)]
-    if d.shape[0] < 2:
-        return 0.0
-    bearing = np.sort(np.arctan2(d[:, 1], d[:, 0]))
-    gaps = np.diff(np.append(bearing, bearing[0] + 2 * np.pi))
-    return float(min(np.median(gaps), np.pi))
+    ends = np.asarray(ends, dtype=np.float64).reshape(-1, 2)
+    return float(_sector_width(float(pose[0]), float(pose[1]), ends[:, 0].copy(), ends[:, 1].copy()))
+
+
+#: the names the map took before it composed a synapse, and where each goes now
+_RENAMED = {"tau": "tau_winner"}
+
+
+def _settings(params: dict) -> dict:
+    """``params`` in today's names: ``tau`` is the synapse's ``tau_winner``; ``tau_neighbour`` None (the
+    eight cells around a hit cell held) is ``neighbours=False``, a number also ``neighbours=True``."""
+    out = {_RENAMED.get(name, name): value for name, value in params.items()}
+    if "tau_neighbour" in out and "neighbours" not in out:
+        out["neighbours"] = out["tau_neighbour"] is not None
+    if out.get("tau_neighbour", 0) is None:
+        del out["tau_neighbour"]
+    return out
 
 
 class HabituatingMap(NoveltyDetector):
-    """Grid cells of the world as the units of a habituating filter (module docstring; ours).
+    """World cells composed with any synapse: the paper's filter on a map of the world (module docstring; ours).
 
     Parameters
     ----------
-    cell_size : float, default=0.1
-        The side of a cell (m).
-    evidence : {"free", "hits"}, default="free"
-        A hit cell's novelty: its efficacy weighted by the free space seen
-        there (2), or its efficacy alone.
-    free_scale : float, default=2.0
-        ``f0`` in (2): the passes at which the weight reaches 1 - 1/e.
-    unseen : float in [0, 1], default=0.25
-        ``u`` in (2'): the weight of a cell never seen through (ours; 0: none,
-        as (2); no effect with ``evidence="hits"``).
-    top : int or None, default=2
-        A scan's novelty is the mean of its ``top`` most novel hit cells;
-        None: of all its hit cells. (The default was 3 until the seventh
-        selection.)
-    tau : float, default=3.33
-        The synapses' time constant (the paper's winner's).
-    alpha : float, default=1.05
-        Their recovery rate (the paper's); an efficacy never falls below ``1 - 1/alpha``.
-    tau_neighbour : float or None, default=None
-        The time constant with which the eight cells around a hit cell
-        habituate too (None: they do not).
-    tolerance : int, default=1
-        Read a hit cell's efficacy as the least within this many cells of it
-        (ours; 0: the cell's own).
-    min_passes : float, default=0
-        Cells crossed fewer times than this give no novelty (ours).
-    evidence_lag : int, default=0
-        A scan's free space counts as evidence this many scans later (ours).
-    visit_gap : int, default=10
-        A hit cell habituates only at the first hit of a visit, after at
-        least this many scans that did not hit it (ours; 0: at every hit).
-    arc : float or "sector", default="sector"
-        Read each sector as a cone this wide (rad; a sonar's, ours); 0: its axis;
-        ``"sector"``: as wide as the median angle between the scan's sectors (ours).
+    clusterer : str or WorldCells, default="world-cells"
+        The clusterer of world cells, by name (with its defaults) or as an
+        instance (cloned in ``fit``): its parameters are the map's
+        (:class:`~novelty.maps.cells.WorldCells`), reachable as
+        ``clusterer__<name>`` or by their short names.
+    synapse : str or Synapse, default="stanley"
+        The synapse model, by name or instance, one per cell.
+    stimulus : float, default=1.0
+        The stimulus S each winner's synapse receives.
+    n_epochs : int, default=1
+        Passes over the data in :meth:`fit`.
     threshold : float, default=0.5
         Novelty above which :meth:`predict` says novel.
     contamination : "auto" or float in (0, 0.5], default="auto"
 
     Attributes
     ----------
-    cells_ : ndarray of int64, shape (n_cells,)
-        The cells met, as :func:`cell_keys`, increasing.
-    efficacy_ : ndarray of shape (n_cells,)
-        Each cell's synapse (1: never hit).
-    passes_ : ndarray of shape (n_cells,)
-        The scans whose rays crossed each cell.
-    pending_ : ndarray of shape (n_pending, n_features)
-        The last scans learned, their free space not counted yet (at most ``evidence_lag``).
-    last_hit_ : ndarray of int64, shape (n_cells,)
-        The scan (1, 2, ... over all scans learned) that last hit each cell; 0: never hit.
-    scans_ : int
-        The scans learned.
+    clusterer_ : WorldCells
+        The fitted map: its tiles, passes, last hits, scans.
+    synapse_ : Synapse
+        The fitted synapse bank, one synapse per cell of ``clusterer_``.
     n_features_in_ : int
 
     Examples
     --------
-    A corridor along x with walls at y = +-2 (two sectors, left and right,
-    T = 4 m), the robot at x = 0.1 and 1.1; then a box at y = 0.5 where the
-    left sector's ray had crossed free space once (weight 1 - 1/e): its one
-    novel cell among the ``top`` two gives 0.632 / 2 (with ``unseen=0``:
-    cells never seen through weigh nothing; each sector on its axis, each
-    cell read alone):
+    A corridor along x with walls at y = +-2 (two sectors, left and right, the
+    ring's threshold 4 m), the robot at x = 0.1 and 1.1; then a box at y = 0.5
+    where the left sector's ray had passed once (weight 1 - 1/e): its one novel
+    cell among the ``top`` two gives 0.632 / 2 (cells never passed weighing
+    nothing, each sector on its axis, each cell read alone):
 
     >>> corridor = lambda x, y_left, near_left: [x, 0.0, 0.0, near_left, 0.5, x, x, y_left, -2.0]
-    >>> det = HabituatingMap(cell_size=0.5, free_scale=1.0, unseen=0.0, tolerance=0, arc=0.0)
+    >>> det = habituating_map(cell_size=0.5, free_scale=1.0, unseen=0.0, tolerance=0, arc=0.0)
     >>> det = det.fit([corridor(0.1, 2.0, 0.5), corridor(1.1, 2.0, 0.5)])
     >>> det.novelty([corridor(1.1, 2.0, 0.5), corridor(1.1, 0.5, 0.875)]).round(3).tolist()
     [0.0, 0.316]
@@ -269,154 +148,181 @@ class HabituatingMap(NoveltyDetector):
     input_layout = "points"
 
     _parameter_rules = {
-        "cell_size": Interval(numbers.Real, 1e-3, 1e3),
-        "evidence": Options(("free", "hits")),
-        "free_scale": Interval(numbers.Real, 0, 1e6, closed="right"),
-        "unseen": Interval(numbers.Real, 0, 1),
-        "top": Interval(numbers.Integral, 1, None, allow_none=True),
-        "tau": Interval(numbers.Real, 0, None, closed="neither"),
-        "alpha": Interval(numbers.Real, 0, None, closed="neither"),
-        "tau_neighbour": Interval(numbers.Real, 0, None, closed="neither", allow_none=True),
-        "tolerance": Interval(numbers.Integral, 0, 10),
-        "min_passes": Interval(numbers.Real, 0, None),
-        "evidence_lag": Interval(numbers.Integral, 0, None),
-        "visit_gap": Interval(numbers.Integral, 0, None),
-        "arc": (Interval(numbers.Real, 0, np.pi), Options(("sector",))),
+        "clusterer": Instance((str, WorldCells), "a clusterer of world cells, by name or as a WorldCells"),
+        "synapse": Instance((str, Synapse), "a synapse name or a Synapse instance"),
+        "stimulus": Interval(numbers.Real, 0, None),
+        "n_epochs": Interval(numbers.Integral, 1, None),
         "threshold": Interval(numbers.Real, None, None),
     }
 
-    def __init__(self, cell_size=0.1, evidence="free", free_scale=2.0, top=2, tau=3.33, alpha=1.05,
-                 tau_neighbour=None, tolerance=1, min_passes=0, evidence_lag=0, arc="sector", unseen=0.25, visit_gap=10,
-                 threshold=0.5, contamination="auto"):
-        self.unseen = unseen
-        self.visit_gap = visit_gap
-        self.tau_neighbour = tau_neighbour
-        self.arc = arc
-        self.tolerance = tolerance
-        self.min_passes = min_passes
-        self.evidence_lag = evidence_lag
-        self.cell_size = cell_size
-        self.evidence = evidence
-        self.free_scale = free_scale
-        self.top = top
-        self.tau = tau
-        self.alpha = alpha
+    def __init__(self, clusterer="world-cells", synapse="stanley", stimulus=1.0, n_epochs=1, threshold=0.5,
+                 contamination="auto"):
+        self.clusterer = clusterer
+        self.synapse = synapse
+        self.stimulus = stimulus
+        self.n_epochs = n_epochs
         self.threshold = threshold
         self.contamination = contamination
 
     @classmethod
-    def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
-        """Rows of the points input for generic checks: a robot driving along a corridor 4 m wide.
+    def from_params(cls, clusterer="world-cells", synapse="stanley", **params) -> "HabituatingMap":
+        """A map from its parts' names and one flat set of parameters, each to the part that takes it.
 
-        Eight sectors all round; the walls at y = +-2 m, the robot's lateral
-        position and heading wandering by a seeded random walk, no echo beyond 4 m.
+        >>> det = HabituatingMap.from_params(synapse="wang-hsu", cell_size=0.2, beta=2.0)
+        >>> det.clusterer.cell_size, type(det.synapse).__name__, det.synapse.beta
+        (0.2, 'WangHsuSynapse', 2.0)
         """
-        rng = np.random.default_rng(seed)
-        x = np.linspace(0.0, 0.1 * n, n)
-        y = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -1.0, 1.0)
-        heading = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -0.5, 0.5)
-        bearings = heading[:, None] + np.arange(8) * (np.pi / 4)
-        s = np.sin(bearings)
-        with np.errstate(divide="ignore"):
-            r = np.where(s > 0, (2.0 - y[:, None]) / s, np.where(s < 0, (-2.0 - y[:, None]) / s, np.inf))
-        r = np.minimum(r, 4.0)
-        X = np.c_[x, y, heading, 1.0 - r / 4.0, x[:, None] + r * np.cos(bearings), y[:, None] + r * s]
-        return X
+        own, built = routing.route(cls._get_param_names(), clusterer, synapse, params)
+        return cls(clusterer=built["clusterer"], synapse=built["synapse"], **own)
 
+    def set_params(self, **params):
+        """Set parameters, a part's also by its short name (``set_params(top=3)``: the clusterer's).
+
+        A part's parameter set on a fitted map applies to its fitted part too, from the next call (how the
+        map reads and learns: ``top``, ``tolerance``, ``alpha``, ...); a part replaced, from the next fit.
+        """
+        parts = {part: params.get(part, getattr(self, part)) for part in routing.PARTS}
+        full = routing.full_names(type(self).__name__, self._get_param_names(), parts, params)
+        super().set_params(**full)
+        for key, value in full.items():
+            part, _, name = key.partition("__")
+            fitted = getattr(self, f"{part}_", None) if name and part in routing.PARTS else None
+            if isinstance(fitted, Component):
+                fitted.set_params(**{name: value})
+        return self
+
+    @classmethod
+    def _example_rows(cls, seed: int = 0, n: int = 120) -> np.ndarray:
+        """Rows of the points input for generic checks (:func:`novelty.io.scans.points.example_rows`)."""
+        return example_rows(seed, n)
+
+    def __getstate__(self):
+        # the engine is scratch, made again from the parts (a compiled one holds modules, which do not pickle)
+        return {k: v for k, v in vars(self).items() if k not in ("_map_engine", "_map_seen")}
+
+    # ------------------------------------------------------------------ parameters
     def _validate_params(self) -> None:
         super()._validate_params()
-        if self.tau < self.alpha:
-            raise ValueError(f"The 'tau' parameter of HabituatingMap must be at least alpha ({self.alpha}) for "
-                             f"the Euler step to stay in [1 - 1/alpha, 1]. Got {self.tau} instead.")
+        efficacy_range.check_template(self)
 
-    # ------------------------------------------------------------------ the rows
-    def _rows(self, X: np.ndarray):
-        poses, near, ends = split_points(X, type(self).__name__)
-        if np.abs(poses[:, :2]).max() > MAX_COORDINATE or np.abs(ends).max() > MAX_COORDINATE:
-            raise ValueError(f"{type(self).__name__}: a pose or end point lies more than {MAX_COORDINATE:g} m "
-                             "from the world's origin; give poses in metres in a local frame (odom or map).")
-        return poses, near, ends
+    def _parts(self) -> tuple[WorldCells, Synapse]:
+        cells, synapse = build("clusterer", self.clusterer), build("synapse", self.synapse)
+        if not declares(cells, "several-winners"):
+            raise ValueError(f"HabituatingMap composes a clusterer of world cells ('world-cells'); got "
+                             f"{type(cells).__name__}, one winner a scan: novelty.make('habituating', "
+                             f"clusterer=...) composes that one.")
+        return cells, synapse
 
-    def _arc(self, pose, ends) -> float:
-        """The cone's width for one scan (rad): ``arc``, or with ``"sector"`` the median gap between its bearings."""
-        if not isinstance(self.arc, str):
-            return float(self.arc)
-        return sector_width(pose, ends)
+    def _first_novelty(self) -> float:
+        cells, synapse = self._parts()
+        return cells.first_novelty(synapse.initialize(1).fresh_efficacy)
 
-    def _cones(self, pose, near, ends, arc: float) -> tuple[np.ndarray, np.ndarray]:
-        """Each sector as rays evenly across its cone of width ``arc``, each as long as the sector."""
-        d = ends - pose[:2]
-        length = np.hypot(d[:, 0], d[:, 1])
-        rays = 1 + int(np.ceil(arc * length.max() / (float(self.cell_size) / 2))) if length.size else 1
-        spread = np.linspace(-arc / 2, arc / 2, rays)
-        bearing = np.arctan2(d[:, 1], d[:, 0])[:, None] + spread[None, :]
-        out = pose[:2] + length[:, None, None] * np.stack([np.cos(bearing), np.sin(bearing)], axis=-1)
-        return np.repeat(near, rays), out.reshape(-1, 2)
+    def _novelty_bounds(self) -> tuple[float, float] | None:
+        high = self.synapse_.efficacy_range(float(self.stimulus))[1]
+        return (0.0, float(high)) if np.isfinite(high) else None
 
-    def _cells(self, pose, near, ends) -> tuple[np.ndarray, np.ndarray]:
-        """The cells one scan hits, and those its rays cross (not hit), as sorted unique keys."""
-        c = float(self.cell_size)
-        arc = self._arc(pose, ends)
-        if arc > 0:
-            near, ends = self._cones(pose, near, ends, arc)
-        hit = near > 0
-        hits = np.unique(cell_keys(ends[hit], c))
-        d = ends - pose[:2]
-        length = np.hypot(d[:, 0], d[:, 1])
-        reach = np.where(hit, length - c, length)
-        step = c / 2
-        counts = np.maximum(np.floor(reach / step), 0).astype(np.int64)
-        beam = np.repeat(np.arange(len(ends)), counts)
-        along = (np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts) + 0.5) * step
-        unit = d / np.where(length > 0, length, 1.0)[:, None]
-        crossed = np.unique(cell_keys(pose[:2] + along[:, None] * unit[beam], c))
-        return hits, np.setdiff1d(crossed, hits, assume_unique=True)
+    # ------------------------------------------------------------------ learning and scoring
+    def _start(self, X: np.ndarray) -> None:
+        cells, synapse = self._parts()
+        self.clusterer_ = cells.initialize(X)
+        self.synapse_ = synapse.initialize(0)
+        vars(self).pop("_map_engine", None)
 
-    def _slots(self, keys: np.ndarray) -> np.ndarray:
-        """The slot of each key among the cells met, -1 for a cell not met yet."""
-        at = np.searchsorted(self.cells_, keys)
-        known = at < self.cells_.size
-        known[known] = self.cells_[at[known]] == keys[known]
-        return np.where(known, at, -1)
+    def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
+        self._check_rows(X)
+        engine = self._engine()
+        out = engine.learn(X, dt, float(self.stimulus))
+        self._seen()
+        warn_full(self.clusterer_, engine.passed_by, stacklevel=5)
+        engine.passed_by = 0
+        return out
 
-    # ------------------------------------------------------------------ novelty
-    def _efficacy(self, keys: np.ndarray) -> np.ndarray:
-        """Each cell's efficacy (1: not met); with ``tolerance`` t, the least over the cells within t of it."""
-        t = int(self.tolerance)
-        span = np.arange(-t, t + 1, dtype=np.int64)
-        block = (span[:, None] * (1 << 32) + span[None, :]).ravel()
-        around = keys[:, None] + block[None, :]
-        slots = self._slots(around.ravel()).reshape(around.shape)
-        y = np.where(slots >= 0, self.efficacy_[np.maximum(slots, 0)] if self.efficacy_.size else 1.0, 1.0)
-        return y.min(axis=1)
+    def _novelty(self, X: np.ndarray) -> np.ndarray:
+        self._check_rows(X)
+        return self._engine().score(X)
 
-    def _score(self, hits: np.ndarray) -> float:
-        if hits.size == 0:
-            return 0.0
-        y = self._cell_values(hits)
-        if self.top is None:
-            return float(y.mean())
-        k = int(self.top)
-        return float(np.sort(y)[-k:].sum() / k)
+    def _engine(self):
+        """The engine of the parts as they are (:mod:`novelty.maps.map_engine`): the one held while nothing was set
+        on the parts since it read them, else another, chosen once the state is checked."""
+        engine = vars(self).get("_map_engine")
+        pending = getattr(engine, "pending", None)
+        if engine is not None and vars(self).get("_map_seen") == self._counts() and not (
+                pending is not None and pending.ready):
+            return engine
+        self._check_parts()
+        engine = vars(self)["_map_engine"] = choose(self.clusterer_, self.synapse_)
+        self._seen()
+        return engine
 
-    def _cell_values(self, hits: np.ndarray) -> np.ndarray:
-        """``v_c`` of (2) (or (2')) for each hit cell: the values a scan's novelty is the top mean of."""
-        slots = self._slots(hits)
-        met = slots >= 0
-        y = self._efficacy(hits)
-        if self.evidence == "free":
-            passes = np.zeros(hits.size)
-            passes[met] = self.passes_[slots[met]]
-            u = float(self.unseen)
-            y = y * (u + (1.0 - u) * -np.expm1(-passes / self.free_scale))
-        if self.min_passes > 0:
-            counted = np.zeros(hits.size, dtype=bool)
-            counted[met] = self.passes_[slots[met]] >= self.min_passes
-            y = np.where(counted, y, 0.0)
-        return y
+    def _counts(self) -> tuple:
+        return (id(self.clusterer_), self.clusterer_._changes, id(self.synapse_), self.synapse_._changes, disabled())
+
+    def _seen(self) -> None:
+        vars(self)["_map_seen"] = self._counts()
+
+    @property
+    def compiled_(self) -> str:
+        """Which loop learns: ``"compiled"``, or ``"reference (<why>)"`` (:mod:`novelty.maps.map_engine`)."""
+        self._check_fitted()
+        return self._engine().why
+
+    def _check_rows(self, X: np.ndarray) -> None:
+        """Refuse rows with a scan that would touch more than ``max_scan_cells`` cells, before anything is
+        learned; warn of sectors cut at ``max_range``."""
+        from . import grid_kernels as grid  # numba: imported when a map first reads rows (a second, once)
+
+        cells = self.clusterer_
+        split_points(X, type(self).__name__, bounded=True)
+        grid.check_costs(X, cells, -1.0 if isinstance(cells.arc, str) else float(cells.arc), float(cells.cell_size))
+
+    # ------------------------------------------------------------------ what a score is made of
+    def explain(self, x) -> dict:
+        """What makes one scan's novelty, cell by cell, against the map as it is (nothing is learned; an
+        unfitted map is an empty one).
+
+        Returns a dict: over the cells the scan's echoes fall in (sorted by (i, j)), ``cells`` (h, 2) their
+        indices, ``centres`` (h, 2) their centres (m), ``efficacy`` as the map reads it (the least within
+        ``tolerance``), ``own_efficacy`` the cell's own synapse's, ``passes`` (f), ``last_hit`` (the scan that
+        last hit it, 0: never), ``novelty`` (v, equation (1) of :mod:`novelty.maps.cells`), ``scoring`` (among
+        the ``top`` whose mean is the scan's novelty, v > 0) and ``seen`` (the map had evidence there: passed
+        or hit before); ``passed`` (p, 2) the cells the scan's rays pass (each once, none hit); ``score`` the
+        scan's novelty (equation (2): :meth:`novelty` gives the same) and ``seen_share`` (:meth:`seen_share`).
+
+        >>> det = habituating_map(arc=0.0, tolerance=0).fit([[0.0, 0.0, 0.0, 0.5, 2.05, 0.05]] * 3)
+        >>> out = det.explain([0.0, 0.0, 0.0, 0.5, 1.05, 0.05])   # an echo halfway, where the rays passed
+        >>> out["cells"].tolist(), out["passes"].tolist(), out["seen"].tolist(), round(out["score"], 3)
+        ([[10, 0]], [3.0], [True], 0.416)
+        """
+        x = np.asarray(x, dtype=np.float64).reshape(1, -1)
+        if not self._is_fitted():   # the empty map a first scan meets
+            self._validate_params()
+            empty = self._unfitted_copy()
+            empty._begin(x)
+            return empty.explain(x[0])
+        self._check_rows(np.ascontiguousarray(x))
+        cells, synapse = self.clusterer_, self.synapse_
+        scan = cells.scan_cells(x[0])
+        index = cells.index()
+        fresh = synapse.fresh_efficacy
+        v, score = cells.readout(scan.hits, index.units, synapse.efficacy_, fresh)
+        block = cells.readout_efficacy(scan.hits, index.units, synapse.efficacy_, fresh)
+        state = self.read_cells(scan.hits)
+        k = v.size if cells.top is None else min(int(cells.top), v.size)
+        scoring = np.zeros(v.size, dtype=bool)
+        scoring[np.argsort(-v, kind="stable")[:k]] = True
+        scoring &= v > 0
+        seen = (state["passes"] > 0) | (state["last_hit"] > 0)
+        passed = np.unique(cell_pack(scan.passed[:, 0], scan.passed[:, 1]))
+        passed = np.setdiff1d(passed, cell_pack(scan.hits[:, 0], scan.hits[:, 1]))
+        return {"cells": scan.hits, "centres": (scan.hits + 0.5) * float(cells.cell_size), "efficacy": block,
+                "own_efficacy": state["efficacy"], "passes": state["passes"], "last_hit": state["last_hit"],
+                "novelty": v, "scoring": scoring, "seen": seen, "score": score,
+                "seen_share": _seen_share(v, scoring, seen), "passed": _unpack(passed)}
 
     def cell_novelty(self, x) -> tuple[np.ndarray, np.ndarray]:
-        """The cells one scan hits, and each one's novelty ``v_c`` as the scan's novelty reads it (no learning).
+        """The cells one scan hits, and each one's novelty ``v`` as the scan's novelty reads it (no learning).
+
+        The centres and novelties of :meth:`explain`, for a live node's markers.
 
         Parameters
         ----------
@@ -428,158 +334,110 @@ class HabituatingMap(NoveltyDetector):
         centres : ndarray of shape (n_hit, 2)
             The hit cells' centres in the world frame (m).
         novelty : ndarray of shape (n_hit,)
-            Their ``v_c`` (2); the scan's novelty is the mean of the ``top`` largest.
-
-        Examples
-        --------
-        Two echoes 2.5 m left and right of the robot, learned once: each cell's
-        efficacy has taken one step of (1), ``1 - 1 / 3.33``:
-
-        >>> row = [0.0, 0.0, 0.0, 0.5, 0.5, -2.5, 2.5, 0.5, 0.5]
-        >>> det = HabituatingMap(cell_size=1.0, evidence="hits", tolerance=0, arc=0.0).fit([row])
-        >>> centres, v = det.cell_novelty(row)
-        >>> centres.tolist(), v.round(4).tolist()
-        ([[-2.5, 0.5], [2.5, 0.5]], [0.6997, 0.6997])
+            Their ``v`` (equation (1) of :mod:`novelty.maps.cells`); the scan's novelty is the mean of the
+            ``top`` largest.
         """
         self._check_fitted()
-        x = check_one(x, self, self.n_features_in_, self._names())
-        poses, near, ends = self._rows(x[None, :])
-        hits = self._cells(poses[0], near[0], ends[0])[0]
-        if hits.size == 0:
-            return np.empty((0, 2)), np.empty(0)
-        c = float(self.cell_size)
-        i = (hits >> np.int64(32)) - _SHIFT_I
-        j = (hits & np.int64(0xFFFFFFFF)) - _SHIFT_J
-        return (np.column_stack([i, j]).astype(np.float64) + 0.5) * c, self._cell_values(hits)
+        out = self.explain(x)
+        return out["centres"], out["novelty"]
 
-    def _novelty(self, X: np.ndarray) -> np.ndarray:
-        poses, near, ends = self._rows(X)
-        return np.array([self._score(self._cells(poses[i], near[i], ends[i])[0]) for i in range(X.shape[0])])
+    def seen_share(self, X) -> np.ndarray:
+        """Per scan, how much of its novelty lay in cells the map had evidence for (passed or hit before).
 
-    def _first_novelty(self) -> float:
-        # an empty map: every cell unseen, novel by its efficacy, never seen free (weight u in (2'))
-        return 1.0 if self.evidence == "hits" else float(self.unseen)
+        The share of the scan's score (the sum of ``v`` over its ``top`` cells) that comes from such cells:
+        1 where all of it did, 0 where the map had never seen any of the cells that make it (a place never
+        seen: "never seen here" rather than "new here"); 1 for a scan that scores 0. Read one scan at a time
+        by :meth:`explain` (the numpy reference: for studies and alarms, not a robot's loop).
+        """
+        self._check_fitted()
+        return np.array([self.explain(x)["seen_share"] for x in np.asarray(X, dtype=np.float64)])
 
-    def _novelty_bounds(self) -> tuple[float, float]:
-        return 0.0, 1.0
+    def read_cells(self, cells) -> dict:
+        """What the map holds of cells (i, j) (an array (m, 2)): ``efficacy`` (a fresh synapse's where it met
+        none), ``passes`` and ``last_hit`` (0 where it met none)."""
+        self._check_fitted()
+        cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+        units = self.clusterer_.index().units(cells[:, 0], cells[:, 1])
+        held, at = units >= 0, np.maximum(units, 0)
+        c, s = self.clusterer_, self.synapse_
+        return {"efficacy": np.where(held, s.efficacy_[at] if s.efficacy_.size else 0.0, s.fresh_efficacy),
+                "passes": np.where(held, c.passes_[at] if c.passes_.size else 0.0, 0.0),
+                "last_hit": np.where(held, c.last_hit_[at] if c.last_hit_.size else 0, 0)}
 
-    # ------------------------------------------------------------------ learning
-    def _start(self, X: np.ndarray) -> None:
-        self._rows(X[:1])
-        self.cells_ = np.empty(0, dtype=np.int64)
-        self.efficacy_ = np.empty(0)
-        self.passes_ = np.empty(0)
-        self.last_hit_ = np.empty(0, dtype=np.int64)
-        self.scans_ = 0
-        self.pending_ = np.empty((0, X.shape[1]))
-
-    def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
-        poses, near, ends = self._rows(X)
-        out = np.empty(X.shape[0])
-        lag = int(self.evidence_lag)
-        for i in range(X.shape[0]):
-            hits, crossed = self._cells(poses[i], near[i], ends[i])
-            out[i] = self._score(hits)
-            self._apply(hits, crossed, float(dt[i]))
-            if lag == 0 and self.pending_.shape[0] == 0:
-                self.passes_[self._slots(crossed)] += 1.0
-                continue
-            # its free space counts when it is `lag` scans old: evidence from earlier passes only
-            self.pending_ = np.vstack([self.pending_, X[i:i + 1]])
-            while self.pending_.shape[0] > lag:
-                (pose,), (ring,), (points,) = self._rows(self.pending_[:1])
-                self.passes_[self._slots(self._cells(pose, ring, points)[1])] += 1.0
-                self.pending_ = self.pending_[1:]
-        return out
-
-    def _apply(self, hits: np.ndarray, crossed: np.ndarray, dt: float) -> None:
-        """Learn one scan's hits: equation (1) on the cells it hits; the cells its rays crossed are met."""
-        self._meet(np.union1d(hits, crossed))
-        if self.tau_neighbour is not None:
-            around = np.setdiff1d(np.unique((hits[:, None] + _NEIGHBOURS[None, :]).ravel()), hits)
-            self._meet(around)
-            at = self._slots(around)
-            self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau_neighbour, dt, self.alpha, 1.0)
-        self.scans_ += 1
-        at = self._slots(hits)
-        if self.visit_gap > 0:
-            # a visit's first hit only: one not preceded by a hit in the `visit_gap` scans before this one
-            last = self.last_hit_[at]
-            self.last_hit_[at] = self.scans_
-            at = at[(last == 0) | (last < self.scans_ - self.visit_gap)]
-        else:
-            self.last_hit_[at] = self.scans_
-        self.efficacy_[at] = euler_steps(self.efficacy_[at], 1.0, self.tau, dt, self.alpha, 1.0)
-
-    def _meet(self, keys: np.ndarray) -> None:
-        """Add the cells of ``keys`` not met yet (unhabituated, never crossed), keeping the keys sorted."""
-        new = keys[self._slots(keys) < 0]
-        if new.size == 0:
-            return
-        at = np.searchsorted(self.cells_, new)
-        self.cells_ = np.insert(self.cells_, at, new)
-        self.efficacy_ = np.insert(self.efficacy_, at, 1.0)
-        self.passes_ = np.insert(self.passes_, at, 0.0)
-        self.last_hit_ = np.insert(self.last_hit_, at, 0)
+    # ------------------------------------------------------------------ the state
+    def _check_parts(self) -> None:
+        for name, kind in (("clusterer_", "clusterer"), ("synapse_", "synapse")):
+            part = getattr(self, name, None)
+            if not (isinstance(part, Component) and part._kind == kind):
+                raise StateError(f"{type(self).__name__}.{name} must be a {kind}; got {type(part).__name__}.")
+        if not isinstance(self.clusterer_, WorldCells):
+            raise StateError(f"{type(self).__name__}.clusterer_ must be a WorldCells; got "
+                             f"{type(self.clusterer_).__name__}.")
+        for part in (self.clusterer_, self.synapse_):
+            try:
+                part._validate_params()
+            except ValueError as exc:
+                raise StateError(f"{type(self).__name__}: {exc}") from None
+            part._check_state()
+        units = self.clusterer_.n_units_
+        if self.synapse_.n_units_ != units:
+            raise StateError(f"{type(self).__name__}.synapse_ has {self.synapse_.n_units_} synapses; its map "
+                             f"holds {units} cells (256 a tile).")
+        self.synapse_.check_efficacy(float(self.stimulus))
+        pending = self.clusterer_.pending_
+        if pending.ndim != 2 or (pending.shape[0] and pending.shape[1] != self.n_features_in_):
+            raise StateError(f"{type(self).__name__}.clusterer_.pending_ must have shape (n, "
+                             f"{self.n_features_in_}).")
 
     def _check_state(self) -> None:
         super()._check_state()
-        cells = check_array_state(self, "cells_", 1, "i")
-        n = cells.size
-        efficacy = check_array_state(self, "efficacy_", 1, shape=(n,))
-        passes = check_array_state(self, "passes_", 1, shape=(n,))
-        scans = check_int_state(self, "scans_")
-        last = check_array_state(self, "last_hit_", 1, "i", shape=(n,))
-        if n and (last.min() < 0 or last.max() > scans):
-            raise StateError(f"HabituatingMap.last_hit_ must lie in [0, scans_ = {scans}] (0: never hit).")
-        if n > 1 and np.any(np.diff(cells) <= 0):
-            raise StateError("HabituatingMap.cells_ must be increasing (each cell once).")
-        floor = 1.0 - 1.0 / self.alpha
-        if n and (efficacy.min() < floor - 1e-9 or efficacy.max() > 1.0 + 1e-9 or passes.min() < 0):
-            raise StateError(f"HabituatingMap.efficacy_ must lie in [{floor:.4g}, 1] and passes_ be >= 0.")
-        check_array_state(self, "pending_", 2, shape=(None, self.n_features_in_))
+        self._check_parts()
         if (self.n_features_in_ - 3) % 3 or self.n_features_in_ < 6:
-            raise StateError(f"HabituatingMap.n_features_in_ must be 3 + 3n (the 'points' input); "
+            raise StateError(f"{type(self).__name__}.n_features_in_ must be 3 + 3n (the 'points' input); "
                              f"got {self.n_features_in_}.")
+        check_int_state(self.clusterer_, "scans_")
 
 
-#: The settings of ``map-explore``, every one written out so that the preset stays what the fourth selection
-#: chose whatever the class's defaults become (``visit_gap = 0``: a step a scan, as it was chosen).
-MAP_EXPLORE = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "top": 3, "tau": 3.33, "alpha": 1.05,
-               "tolerance": 0, "unseen": 0.5, "arc": 0.0, "tau_neighbour": None, "min_passes": 0,
-               "evidence_lag": 0, "visit_gap": 0}
+def _seen_share(v: np.ndarray, scoring: np.ndarray, seen: np.ndarray) -> float:
+    total = float(v[scoring].sum())
+    return 1.0 if total == 0 else float(v[scoring & seen].sum()) / total
+
+
+#: The settings of ``habituating-map``, every one written out, so that the preset stays what was chosen
+#: whatever the classes' defaults become (studies/maps)
+HABITUATING_MAP = {"cell_size": 0.1, "evidence": "free", "free_scale": 2.0, "unseen": 0.25, "top": 2,
+                   "tolerance": 1, "min_passes": 0, "evidence_lag": 0, "visit_gap": 10, "arc": "sector",
+                   "neighbours": False, "tau_winner": 3.33, "alpha": 1.05}
+
+#: The settings of ``map-explore``, every one written out (studies/maps)
+MAP_EXPLORE = {"cell_size": 0.2, "evidence": "free", "free_scale": 2.0, "unseen": 0.5, "top": 3,
+               "tolerance": 0, "min_passes": 0, "evidence_lag": 0, "visit_gap": 0, "arc": 0.0,
+               "neighbours": False, "tau_winner": 3.33, "alpha": 1.05}
+
+
+def habituating_map(**params) -> HabituatingMap:
+    """A habituating map with Stanley's synapse (ours; the ``points`` input): :data:`HABITUATING_MAP`.
+
+    Cells of 0.1 m read with their neighbours (``tolerance=1``), each sector a
+    cone as wide as it stands for (``arc="sector"``), free-space evidence with
+    a cell never passed weighing ``unseen=0.25``, the two most novel hit cells
+    (``top=2``), a cell stimulated once a visit (``visit_gap=10``), the
+    paper's synapse (``tau_winner=3.33``, ``alpha=1.05``). Any parameter given
+    replaces its value, going to the part that takes it (``synapse=`` another
+    synapse); ``tau`` and ``tau_neighbour`` as the map took them before it
+    composed a synapse. Chosen in studies/maps.
+    """
+    return HabituatingMap.from_params(**{**HABITUATING_MAP, **_settings(params)})
 
 
 def map_explore(**params) -> HabituatingMap:
-    """A habituating map for a robot that explores and knows its pose (ours; the ``points`` input).
+    """A habituating map for a robot that explores and knows its pose (ours; the ``points`` input): :data:`MAP_EXPLORE`.
 
-    :class:`HabituatingMap` with cells of 0.2 m, each read alone (``tolerance=0``) on its axis (``arc=0``),
-    free-space evidence with ``free_scale=2``, a cell never seen through weighing
-    ``unseen=0.5``, the paper's synapse (``tau=3.33``, ``alpha=1.05``) and the top
-    three hit cells, one step a scan (``visit_gap=0``); any parameter given replaces its value.
-
-    Chosen by the rule of benchmarks/selection/maps-round4.md, written before its
-    run: the candidates that stay above chance on every detection hold-out task
-    with poses (seeds 105-109) first, then the objects exploration criteria met,
-    then the mean AUC (seeds 100-104). There it habituated to objects on aces
-    (3rd/1st 0.17) and flagged none at first sight at 0.90; the rule adds the
-    preset because it met one criterion and passed the guard on the selection
-    and the reported seeds (lowest mean ROC AUC 0.525, ``paper-a-to-a-star``,
-    seeds 5-9). On the reported seeds 0-4 of the objects tasks it habituates on
-    none (aces 3rd/1st 0.32, separation 0.00) and flags first sight at 0.644 /
-    0.536 / 0.567 (intel / aces / csail): docs/guide/objects.md. The fifth
-    selection (benchmarks/selection/maps-round5.md) changed the class's
-    defaults, not the preset: its settings fell below chance on the reported
-    guard (0.440 on ``paper-a-to-b``, seeds 5-9).
-
-    The answer of "Which detector?" for a robot that keeps learning, by the
-    rule of benchmarks/selection/learning-answer.md (written before its run):
-    against ``explore`` and ``habituating-map`` on seeds 100-104 of the
-    simulated open door, tour and patrol and the six objects tasks, it is the
-    one candidate above chance frozen on every hold-out task on seeds 105-109
-    and 5-9 (lowest 0.525, ``paper-a-to-a-star``). It won by that guard alone:
-    on those exploration tasks it flags first sight on one (csail-familiar,
-    0.860) and habituates on one (aces), below both others on first sight
-    (mean 0.610; ``habituating-map`` 0.692, ``explore`` 0.662).
+    Cells of 0.2 m, each read alone (``tolerance=0``) on its axis (``arc=0``),
+    free-space evidence with a cell never passed weighing ``unseen=0.5``, the
+    three most novel hit cells, one step a scan (``visit_gap=0``), the
+    paper's synapse. Any parameter given replaces its value, as in
+    :func:`habituating_map`. Chosen in studies/maps (the answer of "Which
+    detector?" for a robot that keeps learning).
     """
-    return HabituatingMap(**{**MAP_EXPLORE, **params})
+    return HabituatingMap.from_params(**{**MAP_EXPLORE, **_settings(params)})

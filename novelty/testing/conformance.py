@@ -16,7 +16,8 @@ without new test code.
 Each check builds what it needs from the component's parameters (it clones
 the instance), so the instance given is never modified. The checks of each
 kind are in :mod:`~novelty.testing.clusterer_checks`,
-:mod:`~novelty.testing.synapse_checks` and :mod:`~novelty.testing.detector_checks`.
+:mod:`~novelty.testing.synapse_checks`, :mod:`~novelty.testing.map_checks` (a clusterer of
+world cells) and :mod:`~novelty.testing.detector_checks`.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ from .detector_checks import (check_detector_calibrate, check_detector_determini
 from .synapse_checks import (check_synapse_dt, check_synapse_forget_rule, check_synapse_grow_shrink,
                              check_synapse_habituates_and_is_bounded, check_synapse_hold_rule,
                              check_synapse_initialize)
+from .map_checks import check_cells_start_empty, check_map_compiled_equals_reference, check_map_deterministic
+from ..maps.cells import WorldCells
 
 __all__ = ["conformance_checks", "check_conformance", "installed_detectors",
            "check_compiled_equals_reference", "check_rules_cover_every_parameter",
@@ -72,6 +75,11 @@ _CHECKS = {
         check_synapse_forget_rule,
         check_synapse_grow_shrink,
         check_synapse_dt,
+    ],
+    WorldCells: [
+        check_cells_start_empty,
+        check_map_deterministic,
+        check_map_compiled_equals_reference,
     ],
     NoveltyDetector: [
         check_detector_fit_and_novelty,
@@ -111,11 +119,11 @@ def conformance_checks(component) -> Iterator[Callable[[], None]]:
             yield _named(check_rules_cover_every_parameter, component)
             if base is not NoveltyDetector and spec_of(component) is not None:
                 yield _named(check_kernel_declares_every_parameter, component)
-            if base is not NoveltyDetector and (spec_of(component) is not None
-                                                or declares(component, "nearest-unit")):
+            if base in (Clusterer, Synapse) and (spec_of(component) is not None
+                                                 or declares(component, "nearest-unit")):
                 yield _named(check_compiled_equals_reference, component)
             return
-    raise TypeError(f"{type(component).__name__} is not a Clusterer, Synapse or NoveltyDetector.")
+    raise TypeError(f"{type(component).__name__} is not a Clusterer, Synapse, WorldCells or NoveltyDetector.")
 
 
 def check_conformance(component) -> None:

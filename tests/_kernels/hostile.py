@@ -64,6 +64,8 @@ def _compiled(cls) -> bool:
         instance = cls()
     except TypeError:  # a component that needs arguments: not one of the registries' built-ins
         return False
+    if declares(instance, "several-winners"):  # a map's world cells: a map's loop, not the filter's pairs
+        return False
     return spec_of(instance) is not None or declares(instance, "nearest-unit")
 
 

@@ -20,6 +20,7 @@ from sklearn.base import clone
 
 import novelty
 from novelty import _kernels, registry
+from novelty.clusterers.base import Clusterer
 from novelty.filter import HabituatingFilter
 
 from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
@@ -287,8 +288,10 @@ def _declares_kernel(registry_, name) -> bool:
 
 
 # Registered components that declare compiled steps (the package's own; a plugin's
-# when it does) must equal the reference (the others run it: test_choice).
-CLUSTERERS = [n for n in registry.clusterers.names() if _declares_kernel(registry.clusterers, n)]
+# when it does) must equal the reference (the others run it: test_choice). A map's world
+# cells (several winners a scan) compose in a map, checked by its conformance checks.
+CLUSTERERS = [n for n in registry.clusterers.names() if _declares_kernel(registry.clusterers, n)
+              and isinstance(registry.clusterers.make(n), Clusterer)]
 SYNAPSES = [n for n in registry.synapses.names() if _declares_kernel(registry.synapses, n)]
 
 

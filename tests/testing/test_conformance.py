@@ -4,10 +4,12 @@ The components are found through the registries, so a newly registered one
 is checked here without new test code.
 """
 
+import numpy as np
 import pytest
 
 import novelty
 from novelty.registry import clusterers, synapses
+from novelty.io.scans.points import example_rows
 from novelty.testing import conformance_checks, installed_detectors
 
 from ..registered import detector_params
@@ -36,15 +38,17 @@ def test_conformance(check):
 
 
 def test_every_clusterer_with_every_synapse():
-    """The whole cross-product composes and streams through the habituating filter."""
-    import numpy as np
-
+    """The whole cross-product composes and streams through the habituating filter (a map, for world cells)."""
     from novelty.testing.conformance import _data
 
     X = _data()
     for c in clusterers.names():
         for s in synapses.names():
             det = novelty.make("habituating", clusterer=c, synapse=s)
+            if getattr(det, "input_layout", None) == "points":   # world cells: a map of the points input
+                out = det.stream(example_rows(seed=1, n=40))
+                assert out.shape == (40,) and np.all((out >= 0) & (out <= det.synapse_.y0)), (c, s)
+                continue
             out = det.stream(X)
             rest = det.synapse_.resting_efficacy
             assert out.shape == (len(X),), (c, s)

@@ -50,13 +50,17 @@ from ...sonar.preprocessing import preprocess
 from .sectors import sector_index
 from .sweep_rings import RingMaker
 
-__all__ = ["POSE_COLUMNS", "POINTS_SECTORS", "PointsMaker", "points_columns", "split_points", "check_points", "ring_points", "sweep_points"]
+__all__ = ["POSE_COLUMNS", "POINTS_SECTORS", "MAX_COORDINATE", "PointsMaker", "points_columns", "split_points",
+           "check_points", "ring_points", "sweep_points", "example_rows"]
 
 #: The pose's columns, first in every row.
 POSE_COLUMNS = ("x", "y", "heading")
 #: A recording's sectors of the points input unless given: the habituating maps were measured on lasers with
 #: 180 (benchmarks/suites/maps-exploration.toml); a sensor of fewer beams gets one sector a beam
 POINTS_SECTORS = 180
+
+#: Coordinates (m) beyond which a grid of the world refuses a row: its cells' indices stay exact.
+MAX_COORDINATE = 1e6
 
 
 def points_columns(n_sectors: int) -> list[str]:
@@ -87,8 +91,11 @@ def check_points(X, who: str = "This detector") -> int:
     return n
 
 
-def split_points(X, who: str = "This detector") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def split_points(X, who: str = "This detector", bounded: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Rows of the ``points`` layout as (poses (m, 3), nearness (m, n), end points (m, n, 2)).
+
+    ``bounded``: refuse a pose or end point farther than :data:`MAX_COORDINATE` from the origin (a grid of
+    the world indexes its cells by them).
 
     >>> poses, near, ends = split_points([[0.0, 0.0, 0.0, 0.5, 0.0, 2.0, 4.0, 0.0, 0.0]])
     >>> near.tolist(), ends.tolist()
@@ -96,7 +103,11 @@ def split_points(X, who: str = "This detector") -> tuple[np.ndarray, np.ndarray,
     """
     X = np.asarray(X, dtype=np.float64)
     n = check_points(X, who)
-    return X[:, :3], X[:, 3:3 + n], np.stack([X[:, 3 + n:3 + 2 * n], X[:, 3 + 2 * n:]], axis=-1)
+    poses, ends = X[:, :3], np.stack([X[:, 3 + n:3 + 2 * n], X[:, 3 + 2 * n:]], axis=-1)
+    if bounded and (np.abs(poses[:, :2]).max() > MAX_COORDINATE or np.abs(ends).max() > MAX_COORDINATE):
+        raise ValueError(f"{who}: a pose or end point lies more than {MAX_COORDINATE:g} m from the world's origin; "
+                         "give poses in metres in a local frame (odom or map).")
+    return poses, X[:, 3:3 + n], ends
 
 
 def ring_points(X, poses, bearings, threshold: float, offset: float = 0.0) -> np.ndarray:
@@ -233,3 +244,24 @@ class _Beams:
         with np.errstate(divide="ignore", invalid="ignore"):   # an echo at the centre is within: not used
             beyond = threshold * direction / np.hypot(direction[:, 0], direction[:, 1])[:, None]
         return np.where(within[:, None], ends[j], beyond)
+
+
+def example_rows(seed: int = 0, n: int = 120) -> np.ndarray:
+    """Rows of the points input for generic checks: a robot driving along a corridor 4 m wide.
+
+    Eight sectors all round; the walls at y = +-2 m, the robot's lateral
+    position and heading wandering by a seeded random walk, no echo beyond 4 m.
+
+    >>> example_rows(n=5).shape
+    (5, 27)
+    """
+    rng = np.random.default_rng(seed)
+    x = np.linspace(0.0, 0.1 * n, n)
+    y = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -1.0, 1.0)
+    heading = np.clip(np.cumsum(rng.normal(scale=0.05, size=n)), -0.5, 0.5)
+    bearings = heading[:, None] + np.arange(8) * (np.pi / 4)
+    s = np.sin(bearings)
+    with np.errstate(divide="ignore"):
+        r = np.where(s > 0, (2.0 - y[:, None]) / s, np.where(s < 0, (-2.0 - y[:, None]) / s, np.inf))
+    r = np.minimum(r, 4.0)
+    return np.c_[x, y, heading, 1.0 - r / 4.0, x[:, None] + r * np.cos(bearings), y[:, None] + r * s]

@@ -98,3 +98,30 @@ def test_a_sweep_without_a_pose_has_no_row():
     sweep = Sweep(1.5, np.zeros((4, 2)), np.arange(4.0), np.ones(4), None)
     with pytest.raises(ValueError, match="The sweep at t=1.5 has no pose"):
         PointsMaker(2)(sweep)
+
+
+def random_sweep(rng, beams):
+    angles = np.linspace(-math.pi / 2, math.pi / 2, beams)
+    ranges = rng.choice([0.5, 1.0, 2.0, 3.5, 4.0, 6.0, np.inf], size=beams)   # ties and no echo
+    origins = np.tile(rng.uniform(-0.3, 0.3, 2), (beams, 1))
+    return Sweep(0.0, origins, angles, ranges, np.array([*rng.uniform(-5, 5, 2), rng.uniform(-4, 4)]))
+
+
+@pytest.mark.parametrize("beams, sectors", [(180, 180), (180, 16), (181, 7), (30, 30), (1080, 180), (5, 1)])
+def test_each_sectors_end_point_is_the_one_by_one_readings_exactly(beams, sectors):
+    rng = np.random.default_rng(beams * 1000 + sectors)
+    sweeps = [random_sweep(rng, beams) for _ in range(20)]
+    sweeps.append(Sweep(0.0, np.zeros((beams, 2)), sweeps[0].angles, np.full(beams, np.inf), np.zeros(3)))
+    rows = sweep_points(sweeps, sectors, 4.0)
+    for sweep, row in zip(sweeps, rows):
+        ends = reference_ends(sweep, sectors, 4.0)
+        x, y, yaw = sweep.pose
+        c, s = math.cos(yaw), math.sin(yaw)
+        assert np.array_equal(row[3 + sectors:3 + 2 * sectors], x + c * ends[:, 0] - s * ends[:, 1])
+        assert np.array_equal(row[3 + 2 * sectors:], y + s * ends[:, 0] + c * ends[:, 1])
+
+
+def test_more_sectors_than_beams_is_refused_saying_which_hold_no_beam():
+    sweep = random_sweep(np.random.default_rng(0), 4)
+    with pytest.raises(ValueError, match="2 of 6 sectors hold no beam"):
+        sweep_points([sweep], 6, 4.0)

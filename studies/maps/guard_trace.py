@@ -1,12 +1,12 @@
 """Why a habituating map fails the detection guard: door G on paper-a-to-b, the open door on paper-a-to-a-star.
 
-    taskset -c 1 python benchmarks/maps_guard_trace.py                       # the defaults, seeds 105-109
-    taskset -c 1 python benchmarks/maps_guard_trace.py --param tolerance=0 --param unseen=0.25
+    taskset -c 1 python studies/maps/guard_trace.py                       # the defaults, seeds 105-109
+    taskset -c 1 python studies/maps/guard_trace.py --param tolerance=0 --param unseen=0.25
 
 The guard (benchmarks/suites/maps-detection.toml) gives ``habituating-map`` the simulated sonar ring's 16
 echoes in the world (the ``points`` input). On each seed the map learns the task's training part and
 scores its test part (as the hold-out protocol does); every test scan is traced to its most novel hit
-cell (``v`` as the map reads it: novelty/maps/habituating_map.py, equations 2 and 2').
+cell (``v`` as the map explains it: HabituatingMap.explain, equation 1 of novelty/maps/cells.py).
 
 ``paper-a-to-b`` (learn corridor A, patrol B; door G, inset 0.35 m, labelled novel; the corridor's
 right wall on y = 0, its left on y = 1.7 m): the most novel cell's efficacy (median) and the cells with
@@ -35,8 +35,7 @@ import sys
 import numpy as np
 
 from novelty.bench.holdout.metrics import roc_auc
-from novelty.maps import HabituatingMap, split_points
-from novelty.maps.habituating_map import cell_keys
+from novelty.maps import HabituatingMap, habituating_map, split_points
 from novelty.registry import of_kind
 
 REPORTED = range(0, 10)
@@ -59,20 +58,14 @@ def _value(text: str):
 
 
 def top_cells(det: HabituatingMap, X: np.ndarray) -> np.ndarray:
-    """Per scan: (v, efficacy as read, passes, x, y of the centre) of its most novel hit cell; the count of v > 0.05."""
-    poses, near, ends = split_points(X)
-    c, u = float(det.cell_size), float(det.unseen)
+    """Per scan: (v, efficacy as read, passes, x, y of the centre) of its most novel hit cell; the count of v > 0.05
+    (each scan as the map explains it: HabituatingMap.explain)."""
     out = []
-    for i in range(X.shape[0]):
-        hits, _ = det._cells(poses[i], near[i], ends[i])
-        slots = det._slots(hits)
-        f = np.where(slots >= 0, det.passes_[np.maximum(slots, 0)], 0.0)
-        y = det._efficacy(hits)
-        v = y * (u + (1 - u) * -np.expm1(-f / det.free_scale)) if det.evidence == "free" else y
+    for x in X:
+        e = det.explain(x)
+        v = e["novelty"]
         k = int(np.argmax(v))
-        ci = ((hits[k] >> np.int64(32)) - (1 << 30) + 0.5) * c
-        cj = ((hits[k] & np.int64(0xFFFFFFFF)) - (1 << 31) + 0.5) * c
-        out.append((v[k], y[k], f[k], ci, cj, float(np.sum(v > 0.05))))
+        out.append((v[k], e["efficacy"][k], e["passes"][k], *e["centres"][k], float(np.sum(v > 0.05))))
     return np.array(out)
 
 
@@ -81,7 +74,7 @@ def door_g(params: dict, seeds) -> None:
     for seed in seeds:
         data = of_kind("dataset").make("paper-a-to-b", seed=seed, inputs="points")
         train, test = data.train(), data.test()
-        det = HabituatingMap(**params).fit(train.X)
+        det = habituating_map(**params).fit(train.X)
         y = test.y.astype(bool)
         aucs.append(roc_auc(det.novelty(test.X), y))
         t = top_cells(det, test.X)
@@ -110,15 +103,14 @@ def open_door(params: dict, seeds) -> None:
     for seed in seeds:
         data = of_kind("dataset").make("paper-a-to-a-star", seed=seed, inputs="points")
         train, test = data.train(), data.test()
-        det = HabituatingMap(**params).fit(train.X)
+        det = habituating_map(**params).fit(train.X)
         s, y = det.novelty(test.X), test.y.astype(bool)
         aucs.append(roc_auc(s, y))
         poses, near, ends = split_points(test.X)
         for i in np.flatnonzero(y):
             e = ends[i][near[i] > 0]
             room = e[(e[:, 0] > 2.5) & (e[:, 0] < 3.5) & (e[:, 1] < -BEHIND)]
-            slots = det._slots(cell_keys(room, float(det.cell_size)))
-            f = np.where(slots >= 0, det.passes_[np.maximum(slots, 0)], 0.0)
+            f = det.read_cells(np.floor(room / det.clusterer.cell_size))["passes"]
             rows.append((len(room), int(np.sum(f == 0)), s[i] <= np.median(s[~y])))
     r = np.array(rows, dtype=float)
     print(f"paper-a-to-a-star: ROC AUC {np.mean(aucs):.3f} ({' '.join(f'{a:.3f}' for a in aucs)})")
@@ -141,7 +133,7 @@ def saturation(params: dict, seeds) -> None:
         for seed in seeds:
             data = of_kind("dataset").make(task, seed=seed, inputs="points")
             train, test = data.train(), data.test()
-            s = HabituatingMap(**params).fit(train.X).novelty(test.X)
+            s = habituating_map(**params).fit(train.X).novelty(test.X)
             rows.append((roc_auc(s, test.y.astype(bool)), *saturated_shares(s, test.y)))
         auc, familiar, novel = np.mean(rows, axis=0)
         print(f"  {task}: ROC AUC {auc:.3f}; scans at novelty >= {SATURATED}: familiar {familiar:.2f}, "
@@ -157,7 +149,7 @@ def main(argv=None) -> None:
                         help="every guard task: the share of familiar and novel scans scored as new as can be")
     args = parser.parse_args(argv)
     if any(s in REPORTED for s in args.seeds):
-        sys.exit("maps_guard_trace: seeds 0-9 are reported seeds; trace on development seeds (105-109).")
+        sys.exit("guard_trace: seeds 0-9 are reported seeds; trace on development seeds (105-109).")
     params = {k: _value(v) for k, v in (p.split("=", 1) for p in args.param)}
     print(f"habituating-map {params or '(defaults)'}, seeds {args.seeds}")
     if args.saturation:

@@ -1,12 +1,12 @@
 """Why a habituating map, learning as it drives, does not flag first sight: which familiar scans outrank it.
 
-    NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --seeds 100 101 102 103 104
-    NOVELTY_DATA_DIR=/data taskset -c 1 python benchmarks/maps_diagnosis.py --param tolerance=0   # as in the guide
+    NOVELTY_DATA_DIR=/data taskset -c 1 python studies/maps/diagnosis.py --seeds 100 101 102 103 104
+    NOVELTY_DATA_DIR=/data taskset -c 1 python studies/maps/diagnosis.py --param tolerance=0   # as in the guide
 
 On the exploration tasks with objects (``exploration-objects-radish-*``, the ``points`` input with 180
 sectors), every scan is scored by ``habituating-map`` (its defaults, or ``--param name=value``) before it
 is learned, as the exploration protocol does, and each score is traced to the cells that make it: the
-``top`` hit cells with the largest novelty ``v = y (u + (1 - u) (1 - exp(-f / f0)))`` (novelty/maps/habituating_map.py;
+``top`` hit cells with the largest novelty ``v = y (u + (1 - u) (1 - exp(-f / f0)))`` (HabituatingMap.explain, novelty/maps/cells.py;
 ``y`` read with the map's ``tolerance``, ``u`` its ``unseen``, ``v`` = 0 below its ``min_passes``).
 
 The first-encounter ROC AUC compares the first sights (scans at an object's first pass) with the familiar
@@ -60,8 +60,11 @@ from novelty.tasks.objects.placement import object_from_fields
 from novelty.tasks.radish import radish_objects_exploration
 from novelty.tasks.objects.object_tasks import LABEL_DEFAULTS, familiar_places, read_drive
 from novelty.tasks.radish import radish_log
-from novelty.maps import HabituatingMap, split_points
-from novelty.maps.habituating_map import _NEIGHBOURS, cell_keys
+from novelty.maps import HabituatingMap, habituating_map, split_points
+from novelty.maps.habituating_map import cell_keys
+
+#: a cell's eight neighbours
+NEIGHBOURS = np.array([(di, dj) for di in (-1, 0, 1) for dj in (-1, 0, 1) if di or dj])
 
 REPORTED = range(0, 5)
 CLASSES = ("object edge", "first visit", "one cell off a known surface, along the beam",
@@ -74,58 +77,32 @@ FEW = 2            # passes
 ON_OBJECT = 0.02   # m: an end point this close to an object's surface is its echo
 
 
-def cell_centres(keys, c: float) -> np.ndarray:
-    """The centre (m) of each packed cell key (the inverse of novelty.maps.habituating_map.cell_keys)."""
-    keys = np.asarray(keys, dtype=np.int64)
-    i = (keys >> np.int64(32)) - (1 << 30)
-    j = (keys & np.int64(0xFFFFFFFF)) - (1 << 31)
-    return (np.c_[i, j] + 0.5) * c
-
-
 def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
     """Score and learn every scan as ``det.stream`` does, keeping what makes each score.
 
-    Reads the detector's own cell computation (``_cells``, ``_slots``) so that what is traced is what
-    it scores; the scores are checked against ``stream`` by the caller.
+    Each scan is read as the map explains it (``HabituatingMap.explain``: its hit cells, their ``v``, the
+    ones that make its score) before it is learned; the scores are checked against ``stream`` by the caller.
     """
     poses, near, ends = split_points(X)
-    c, k = float(det.cell_size), det.top
+    c = float(det.clusterer.cell_size)
     first_crossed = {}
     # the scan at which the first object appears (they all appear together in these tasks)
     appeared = int(np.searchsorted(times, min(o.start for o in objects))) if objects else len(X)
     out = defaultdict(list)
     for i in range(len(X)):
-        hits, crossed = det._cells(poses[i], near[i], ends[i])
-        fitted = hasattr(det, "cells_")
-        slots = det._slots(hits) if fitted else np.full(hits.size, -1)
-        met = slots >= 0
-        own, f = np.ones(hits.size), np.zeros(hits.size)
-        if fitted:
-            own[met], f[met] = det.efficacy_[slots[met]], det.passes_[slots[met]]
-        # the efficacy as the map reads it (with its tolerance), the evidence as it weighs it
-        y = det._efficacy(hits) if fitted else own
-        u = float(det.unseen)
-        v = y * (u + (1 - u) * -np.expm1(-f / det.free_scale)) if det.evidence == "free" else y
-        v = np.where(f >= det.min_passes, v, 0.0) if det.min_passes > 0 else v
-        order = np.argsort(v, kind="stable")[::-1][: (k or hits.size)]
-        top = order[v[order] > 0]
-        keys = hits[top]
-        if fitted and keys.size:
-            around = (keys[:, None] + _NEIGHBOURS[None, :])
-            at = det._slots(around.ravel()).reshape(around.shape)
-            seen = np.where(at >= 0, det.efficacy_[np.maximum(at, 0)] < 1.0, False)
-            bordered = seen.any(axis=1)
-        else:
-            bordered = np.zeros(keys.size, dtype=bool)
-        centres = cell_centres(keys, c)
-        if fitted and keys.size:
+        e = det.explain(X[i])
+        hits, f, own, scoring = pack(e["cells"]), e["passes"], e["own_efficacy"], e["scoring"]
+        cells, centres = e["cells"][scoring], e["centres"][scoring]
+        fitted = hasattr(det, "clusterer_")
+        bordered, along = np.zeros(cells.shape[0], dtype=bool), np.zeros(cells.shape[0], dtype=bool)
+        if fitted and cells.size:
+            # a cell hit before: its synapse below a fresh one's
+            around = (cells[:, None, :] + NEIGHBOURS[None, :, :]).reshape(-1, 2)
+            bordered = (det.read_cells(around)["efficacy"] < 1.0).reshape(cells.shape[0], -1).any(axis=1)
             ray = centres - poses[i, :2]
             unit = ray / np.maximum(np.hypot(*ray.T), 1e-9)[:, None]
-            ahead = np.stack([cell_keys(centres + sign * 0.75 * c * unit, c) for sign in (-1, 1)], axis=1)
-            at = det._slots(ahead.ravel()).reshape(ahead.shape)
-            along = np.where(at >= 0, det.efficacy_[np.maximum(at, 0)] < 1.0, False).any(axis=1)
-        else:
-            along = np.zeros(keys.size, dtype=bool)
+            ahead = np.concatenate([np.floor((centres + sign * 0.75 * c * unit) / c) for sign in (-1, 1)])
+            along = (det.read_cells(ahead)["efficacy"] < 1.0).reshape(2, -1).any(axis=0)
         # the cells holding an echo off an object standing at this scan's time
         hit_ends = ends[i][near[i] > 0]
         object_keys = np.empty(0, dtype=np.int64)
@@ -136,19 +113,20 @@ def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
             if on.any():
                 object_keys = np.union1d(object_keys, np.unique(cell_keys(hit_ends[on], c)))
         on_object = np.isin(hits, object_keys)
-        out["score"].append(float(v[order].sum() / k) if k else float(v.mean()) if v.size else 0.0)
-        out["top_on_object"].append(bool(on_object[top].any()))
+        keys = hits[scoring]
+        out["score"].append(e["score"])
+        out["top_on_object"].append(bool(on_object[scoring].any()))
         out["top_along"].append(bool(keys.size) and bool(along.all()))
         out["top_bordered"].append(bool(keys.size) and bool((bordered | along).all()))
         out["top_recent"].append(bool(keys.size) and all(first_crossed.get(int(q), -1) >= i - RECENT for q in keys))
         out["top_far"].append(bool(keys.size) and bool((np.hypot(*(centres - poses[i, :2]).T) > FAR).any()))
-        out["top_few"].append(bool(keys.size) and bool((f[top] <= FEW).any()))
+        out["top_few"].append(bool(keys.size) and bool((f[scoring] <= FEW).any()))
         out["object_cells"].append(int(on_object.sum()))
         out["object_unseen"].append(bool(on_object.any()) and bool((f[on_object] == 0).all()))
         out["object_habituated"].append(bool(on_object.any()) and bool((own[on_object] < 0.9).any()))
         out["object_known"].append(bool(on_object.any()) and any(
             first_crossed.get(int(q), len(X)) < appeared for q in hits[on_object]))
-        for q in crossed.tolist():
+        for q in pack(e["passed"]).tolist():
             first_crossed.setdefault(q, i)
         det.partial_fit(X[i:i + 1])
     out = {name: np.asarray(values) for name, values in out.items()}
@@ -156,6 +134,11 @@ def trace(det: HabituatingMap, X: np.ndarray, objects, times) -> dict:
     out["turning"] = turn > TURN
     out["first_visit"] = np.array([i > 0 and not familiar_places(poses[i], poses[:i])[0] for i in range(len(X))])
     return out
+
+
+def pack(cells: np.ndarray) -> np.ndarray:
+    """Cells (i, j) as one int64 each (cell_keys of their centres)."""
+    return cell_keys(np.asarray(cells, dtype=np.float64) + 0.5, 1.0)
 
 
 def classify(t: dict) -> np.ndarray:
@@ -177,9 +160,9 @@ def pair_losses(scores, first, familiar) -> np.ndarray:
 def diagnose(log: str, seed: int, params: dict, path=None, options: dict | None = None) -> dict:
     task = radish_objects_exploration(log, path, seed, **{"inputs": "points", "sectors": 180, **(options or {})})
     objects = [object_from_fields(dict(o)) for o in task.metadata["objects"]]
-    det = HabituatingMap(**params)
+    det = habituating_map(**params)
     t = trace(det, task.X, objects, task.columns["time"])
-    streamed = HabituatingMap(**params).stream(task.X)
+    streamed = habituating_map(**params).stream(task.X)
     if not np.allclose(streamed, t["score"], atol=1e-12):
         raise AssertionError("the trace does not reproduce the detector's scores")
     sweeps = read_drive(radish_log(log, path))

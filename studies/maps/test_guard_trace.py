@@ -1,34 +1,29 @@
-"""benchmarks/maps_guard_trace.py: its trace of a scan's most novel cell, and its refusal of reported seeds."""
-
-import importlib.util
-from pathlib import Path
+"""studies/maps/guard_trace.py: its trace of a scan's most novel cell, and its refusal of reported seeds."""
 
 import numpy as np
 import pytest
 
-from novelty.maps import HabituatingMap
+from novelty.maps import habituating_map
+from novelty.io.scans.points import example_rows
 
-ROOT = Path(__file__).resolve().parents[1]
-_spec = importlib.util.spec_from_file_location("maps_guard_trace", ROOT / "benchmarks" / "maps_guard_trace.py")
-trace = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(trace)
+from . import guard_trace as trace
 
 
 @pytest.mark.parametrize("params", [{"arc": 0.0}, {"tolerance": 0, "unseen": 0.25, "arc": 0.0},
                                     {"evidence": "hits", "cell_size": 0.2, "arc": 0.0}, {}])
 def test_the_most_novel_cell_is_the_maps_own_score_with_top_one(params):
-    X = HabituatingMap._example_rows(seed=1, n=80)
-    det = HabituatingMap(top=1, **params).fit(X[:50])
+    X = example_rows(seed=1, n=80)
+    det = habituating_map(top=1, **params).fit(X[:50])
     t = trace.top_cells(det, X[50:])
     np.testing.assert_allclose(t[:, 0], det.novelty(X[50:]), rtol=0, atol=1e-12)
-    if det.arc == 0:
+    if det.clusterer.arc == 0:
         # its centre lies in a cell one of the scan's echoes falls in (the corridor's walls at y = +-2); with
         # the default cones (8 sectors: 45 degrees) an echo is spread over an arc that leaves the wall line
-        assert np.all(np.abs(np.abs(t[:, 4]) - 2.0) <= det.cell_size)
+        assert np.all(np.abs(np.abs(t[:, 4]) - 2.0) <= det.clusterer.cell_size)
 
 
 def test_a_cell_centre_is_read_back_from_its_packed_key():
-    det = HabituatingMap(evidence="hits", cell_size=0.5, tolerance=0, top=1)
+    det = habituating_map(evidence="hits", cell_size=0.5, tolerance=0, top=1)
     # the robot at the origin, one sector with an echo at (1.2, -0.7): cell (2, -2), centre (1.25, -0.75)
     row = [0.0, 0.0, 0.0, 0.5, 1.2, -0.7]
     det.fit([[0.0, 0.0, 0.0, 0.0, 4.0, 0.0]])
@@ -52,9 +47,9 @@ def test_a_map_saturates_on_another_place_and_not_on_the_learned_one():
     # a second drive down the learned corridor (another seed's wander, the same x): its walls' cells were
     # hit; the same drive in a corridor 0.5 m narrower: every wall echo lands where rays had passed and
     # nothing was hit (a surface where free space was), so the map reads the scan as new as it can be
-    learned = HabituatingMap._example_rows(seed=3, n=80)
-    det = HabituatingMap(arc=0.0).fit(np.vstack([learned] * 5))   # five drives: the free space well seen
-    again = HabituatingMap._example_rows(seed=4, n=80)[10:70]
+    learned = example_rows(seed=3, n=80)
+    det = habituating_map(arc=0.0).fit(np.vstack([learned] * 5))   # five drives: the free space well seen
+    again = example_rows(seed=4, n=80)[10:70]
     narrower = again.copy()
     ends_x, ends_y = narrower[:, 3 + 8:3 + 16], narrower[:, 3 + 16:]
     wall = np.abs(ends_y) > 1.99          # an echo off a wall (the others end at 4 m, in free space)

@@ -1,20 +1,15 @@
-"""benchmarks/maps_diagnosis.py: its split of the first-encounter AUC's shortfall, its cells and its trace."""
-
-import importlib.util
-from pathlib import Path
+"""studies/maps/diagnosis.py: its split of the first-encounter AUC's shortfall, its cells and its trace."""
 
 import numpy as np
 import pytest
 
 from novelty.bench.holdout.metrics import roc_auc
 from novelty.tasks.objects.shapes import Cylinder
-from novelty.maps import HabituatingMap
+from novelty.maps import habituating_map
+from novelty.io.scans.points import example_rows
 from novelty.maps.habituating_map import cell_keys
 
-ROOT = Path(__file__).resolve().parents[1]
-_spec = importlib.util.spec_from_file_location("maps_diagnosis", ROOT / "benchmarks" / "maps_diagnosis.py")
-diagnosis = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(diagnosis)
+from . import diagnosis
 
 
 def test_the_pairs_each_familiar_scan_wins_sum_to_the_aucs_shortfall():
@@ -26,10 +21,9 @@ def test_the_pairs_each_familiar_scan_wins_sum_to_the_aucs_shortfall():
     assert 1 - losses.sum() / 6 == pytest.approx(roc_auc(scores, first))
 
 
-def test_cell_centres_invert_the_maps_cell_keys():
+def test_cells_pack_as_the_maps_cell_keys_of_their_points():
     points = np.array([[0.1, 0.1], [-0.3, 2.5], [5.9, -7.1]])
-    centres = diagnosis.cell_centres(cell_keys(points, 0.4), 0.4)
-    assert np.allclose(centres, (np.floor(points / 0.4) + 0.5) * 0.4)
+    assert diagnosis.pack(np.floor(points / 0.4)).tolist() == cell_keys(points, 0.4).tolist()
 
 
 def test_a_scan_takes_the_first_class_that_holds():
@@ -43,7 +37,7 @@ def test_a_scan_takes_the_first_class_that_holds():
 
 
 def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_echo():
-    X = HabituatingMap._example_rows(seed=5, n=60)
+    X = example_rows(seed=5, n=60)
     # a post whose surface passes through scan 45's first echo (behind it, seen from the robot)
     n = (X.shape[1] - 3) // 3
     k = int(np.flatnonzero(X[45, 3:3 + n] > 0)[0])
@@ -53,10 +47,10 @@ def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_
                     start=45.0)
     # each sector on its axis: the trace finds an object's cells at the sectors' end points, which a cone
     # (arc, the default "sector") spreads over its arc and may step over
-    t = diagnosis.trace(HabituatingMap(arc=0.0), X, [post], np.arange(60.0))
-    np.testing.assert_allclose(t["score"], HabituatingMap(arc=0.0).stream(X), rtol=0, atol=1e-12)
-    assert np.allclose(diagnosis.trace(HabituatingMap(), X, [post], np.arange(60.0))["score"],
-                       HabituatingMap().stream(X), rtol=0, atol=1e-12)
+    t = diagnosis.trace(habituating_map(arc=0.0), X, [post], np.arange(60.0))
+    np.testing.assert_allclose(t["score"], habituating_map(arc=0.0).stream(X), rtol=0, atol=1e-12)
+    assert np.allclose(diagnosis.trace(habituating_map(), X, [post], np.arange(60.0))["score"],
+                       habituating_map().stream(X), rtol=0, atol=1e-12)
     assert t["object_cells"][45] >= 1
     assert t["object_cells"][:45].sum() == 0          # not standing yet
 
@@ -64,9 +58,9 @@ def test_the_trace_scores_every_scan_as_the_map_streams_it_and_finds_an_objects_
 @pytest.mark.parametrize("params", [{"tolerance": 0}, {"tolerance": 2, "min_passes": 3}, {"evidence": "hits"},
                                     {"evidence_lag": 10}, {"unseen": 0.4, "tolerance": 0}])
 def test_the_trace_reads_the_map_as_its_options_say(params):
-    X = HabituatingMap._example_rows(seed=6, n=60)
-    t = diagnosis.trace(HabituatingMap(**params), X, [], np.arange(60.0))
-    np.testing.assert_allclose(t["score"], HabituatingMap(**params).stream(X), rtol=0, atol=1e-12)
+    X = example_rows(seed=6, n=60)
+    t = diagnosis.trace(habituating_map(**params), X, [], np.arange(60.0))
+    np.testing.assert_allclose(t["score"], habituating_map(**params).stream(X), rtol=0, atol=1e-12)
 
 
 def test_the_reported_seeds_are_refused():
