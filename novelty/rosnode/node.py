@@ -234,7 +234,8 @@ class Node:
     def _markers(self, one: Scored, header, threshold: float) -> MarkerArray:
         centres, novelty = one.cells
         novel = novelty > threshold
-        size = float(getattr(self.scorer.detector, "cell_size", 0.1))
+        cells = getattr(self.scorer.detector, "clusterer_", None)   # a map's world cells (novelty.maps.cells)
+        size = float(getattr(cells, "cell_size", 0.1))
         frame = self.settings.fixed_frame or self.scorer.reading.posing.world()
         marker = Marker(header=Header(stamp=header.stamp, frame_id=frame), ns="novel_cells", id=0,
                         type=Marker.CUBE_LIST, action=Marker.ADD)

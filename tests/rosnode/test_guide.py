@@ -76,7 +76,7 @@ def test_the_guides_session_runs_as_written_against_a_real_master(tmp_path):
             assert not problems, f"block {block['index']}:\n" + "\n".join(problems)
             if "rosnode kill" in block["code"]:
                 # the model the node saved as it stopped: the two loops it learned, scan for scan
-                assert novelty.load(where / "map.npz").scans_ == 800
+                assert novelty.load(where / "map.npz").clusterer_.scans_ == 800
     finally:
         for group in groups:
             _stop(group)
@@ -133,7 +133,7 @@ def _check_the_session(where: Path, bag: Path, tmp_path: Path) -> None:
         published = [float(row["field.vector.x"]) for row in csv.DictReader(fh)]
     np.testing.assert_array_equal(published, expected)
     # the node started again from it went on learning (the pipe's scans), and saved as it stopped
-    assert novelty.load(where / "map.npz").scans_ > 800
+    assert novelty.load(where / "map.npz").clusterer_.scans_ > 800
     # the pipe's rings: gwr-explore-wang-hsu (the answer without a pose) on 20 consecutive scans' ranges,
     # preprocessed as the paper's
     with open(where / "rings.csv") as fh:

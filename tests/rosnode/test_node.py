@@ -194,7 +194,7 @@ def test_learning_frozen_and_resumed_the_model_saved_and_reset_by_services(maste
     np.testing.assert_array_equal(runs[1], runs[2])
     np.testing.assert_array_equal(runs[3], runs[0])
     assert not np.array_equal(runs[0], runs[1])
-    np.testing.assert_array_equal(saved["frozen"].efficacy_, saved["learned"].efficacy_)
+    np.testing.assert_array_equal(saved["frozen"].synapse_.efficacy_, saved["learned"].synapse_.efficacy_)
     status = diagnostics(got, "novelty_services")
     assert status["time jumps back"] == "3" and status["scans scored"] == "120"
 
