@@ -64,5 +64,10 @@ def test_the_compiled_rays_are_the_rays_of_python(sectors, x, y, arc, c, max_ran
     compiled = rays(x, y, near, ex, ey, arc, c, max_range, c, run=kernels.rays)
     assert python[0] == compiled[0]
     for a, b in zip(python[1:], compiled[1:]):
-        np.testing.assert_array_equal(a, b)
+        if np.asarray(a).dtype.kind == "f":
+            # cos and sin compiled by LLVM and CPython's libm may round the last place apart on some CPUs
+            # (seen once in 258 values on CI): the reals agree to that place, everything else exactly
+            np.testing.assert_allclose(a, b, rtol=4e-16, atol=1e-13)
+        else:
+            np.testing.assert_array_equal(a, b)
     assert kernels.ray_count(x, y, ex, ey, arc, c, max_range) == ray_count(x, y, ex, ey, arc, c, max_range)
