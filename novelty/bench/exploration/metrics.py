@@ -33,6 +33,9 @@ scored. Definitions:
   the verdict, is the same for ``a * novelty + b`` (any ``a > 0``, any
   ``b``): a detector whose scores are all negative, or on any scale, is
   judged as one whose scores lie in [0, 1];
+- **first-encounter detection by place** (:func:`first_encounter_auc_of`):
+  the same, of the objects whose place was seen before they appeared and of
+  those whose place was not, apart (a task's ``seen_place`` column);
 - **first-exposure separation**: how far the typical first-exposure scan
   lies above the typical familiar scan, in units of the familiar scans'
   spread: ``(median(first) - median(familiar)) / max(IQR(familiar), r)``,
@@ -79,7 +82,7 @@ import numpy as np
 from ...data import FAMILIAR
 from ..holdout import metrics as bench_metrics
 
-__all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "excess_at",
+__all__ = ["familiar_levels", "exposure_curves", "first_encounter_auc", "first_encounter_auc_of", "excess_at",
            "habituation_ratio", "exposures_to_habituate", "false_alarm_rate", "redetection_auc",
            "integrated_per_run", "warmup_threshold", "recurring", "first_exposure_separation", "return_ratio",
            "resolution", "novelty_range", "habituated", "ratio_to_first", "HABITUATED", "FLAGS_FIRST", "RECURRING", "SEPARATES", "RESOLUTION"]
@@ -167,6 +170,27 @@ def first_encounter_auc(novelty, run, feature, exposure, warmup: int) -> float:
     familiar = scored & (feature == FAMILIAR) & np.isin(run, runs)
     keep = first | familiar
     return bench_metrics.roc_auc(novelty[keep], first[keep])
+
+
+def first_encounter_auc_of(novelty, run, feature, exposure, warmup: int, mask) -> float:
+    """:func:`first_encounter_auc` of the features whose scans ``mask`` holds (the others' scans left out).
+
+    ``mask``: per scan, whether its feature is one of those kept (familiar
+    scans are kept whatever it says). Used for the objects in seen and in
+    unseen places (a task's ``seen_place`` column).
+
+    >>> nov, run = [0.9, 0.2, 0.1, 0.4, 0.3], [1, 1, 1, 2, 2]
+    >>> first_encounter_auc_of(nov, run, ["d", "", "e", "d", ""], [0, -1, 0, 1, -1], 1, [1, 0, 0, 1, 0])
+    1.0
+    >>> first_encounter_auc_of(nov, run, ["d", "", "e", "d", ""], [0, -1, 0, 1, -1], 1, [0, 0, 1, 0, 0])
+    0.0
+    """
+    novelty, run, feature = _arrays(novelty, run, feature, exposure)
+    mask = np.asarray(mask, dtype=bool)
+    if mask.shape != novelty.shape:
+        raise ValueError(f"mask has shape {mask.shape}; expected ({novelty.size},), one value a scan.")
+    kept = mask | (feature == FAMILIAR)
+    return first_encounter_auc(novelty[kept], run[kept], feature[kept], np.asarray(exposure)[kept], warmup)
 
 
 def first_exposure_separation(novelty, run, feature, exposure, warmup: int) -> float:

@@ -38,12 +38,13 @@ from typing import Callable
 
 import numpy as np
 
+from ...data import FAMILIAR
 from ..build import check_input_layout, load_task, make_detector, n_units, resting_novelty
 from ..specs import SuiteError
 from . import metrics as xm
 
 __all__ = ["POLICIES", "parse_policy", "default_policy", "prequential", "evaluate", "exploration_metrics",
-           "EXPLORATION_COLUMNS"]
+           "EXPLORATION_COLUMNS", "PLACE_COLUMNS", "place_metrics"]
 
 POLICIES = ("online", "frozen", "refit", "window=N")
 
@@ -57,6 +58,8 @@ EXPLORATION_COLUMNS = [
     "integrated_novelty", "integrated_per_run", "exposure_curve", "max_novelty", "novelty_range",
     "resting_novelty", "n_units",
 ]
+#: the columns a cell adds when its task says whether each object's place was seen (``seen_place``)
+PLACE_COLUMNS = ["n_first_seen", "first_encounter_auc_seen", "n_first_unseen", "first_encounter_auc_unseen"]
 
 
 def parse_policy(text: str) -> tuple[str, int]:
@@ -153,14 +156,31 @@ def evaluate(cell) -> tuple[dict, dict]:
     row = exploration_metrics(novelty, run, feature, exposure, warmup, info.get("changes", {}),
                               resting_novelty(det), cell.threshold, info.get("returns", {}))
     row.update({"policy": policy, "n_scans": len(data), "n_runs": int(np.unique(run).size),
-                "warmup_runs": warmup, "n_units": n_units(det),
-                "train_time_s": elapsed, "train_scans_per_s": len(data) / max(elapsed, 1e-12)})
+                "warmup_runs": warmup, "n_units": n_units(det)})
+    if "seen_place" in data.columns:
+        row.update(place_metrics(novelty, run, feature, exposure, warmup, data.columns["seen_place"]))
+    row.update({"train_time_s": elapsed, "train_scans_per_s": len(data) / max(elapsed, 1e-12)})
     arrays = {"novelty": novelty, "run": run, "feature": feature, "exposure": exposure,
               "environment": data.columns["environment"].astype(str),
               "threshold": np.float64(row["threshold"]), "resting": np.float64(row["resting_novelty"]),
               "warmup": np.int64(warmup)}
     arrays.update(_curve_arrays(xm.exposure_curves(novelty, run, feature, exposure, warmup)))
     return row, arrays
+
+
+def place_metrics(novelty, run, feature, exposure, warmup: int, seen_place) -> dict:
+    """The first-encounter AUC and count of first sights of the objects in seen and in unseen places, apart.
+
+    ``seen_place``: per scan, whether the place of the object it sees was
+    seen before the object appeared (:mod:`novelty.tasks.objects.places`).
+    """
+    seen_place = np.asarray(seen_place, dtype=bool)
+    first = (np.asarray(run) >= warmup) & (np.asarray(exposure) == 0) & (np.asarray(feature) != FAMILIAR)
+    row = {}
+    for name, mask in (("seen", seen_place), ("unseen", ~seen_place)):
+        row[f"n_first_{name}"] = int(np.sum(first & mask))
+        row[f"first_encounter_auc_{name}"] = xm.first_encounter_auc_of(novelty, run, feature, exposure, warmup, mask)
+    return row
 
 
 def exploration_metrics(novelty, run, feature, exposure, warmup: int, changes: dict,

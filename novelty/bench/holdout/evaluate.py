@@ -24,7 +24,12 @@ For a task whose scans are split into a training and a test part:
    it has one, else the test runs that hold no novel scan (when others do),
    else the normal scans of the test part; the column
    ``false_alarm_source`` says which.
-5. Memory. Peak memory (``tracemalloc``) is measured by a second, identical run
+5. Places. For a task whose scans say whether the place of the object they
+   see was seen while the detector learned (the objects tasks' column
+   ``seen_place``): the ROC AUC of the objects in seen places and of those
+   in unseen places, each against every normal test scan
+   (:data:`PLACE_COLUMNS`).
+6. Memory. Peak memory (``tracemalloc``) is measured by a second, identical run
    of steps 1 and 3, so that the tracer's overhead does not distort the times.
 
 The novelty and label of every test scan are kept with the cell (its
@@ -45,7 +50,8 @@ from ..build import (check_finite, check_input_layout, check_raw_finite, load_ta
 from ..specs import Cell
 from . import metrics
 
-__all__ = ["evaluate", "clean_pass", "has_route", "METRIC_COLUMNS", "MEASURED_COLUMNS"]
+__all__ = ["evaluate", "clean_pass", "has_route", "place_metrics", "METRIC_COLUMNS", "PLACE_COLUMNS",
+           "MEASURED_COLUMNS"]
 
 #: columns that depend only on the cell: identical across backends and reruns
 #: (the task's sizes, the metrics of :data:`novelty.bench.holdout.metrics.METRICS`, the threshold and
@@ -54,6 +60,8 @@ METRIC_COLUMNS = [
     "n_train", "n_test", "n_novel", "train_passes", "route", "task_split", *(m.column for m in metrics.METRICS),
     "threshold", "false_alarm_source", "resting_novelty", "n_units",
 ]
+#: the columns a cell adds when its task says whether each object's place was seen (``seen_place``)
+PLACE_COLUMNS = ["n_novel_seen", "roc_auc_seen", "n_novel_unseen", "roc_auc_unseen"]
 #: columns measured on the machine (times, memory): they vary from run to run
 MEASURED_COLUMNS = [
     "train_time_s", "score_time_s", "train_scans_per_s", "score_scans_per_s", "peak_memory_mb",
@@ -142,12 +150,29 @@ def evaluate(cell: Cell) -> tuple[dict, dict]:
         "score_scans_per_s": len(test) / max(score_time, 1e-12),
         "peak_memory_mb": _peak_memory(cell, train.X, passes, test.X) if cell.memory else float("nan"),
     }
+    if "seen_place" in test.columns:
+        row.update(place_metrics(novelty, y, test.columns["seen_place"]))
     distance = test.distance if test.distance is not None else np.arange(len(test), dtype=float)
     arrays = {"novelty": novelty, "y": y.astype(np.int8), "distance": np.asarray(distance, float),
               "threshold": np.float64(threshold), "resting": np.float64(resting)}
     if test.run is not None:
         arrays["run"] = np.asarray(test.run)
     return row, arrays
+
+
+def place_metrics(novelty, y, seen_place) -> dict:
+    """The ROC AUC and count of the novel scans whose object stands in a seen and in an unseen place, apart.
+
+    ``seen_place``: per scan, whether the place of the object it sees was
+    seen while the detector learned (:mod:`novelty.tasks.objects.places`);
+    each class is scored against every normal test scan.
+    """
+    seen_place = np.asarray(seen_place, dtype=bool)
+    row = {}
+    for name, mask in (("seen", seen_place), ("unseen", ~seen_place)):
+        row[f"n_novel_{name}"] = int(np.sum(y & mask))
+        row[f"roc_auc_{name}"] = metrics.roc_auc_of(novelty, y, y & mask)
+    return row
 
 
 def _peak_memory(cell: Cell, X_train: np.ndarray, passes: int, X_test: np.ndarray) -> float:

@@ -34,6 +34,7 @@ __all__ = [
     "METRICS",
     "compute",
     "roc_auc",
+    "roc_auc_of",
     "average_precision",
     "roc_points",
     "tpr_at_fpr",
@@ -68,6 +69,23 @@ def roc_auc(scores, y) -> float:
     if y.all() or not y.any():
         return float("nan")
     return float(roc_auc_score(y, scores))
+
+
+def roc_auc_of(scores, y, positives) -> float:
+    """:func:`roc_auc` of the novel scans ``positives`` holds against every normal scan (other novel ones left out).
+
+    Used for the objects in seen and in unseen places (a task's
+    ``seen_place`` column): each class against the same familiar scans.
+
+    >>> roc_auc_of([0.1, 0.4, 0.35, 0.8], [0, 0, 1, 1], [0, 0, 0, 1]), roc_auc_of([0.1, 0.4, 0.35, 0.8], [0, 0, 1, 1], [0, 0, 1, 0])
+    (1.0, 0.5)
+    """
+    scores, y = _scores_labels(scores, y)
+    positives = np.asarray(positives).ravel().astype(bool)
+    if positives.shape != y.shape:
+        raise ValueError(f"positives has {positives.size} values but y has {y.size}.")
+    kept = ~y | positives
+    return roc_auc(scores[kept], y[kept])
 
 
 def roc_points(scores, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -26,6 +26,7 @@ from typing import Sequence
 import numpy as np
 
 from .casting import cast_all, passes, sightings
+from .places import PLACE_TOLERANCE, looks
 from .raycast import world_beams
 from .shapes import SHAPES, Box, Cylinder
 
@@ -215,7 +216,7 @@ def _candidate(rng, sweep, sizes, kinds, clearance: float, name: str, start: flo
 def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.3, 1.0),
                  kinds=("box", "cylinder"), min_passes: int = 3, before: int = 1, leave: float = 4.0,
                  clearance: float = 0.3, margin: float = 0.1, min_beams: int = 3, within: float = 4.0,
-                 max_tries: int = 2000) -> list:
+                 unseen: bool = False, tolerance: float = PLACE_TOLERANCE, max_tries: int = 2000) -> list:
     """``n`` objects drawn by ``seed`` beside the robot's path, appearing at ``start`` (s) and staying.
 
     An anchor scan after ``start`` is drawn, and an object of a size drawn
@@ -224,7 +225,10 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
     is kept when it is not refused (:func:`refusals`), keeps ``clearance``
     from the objects kept before, and is seen (:func:`.labels.sightings`)
     in at least ``before`` passes before ``start`` (had it stood there) and
-    ``min_passes`` after.
+    ``min_passes`` after. With ``unseen``, it is kept only where no beam of
+    the scans before ``start`` passed through or ended in its footprint
+    grown by ``tolerance`` (:func:`.places.looks`): a place the robot had
+    never seen (``before`` must then be 0).
 
     Raises
     ------
@@ -232,6 +236,8 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
         When fewer than ``n`` objects are found in ``max_tries`` draws; the
         message says how many passes the best places got.
     """
+    if unseen and before > 0:
+        raise ValueError(f"An unseen place was looked at 0 times before the objects appear; got before={before}.")
     sweeps = list(sweeps)
     times = np.array([s.time for s in sweeps], dtype=np.float64)
     poses = np.array([s.pose for s in sweeps], dtype=np.float64)
@@ -257,12 +263,15 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
         if early < before or late < min_passes:
             continue
         placed = replace(obj, start=start)
+        if unseen and looks(sweeps[:anchors[0]], [placed], tolerance=tolerance, within=within)[0]:
+            continue
         if refusals([placed], sweeps, clearance=clearance):
             continue
         kept.append(placed)
     if len(kept) < n:
+        where = "never saw" if unseen else f"looks at {before} time(s)"
         raise ValueError(f"Found {len(kept)} of {n} places in {max_tries} draws (seed {seed}) that the robot "
-                         f"looks at {before} time(s) before t={start} and passes {min_passes} times after; the "
+                         f"{where} before t={start} and passes {min_passes} times after; the "
                          f"best had {best[0]} and {best[1]}. Ask for fewer objects or passes, or an earlier start.")
     return kept
 

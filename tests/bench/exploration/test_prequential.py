@@ -6,7 +6,7 @@ import pytest
 import novelty
 from novelty.bench import DetectorSpec, Suite, SuiteError, TaskSpec
 from novelty.bench.cell import run_cell
-from novelty.bench.exploration.prequential import EXPLORATION_COLUMNS, parse_policy, prequential
+from novelty.bench.exploration.prequential import EXPLORATION_COLUMNS, parse_policy, place_metrics, prequential
 from novelty.bench.runner import run_bench
 from novelty.bench import suite_from_dict
 from novelty.bench.exploration.metrics import first_encounter_auc
@@ -157,3 +157,15 @@ def test_a_run_compares_on_an_exploration_task_over_its_worlds(tmp_path, toy_exp
     assert len({r["task_data"] for r in rows.values()}) == 3                   # each seed builds its world
     section = "\n".join(report.comparisons)
     assert "Unit: the seed, each an independently built world." in section and f"{np.mean(d):+.3f}" in section
+
+
+def test_first_sights_in_seen_and_unseen_places_are_scored_apart_against_their_runs_familiar_scans():
+    # run 0 is the warm-up; run 1: "a" seen first (0.9) and "b" unseen first (0.2) beside a familiar 0.3;
+    # run 2: "a" again (its second exposure) beside a familiar 0.4
+    novelty = [0.7, 0.9, 0.3, 0.2, 0.4, 0.5]
+    run = [0, 1, 1, 1, 2, 2]
+    feature = ["", "a", "", "b", "", "a"]
+    exposure = [-1, 0, -1, 0, -1, 1]
+    seen_place = [False, True, False, False, False, True]
+    assert place_metrics(novelty, run, feature, exposure, 1, seen_place) == {
+        "n_first_seen": 1, "first_encounter_auc_seen": 1.0, "n_first_unseen": 1, "first_encounter_auc_unseen": 0.0}

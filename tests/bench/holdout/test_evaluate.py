@@ -6,6 +6,7 @@ import pytest
 from sklearn.base import BaseEstimator, OutlierMixin
 
 from novelty import bench
+from novelty.bench.holdout.evaluate import place_metrics
 from novelty.bench.specs import SuiteError
 
 
@@ -58,3 +59,14 @@ def test_a_table_without_a_route_gets_no_route_metrics(arrays):
 def test_the_ranking_drops_route_columns_when_no_task_has_a_route(arrays):
     table = bench.run(["parzen"], {"t": arrays}).table
     assert "ROC AUC" in table and "delay" not in table and "false alarms" not in table
+
+
+def test_objects_in_seen_and_unseen_places_are_scored_apart_against_the_same_normal_scans():
+    novelty = np.array([0.1, 0.2, 0.9, 0.05, 0.5])
+    y = np.array([0, 0, 1, 1, 1], dtype=bool)
+    seen_place = np.array([False, False, True, True, False])
+    # seen: 0.9 above both normal scans, 0.05 below both (1/2); unseen: 0.5 above both
+    assert place_metrics(novelty, y, seen_place) == {"n_novel_seen": 2, "roc_auc_seen": 0.5,
+                                                     "n_novel_unseen": 1, "roc_auc_unseen": 1.0}
+    only_seen = place_metrics(novelty, y, np.ones(5, dtype=bool))
+    assert only_seen["n_novel_unseen"] == 0 and np.isnan(only_seen["roc_auc_unseen"])

@@ -105,3 +105,37 @@ options = {{ path = "{drive_log.name}", objects = "objects.csv", sectors = 8 }}
     monkeypatch.chdir(tmp_path / "elsewhere")      # the files are the suite's, wherever it is run from
     (row,) = run_bench(load_suite(suite_path), tmp_path / "out", plots=False, quiet=True).rows
     assert row["status"] == "ok" and row["n_novel"] == expected_sightings()[42:].sum()
+
+
+#: Beyond the reach (4 m) of the first eight scans (x 0 to 3.5, facing +x): a place not seen by then.
+FAR = Cylinder("far", 9.0, -0.6, 0.25, start=8.0)
+#: In reach of them: a place seen by then.
+NEAR = Cylinder("near", 5.0, 0.6, 0.25, start=8.0)
+
+
+def test_the_inspection_says_per_scan_whether_the_objects_place_was_learned(drive_log):
+    task = inspection_task(drive_log, [NEAR, FAR], learn=8 / 84, sectors=8)
+    objects = {o["name"]: o for o in task.metadata["objects"]}
+    assert objects["near"]["seen_place"] and objects["near"]["place_looks"] > 0
+    assert not objects["far"]["seen_place"] and objects["far"]["place_looks"] == 0
+    seen_place, names = task.columns["seen_place"], task.columns["object"]
+    assert {"near", "far"} <= set(names.tolist())
+    assert seen_place.tolist() == (names == "near").tolist()   # familiar scans: no object, no place
+    assert "seen_place" in task.metadata["labels"]
+
+
+def test_the_exploration_counts_the_scans_before_each_object_appears(drive_log):
+    task = exploration_task(drive_log, [NEAR, FAR], warmup=0.1, run_scans=4, min_passes=1, sectors=8)
+    objects = {o["name"]: o for o in task.metadata["objects"]}
+    assert objects["near"]["seen_place"] and not objects["far"]["seen_place"]
+    assert task.columns["seen_place"].tolist() == (task.columns["object"] == "near").tolist()
+
+
+def test_drawn_objects_in_unseen_places_were_never_looked_at(drive_log):
+    task = inspection_task(drive_log, learn=8 / 84, n_objects=1, seed=0, unseen_places=True, sectors=8)
+    assert [o["place_looks"] for o in task.metadata["objects"]] == [0]
+    assert not task.columns["seen_place"].any() and task.y.any()
+    with pytest.raises(ValueError, match="unseen_places draws the objects"):
+        inspection_task(drive_log, [FAR], learn=8 / 84, unseen_places=True)
+    with pytest.raises(ValueError, match="An unseen place was looked at 0 times"):
+        exploration_task(drive_log, warmup=0.5, run_scans=4, seen_before=1, unseen_places=True)
