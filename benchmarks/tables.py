@@ -9,6 +9,7 @@ A table in a document is a region between two markers::
 ``exploration`` is a suite (``benchmarks/suites/exploration.toml``, whose
 committed results are ``benchmarks/results/exploration/``) and the part after
 the slash is the table: ``ranking`` (the ranked table of ``novelty bench``),
+``places`` (objects tasks: ROC AUC on the objects in seen and in unseen places, per recording),
 ``per-task`` (ROC AUC per task, mean ± sd over seeds), ``overview`` (the
 ranking's ROC AUC beside each task's mean), ``paired`` (each detector against
 the suite's reference), or, for a suite of the exploration protocol,
@@ -43,6 +44,7 @@ import csv
 import difflib
 import importlib.util
 import json
+import math
 import os
 import platform
 import re
@@ -168,6 +170,45 @@ def verdicts_text(rows: list[dict]) -> str:
                          "both"], body)
 
 
+#: per protocol, the columns of a cell's ROC AUC on objects in seen and in unseen places, and their counts
+PLACE_COLUMNS = {"holdout": ("roc_auc_seen", "roc_auc_unseen", "n_novel_seen", "n_novel_unseen"),
+                 "exploration": ("first_encounter_auc_seen", "first_encounter_auc_unseen", "n_first_seen",
+                                 "n_first_unseen")}
+
+
+def _mean(values: list) -> float:
+    kept = [v for v in values if v is not None and not math.isnan(v)]
+    return sum(kept) / len(kept) if kept else math.nan
+
+
+def places_text(rows: list[dict]) -> str:
+    """Objects tasks: each detector's ROC AUC (hold-out) or first-encounter AUC (exploration) on the objects in
+    seen places and in unseen places, per recording (the mean over its tasks' cells that have such objects, the
+    last line the objects counted), and the mean of the recordings' means."""
+    from novelty.bench.reports.format import format_table
+
+    protocol = "exploration" if any(r.get("policy") for r in rows) else "holdout"
+    seen, unseen, n_seen, n_unseen = PLACE_COLUMNS[protocol]
+    rows = [r for r in rows if r.get(seen) is not None or r.get(unseen) is not None]
+    logs = list(dict.fromkeys(r["task_name"].rpartition("-")[2] for r in rows))
+    detectors = list(dict.fromkeys(r["detector"] for r in rows))
+    body = []
+    for detector in detectors:
+        mine = [r for r in rows if r["detector"] == detector]
+        means = {(log, column): _mean([r[column] for r in mine if r["task_name"].endswith("-" + log)])
+                 for log in logs for column in (seen, unseen)}
+        cells = [means[log, column] for log in logs for column in (seen, unseen)]
+        overall = [_mean([means[log, column] for log in logs]) for column in (seen, unseen)]
+        body.append([f"`{detector}`", *(f"{v:.3f}" if not math.isnan(v) else "-" for v in cells + overall)])
+    first = [r for r in rows if r["detector"] == detectors[0]] if detectors else []
+    counts = [sum(r[column] or 0 for r in first if r["task_name"].endswith("-" + log))
+              for log in logs for column in (n_seen, n_unseen)]
+    body.append(["objects' scans" if protocol == "holdout" else "first sights", *map(str, counts),
+                 str(sum(counts[0::2])), str(sum(counts[1::2]))])
+    headings = [f"{log} {kind}" for log in logs for kind in ("seen", "unseen")]
+    return format_table(["detector", *headings, "mean seen", "mean unseen"], body)
+
+
 def _reference(suite: str) -> str | None:
     """The suite's reference detector (``reference`` in its [suite] table), as its summary pairs with."""
     from novelty.bench import load_suite
@@ -192,13 +233,16 @@ def table(suite: str, name: str, rows: list[dict]) -> str:
         return _table_lines(paired_text(rows, _reference(suite)))
     if name == "overview":
         return overview_text(rows)
+    if name == "places":
+        return places_text(rows)
     tasks = sorted({r["task"] for r in rows})
     exploring = any(r.get("policy") for r in rows)
     if name == "verdicts" and exploring:
         return verdicts_text(rows)
     if name in tasks and exploring:
         return _table_lines(exploration_text([r for r in rows if r["task"] == name]))
-    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview', 'paired'"
+    raise KeyError(f"Suite {suite!r} has no table {name!r}; tables: 'ranking', 'per-task', 'overview', 'paired', "
+                   "'places'"
                    + (f", 'verdicts', or a task: {', '.join(tasks)}" if exploring else "") + ".")
 
 
