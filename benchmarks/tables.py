@@ -44,7 +44,6 @@ import csv
 import difflib
 import importlib.util
 import json
-import math
 import os
 import platform
 import re
@@ -170,45 +169,6 @@ def verdicts_text(rows: list[dict]) -> str:
                          "both"], body)
 
 
-#: per protocol, the columns of a cell's ROC AUC on objects in seen and in unseen places, and their counts
-PLACE_COLUMNS = {"holdout": ("roc_auc_seen", "roc_auc_unseen", "n_novel_seen", "n_novel_unseen"),
-                 "exploration": ("first_encounter_auc_seen", "first_encounter_auc_unseen", "n_first_seen",
-                                 "n_first_unseen")}
-
-
-def _mean(values: list) -> float:
-    kept = [v for v in values if v is not None and not math.isnan(v)]
-    return sum(kept) / len(kept) if kept else math.nan
-
-
-def places_text(rows: list[dict]) -> str:
-    """Objects tasks: each detector's ROC AUC (hold-out) or first-encounter AUC (exploration) on the objects in
-    seen places and in unseen places, per recording (the mean over its tasks' cells that have such objects, the
-    last line the objects counted), and the mean of the recordings' means."""
-    from novelty.bench.reports.format import format_table
-
-    protocol = "exploration" if any(r.get("policy") for r in rows) else "holdout"
-    seen, unseen, n_seen, n_unseen = PLACE_COLUMNS[protocol]
-    rows = [r for r in rows if r.get(seen) is not None or r.get(unseen) is not None]
-    logs = list(dict.fromkeys(r["task_name"].rpartition("-")[2] for r in rows))
-    detectors = list(dict.fromkeys(r["detector"] for r in rows))
-    body = []
-    for detector in detectors:
-        mine = [r for r in rows if r["detector"] == detector]
-        means = {(log, column): _mean([r[column] for r in mine if r["task_name"].endswith("-" + log)])
-                 for log in logs for column in (seen, unseen)}
-        cells = [means[log, column] for log in logs for column in (seen, unseen)]
-        overall = [_mean([means[log, column] for log in logs]) for column in (seen, unseen)]
-        body.append([f"`{detector}`", *(f"{v:.3f}" if not math.isnan(v) else "-" for v in cells + overall)])
-    first = [r for r in rows if r["detector"] == detectors[0]] if detectors else []
-    counts = [sum(r[column] or 0 for r in first if r["task_name"].endswith("-" + log))
-              for log in logs for column in (n_seen, n_unseen)]
-    body.append(["objects' scans" if protocol == "holdout" else "first sights", *map(str, counts),
-                 str(sum(counts[0::2])), str(sum(counts[1::2]))])
-    headings = [f"{log} {kind}" for log in logs for kind in ("seen", "unseen")]
-    return format_table(["detector", *headings, "mean seen", "mean unseen"], body)
-
-
 def _reference(suite: str) -> str | None:
     """The suite's reference detector (``reference`` in its [suite] table), as its summary pairs with."""
     from novelty.bench import load_suite
@@ -222,6 +182,7 @@ def table(suite: str, name: str, rows: list[dict]) -> str:
     # this file's help or a region's key needs no numba compile
     from novelty.bench.exploration.summary import exploration_text
     from novelty.bench.holdout.summary import ranking_text
+    from novelty.bench.reports.places import places_text
     from novelty.bench.reports.ranking import per_task_text
     from novelty.bench.reports.statistics import paired_text
 
