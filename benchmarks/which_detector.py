@@ -30,7 +30,14 @@ DETECTION, EXPLORATION = "detection", "exploration"
 OBJECTS_INSPECTION, OBJECTS_EXPLORATION = "objects-inspection", "objects-exploration"
 #: the detectors of the points input (the robot's pose with each scan): their exploration and their guard
 MAPS_EXPLORATION, MAPS_DETECTION = "maps-exploration", "maps-detection"
-SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION, MAPS_EXPLORATION, MAPS_DETECTION)
+#: the detectors of the points input frozen on the objects tasks: the objects in seen and unseen places
+MAPS_INSPECTION = "maps-inspection"
+SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION, MAPS_INSPECTION, MAPS_EXPLORATION,
+          MAPS_DETECTION)
+#: the maps of the bar and the occupancy grid they must be ahead of: the form chosen by studies/maps/maps-grid.md
+MAPS, GRID = ("habituating-map", "map-explore"), "GRID-CHOSEN"
+#: the bar on objects in seen places: inspection ROC AUC and first-encounter AUC (and chance, on unseen places)
+BAR_INSPECTION, BAR_FIRST_SIGHT, CHANCE = 0.95, 0.90, 0.5
 #: the answer before the rule of studies/learning_answer/learning-answer.md (the sonar ring alone)
 BEFORE = "explore"
 
@@ -352,7 +359,55 @@ def long_term_text(results: Callable[[str], list[dict]]) -> str:
     ])
 
 
-SECTIONS = {"frozen": frozen_text, "learning": learning_text, "paper": paper_text, "long-term": long_term_text}
+def _side_by_side(found: dict) -> str:
+    """``0.912 / 0.431 (intel 0.93 / 0.40, ...)``: seen / unseen over the recordings, then each recording's."""
+    logs = [k for k in found["seen"] if k != "mean"]
+
+    def pair(key: str, digits: int) -> str:
+        return " / ".join("-" if v != v else f"{v:.{digits}f}" for v in (found["seen"][key], found["unseen"][key]))
+
+    return f"{pair('mean', 3)} ({', '.join(f'{log} {pair(log, 2)}' for log in logs)})"
+
+
+def _below_chance(found: dict) -> list[str]:
+    return [log for log, v in found["unseen"].items() if log != "mean" and v == v and v < CHANCE]
+
+
+def places_text(results: Callable[[str], list[dict]]) -> str:
+    from novelty.bench.reports.places import place_means
+
+    inspection, exploration = place_means(results(MAPS_INSPECTION)), place_means(results(MAPS_EXPLORATION))
+    detectors = list(dict.fromkeys([*inspection, *exploration]))
+    lines = []
+    for d in detectors:
+        parts = []
+        if d in inspection:
+            parts.append(f"inspection ROC AUC {_side_by_side(inspection[d])}")
+        if d in exploration:
+            parts.append(f"first sight while learning {_side_by_side(exploration[d])}")
+        lines.append(f"- `{d}`: " + "; ".join(parts) + ".")
+    for d in MAPS:
+        seen_i, seen_x = inspection[d]["seen"]["mean"], exploration[d]["seen"]["mean"]
+        grid_i, grid_x = inspection[GRID]["seen"]["mean"], exploration[GRID]["seen"]["mean"]
+        below = sorted(set(_below_chance(inspection[d])) | set(_below_chance(exploration[d])))
+        checks = [
+            (seen_i >= BAR_INSPECTION, f"inspection {seen_i:.3f} {'>=' if seen_i >= BAR_INSPECTION else '<'} "
+                                       f"{BAR_INSPECTION}"),
+            (seen_x >= BAR_FIRST_SIGHT, f"first sight {seen_x:.3f} {'>=' if seen_x >= BAR_FIRST_SIGHT else '<'} "
+                                        f"{BAR_FIRST_SIGHT}"),
+            (seen_i > grid_i and seen_x > grid_x, f"{'ahead of' if seen_i > grid_i and seen_x > grid_x else 'not ahead of'}"
+                                                  f" `{GRID}` on both ({grid_i:.3f}, {grid_x:.3f})"),
+            (not below, "never below chance on unseen places" if not below else
+             f"below chance on unseen places on {', '.join(below)}"),
+        ]
+        met = all(ok for ok, _ in checks)
+        lines.append(f"- **The bar for `{d}`** (seen places): {'met' if met else 'not met'}: "
+                     + "; ".join(text for _, text in checks) + ".")
+    return "\n".join(lines)
+
+
+SECTIONS = {"frozen": frozen_text, "learning": learning_text, "places": places_text, "paper": paper_text,
+            "long-term": long_term_text}
 
 
 def region(name: str, results: Callable[[str], list[dict]]) -> str:

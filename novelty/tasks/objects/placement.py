@@ -255,6 +255,9 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
         if obj is None or any(math.hypot(obj.x - o.x, obj.y - o.y) < (obj.size + o.size) / 2 + 2 * clearance
                               for o in kept):
             continue
+        # the cheaper test first: the scans before start against the object's place (no draw depends on it)
+        if unseen and looks(sweeps[:anchors[0]], [replace(obj, start=start)], tolerance=tolerance, within=within)[0]:
+            continue
         seen = sightings(cast_all(sweeps, [obj], margin=margin, within=within).shortened[:, 0], min_beams)
         k = passes(seen, poses, obj, leave)
         early = len(set(k[(times < start) & (k >= 0)].tolist()))
@@ -263,8 +266,6 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
         if early < before or late < min_passes:
             continue
         placed = replace(obj, start=start)
-        if unseen and looks(sweeps[:anchors[0]], [placed], tolerance=tolerance, within=within)[0]:
-            continue
         if refusals([placed], sweeps, clearance=clearance):
             continue
         kept.append(placed)
