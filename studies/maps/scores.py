@@ -14,6 +14,8 @@ per-task figures. With ``--familiar`` (the sixth selection) the exploration task
 and the same with the objects where the robot had looked before (``-familiar``); F counts the six, H
 intel, aces, intel-familiar and csail-familiar (aces-familiar's objects are passed twice), S averages
 nine. ``--guard-above`` sets G's threshold (the seventh selection's margin: 0.55; until then 0.5).
+``--alias CANDIDATE=RUN`` scores an exploration-only candidate with RUN's hold-out cells (the occupancy
+grid's frozen forms, studies/maps/maps-grid.md).
 Every score is a mean over the seeds each run holds; a candidate with a missing or failed cell is
 reported as such and ranked last.
 """
@@ -100,8 +102,15 @@ def main(argv=None) -> None:
                         help="the sixth selection's six exploration tasks (the logs and their -familiar twins)")
     parser.add_argument("--guard-above", type=float, default=0.5,
                         help="G's threshold on every guard task's mean ROC AUC (the seventh selection's: 0.55)")
+    parser.add_argument("--alias", action="append", default=[], metavar="CANDIDATE=RUN",
+                        help="a candidate of the exploration run whose hold-out cells are RUN's (a form frozen "
+                             "after the warm-up is, on the hold-out tasks, the learning form: maps-grid.md)")
     args = parser.parse_args(argv)
     rows = {name: read_rows(f"{getattr(args, name)}/results.jsonl") for name in ("inspection", "exploration", "guard")}
+    for alias in args.alias:
+        candidate, _, same = alias.partition("=")
+        for name in ("inspection", "guard"):
+            rows[name] += [{**r, "detector": candidate} for r in rows[name] if r["detector"] == same]
     empty = [f"{getattr(args, name)}/results.jsonl" for name, found in rows.items() if not found]
     if empty:
         parser.error(f"no rows in {', '.join(empty)}: give the folders that `novelty bench --out` wrote")
