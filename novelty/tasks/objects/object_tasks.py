@@ -5,10 +5,10 @@ scans as sweeps in the robot's base frame, mounts included), place the
 objects (the user's, or drawn by a seed beside the path:
 :mod:`.placement`), refuse those that cannot stand where they are put, cast
 them into every sweep (:mod:`.raycast`) and label every scan with the object
-it sees (:mod:`novelty.tasks.objects.casting`) and whether that object's
-place was seen before it appeared (:mod:`novelty.tasks.objects.places`:
-the column ``seen_place``; each object's ``seen_place`` and ``place_looks``
-in the metadata). The rings are the paper's
+it sees (:mod:`novelty.tasks.objects.casting`) and, with ``places=True``,
+whether that object's place was seen before it appeared
+(:mod:`novelty.tasks.objects.places`: the column ``seen_place``; each
+object's ``seen_place`` and ``place_looks`` in the metadata). The rings are the paper's
 (:func:`object_rings`: sectors reduced to their nearest echo, thresholded,
 normalised, inverted), at one or several scales at once.
 
@@ -58,9 +58,8 @@ __all__ = ["object_rings", "object_inputs", "INPUTS", "read_drive", "inspection_
            "LABEL_DEFAULTS"]
 
 #: What counts as seeing an object: beams shortened by more than ``margin`` (m), at least ``min_beams``
-#: of them, within the ring's threshold; a pass ends beyond ``leave`` (m). An object's place was seen
-#: when a beam before it appeared passed within ``place_tolerance`` (m) of it (:mod:`.places`).
-LABEL_DEFAULTS = {"margin": 0.1, "min_beams": 3, "leave": 4.0, "place_tolerance": PLACE_TOLERANCE}
+#: of them, within the ring's threshold; a pass ends beyond ``leave`` (m).
+LABEL_DEFAULTS = {"margin": 0.1, "min_beams": 3, "leave": 4.0}
 
 
 #: What a scan's ``seen_place`` says (the metadata's ``labels``).
@@ -166,7 +165,7 @@ def _objects(sweeps, objects, first: int, seed: int, n_objects: int, min_passes:
         return draw_objects(sweeps, n_objects, seed, start=start, min_passes=min_passes, before=before,
                             leave=LABEL_DEFAULTS["leave"], margin=LABEL_DEFAULTS["margin"],
                             min_beams=LABEL_DEFAULTS["min_beams"], within=threshold, unseen=unseen,
-                            tolerance=LABEL_DEFAULTS["place_tolerance"])
+                            tolerance=PLACE_TOLERANCE)
     if unseen:
         raise ValueError("unseen_places draws the objects; the objects given stand where they are given.")
     objects = read_objects(objects) if isinstance(objects, (str, Path)) else list(objects)
@@ -178,9 +177,17 @@ def _objects(sweeps, objects, first: int, seed: int, n_objects: int, min_passes:
     return objects
 
 
-def _seen_places(sweeps, objects, threshold: float) -> np.ndarray:
-    """How many of ``sweeps`` saw each object's place before it appeared (:func:`.places.looks`)."""
-    return looks(sweeps, objects, tolerance=LABEL_DEFAULTS["place_tolerance"], within=threshold)
+def _seen_places(sweeps, objects, threshold: float, places: bool) -> np.ndarray | None:
+    """How many of ``sweeps`` saw each object's place before it appeared (:func:`.places.looks`); None unless
+    ``places``."""
+    return looks(sweeps, objects, tolerance=PLACE_TOLERANCE, within=threshold) if places else None
+
+
+def _place_labels(meta: dict, columns: dict, seen_place) -> None:
+    """Add the column ``seen_place`` and what it says to a task labelled by places."""
+    columns["seen_place"] = seen_place
+    meta["labels"]["seen_place"] = SEEN_PLACE
+    meta["labels"]["place_tolerance"] = PLACE_TOLERANCE
 
 
 def _first_scan(n: int, learn: float) -> int:
@@ -199,7 +206,7 @@ def _cast(sweeps, objects, threshold: float):
     return cast, seen, which
 
 
-def _metadata(objects, sweeps, path, options: dict, reading: dict, report: ReadReport, looked) -> dict:
+def _metadata(objects, sweeps, path, options: dict, reading: dict, report: ReadReport, looked=None) -> dict:
     # a ring task's metadata as it was before the points input existed: its rows keep their digest
     layout = {}
     if options.get("inputs", "ring") == "points":
@@ -209,16 +216,19 @@ def _metadata(objects, sweeps, path, options: dict, reading: dict, report: ReadR
         layout["reading"] = given
     if report.lines():   # what reading a bag found and chose (a CARMEN log says nothing: its digest stays)
         layout["read"] = report.lines()
+    places = [{} if looked is None else {"place_looks": int(n), "seen_place": bool(n > 0)}
+              for n in (looked if looked is not None else [None] * len(objects))]
     return {**layout, "source": str(path), "objects": [{"kind": type(o).__name__.lower(), **{
-        k: (float(v) if isinstance(v, (int, float)) else v) for k, v in vars(o).items()},
-        "place_looks": int(n), "seen_place": bool(n > 0)} for o, n in zip(objects, looked)],
+        k: (float(v) if isinstance(v, (int, float)) else v) for k, v in vars(o).items()}, **place}
+        for o, place in zip(objects, places)],
             "labels": {**LABEL_DEFAULTS, "within_m": options["threshold"]}, "sectors": options["sectors"],
             "reduce": options["reduce"], "threshold_m": float(options["threshold"]),
             "encoding": "1 - min(r, T) / T", "n_recorded_scans": len(sweeps)}
 
 
 def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 4, seed: int = 0,
-                    min_passes: int = 1, unseen_places: bool = False, inputs: str = "ring", sectors=16, reduce="min",
+                    min_passes: int = 1, places: bool = False, unseen_places: bool = False, inputs: str = "ring",
+                    sectors=16, reduce="min",
                     threshold: float = PAPER_THRESHOLD,
                     radius: float = 1.0, max_turn: float = math.pi / 2, topic=None, pose_topic=None,
                     base_frame=None, mounts=None, fragments="auto", echo: str = "first",
@@ -233,9 +243,14 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
         A CSV or TOML file of objects (:func:`.placement.read_objects`) or
         the objects; default ``n_objects`` drawn by ``seed``, seen at least
         once before they appear and ``min_passes`` times after.
+    places : bool, default=False
+        Label each object's place as seen or not while the robot learned
+        (:mod:`.places`: the column ``seen_place``, each object's
+        ``seen_place`` and ``place_looks`` in the metadata), for the
+        benchmarks' scores on seen and unseen places apart.
     unseen_places : bool, default=False
         Draw the objects where no learned beam passed through or ended
-        (:mod:`.places`): places the robot had never seen.
+        (:mod:`.places`): places the robot had never seen (implies ``places``).
     learn : float, default=0.5
         The share of the scans learned as recorded.
     inputs : {"ring", "points"}, default="ring"
@@ -258,7 +273,8 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
     objects = _objects(sweeps, objects, first, seed, n_objects, min_passes, 0 if unseen_places else 1, threshold,
                        unseen_places)
     cast, seen, which = _cast(sweeps, objects, threshold)
-    looked = _seen_places(sweeps[:first], objects, threshold)
+    places = places or unseen_places
+    looked = _seen_places(sweeps[:first], objects, threshold, places)
     poses = cast.poses
     later = np.arange(len(sweeps)) >= first
     test = later & (familiar_places(poses, poses[:first], radius, max_turn) | (which >= 0))
@@ -268,28 +284,29 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
     take = np.r_[np.flatnonzero(~later), np.flatnonzero(test), np.flatnonzero(twins)]
     n_train, n_test, n_twin = int(first), int(test.sum()), int(twins.sum())
     seen_as = np.array([o.name for o in objects] + [FAMILIAR], dtype=object)[which]
-    seen_place = np.r_[looked > 0, False][which]
     meta = _metadata(objects, sweeps, path, dict(inputs=inputs, sectors=sectors, reduce=reduce, threshold=threshold),
                      reading, report, looked)
     meta.update(task=name or f"inspection-objects-{Path(path).name}", train_passes=1,
                 description="A recording learned as it was; virtual objects appear in its later part.",
                 test_parts={"with objects": n_test, "as recorded (the scans that see an object)": n_twin},
                 familiar_places={"radius_m": float(radius), "max_turn_rad": float(max_turn)})
-    meta["labels"]["seen_place"] = SEEN_PLACE
+    columns = {"time": cast.times[take], "scan": take,
+               "object": np.r_[seen_as[~later], seen_as[test], seen_as[twins]].astype(str),
+               "with_objects": np.r_[np.ones(n_train + n_test), np.zeros(n_twin)].astype(bool)}
+    if places:
+        seen_place = np.r_[looked > 0, False][which]
+        _place_labels(meta, columns, np.r_[seen_place[~later], seen_place[test], seen_place[twins]])
     return Dataset(
         meta["task"], np.r_[X[~later], X[test], recorded[twins]],
         y=np.r_[np.zeros(n_train), (which[test] >= 0), np.zeros(n_twin)].astype(np.int64),
         split=np.array(["train"] * n_train + ["test"] * (n_test + n_twin)),
         poses=poses[take], run=np.r_[np.zeros(n_train + n_test), np.ones(n_twin)].astype(np.int64),
-        columns={"time": cast.times[take], "scan": take,
-                 "object": np.r_[seen_as[~later], seen_as[test], seen_as[twins]].astype(str),
-                 "seen_place": np.r_[seen_place[~later], seen_place[test], seen_place[twins]],
-                 "with_objects": np.r_[np.ones(n_train + n_test), np.zeros(n_twin)].astype(bool)},
-        metadata=meta)
+        columns=columns, metadata=meta)
 
 
 def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int = 20, n_objects: int = 4,
-                     seed: int = 0, min_passes: int = 3, seen_before: int = 0, unseen_places: bool = False,
+                     seed: int = 0, min_passes: int = 3, seen_before: int = 0, places: bool = False,
+                     unseen_places: bool = False,
                      inputs: str = "ring", sectors=16,
                      reduce="min", threshold: float = PAPER_THRESHOLD, topic=None, pose_topic=None, base_frame=None,
                      mounts=None, fragments="auto", echo: str = "first", name: str | None = None) -> Dataset:
@@ -304,9 +321,13 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
         Drawn objects stand where the robot looked at least this many times
         before they appear (0: anywhere beside its later path, a place it may
         meet for the first time with the object in it).
+    places : bool, default=False
+        Label each object's place as seen or not before it appeared (as
+        :func:`inspection_task`).
     unseen_places : bool, default=False
         Draw the objects where no beam before they appear passed through or
-        ended (:mod:`.places`): places the robot had never seen (``seen_before`` 0).
+        ended (:mod:`.places`): places the robot had never seen (``seen_before``
+        0; implies ``places``).
     warmup : float, default=0.3
         The share of the scans (whole runs) before the objects appear.
     run_scans : int, default=20
@@ -325,7 +346,8 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     objects = _objects(sweeps, objects, warm * run_scans, seed, n_objects, min_passes, seen_before, threshold,
                        unseen_places)
     cast, seen, which = _cast(sweeps, objects, threshold)
-    looked = _seen_places(sweeps, objects, threshold)
+    places = places or unseen_places
+    looked = _seen_places(sweeps, objects, threshold, places)
     poses, times = cast.poses, cast.times
     exposure = np.full(len(sweeps), -1, dtype=np.int64)
     for k, obj in enumerate(objects):
@@ -344,8 +366,9 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
     meta.update(task=label, run_scans=int(run_scans),
                 description="A recording driven on; virtual objects appear after the warm-up and stay.")
     meta["labels"]["exposure"] = "the robot's passes of the object before this one (0 at first sight)"
-    meta["labels"]["seen_place"] = SEEN_PLACE
+    columns = dict(task.columns, exposure=exposure, time=times,
+                   object=np.where(which >= 0, names, FAMILIAR).astype(str))
+    if places:
+        _place_labels(meta, columns, np.r_[looked > 0, False][which])
     return replace(task, y=((exposure == 0) & (which >= 0)).astype(np.int64), poses=poses, metadata=meta,
-                   columns=dict(task.columns, exposure=exposure, time=times,
-                                object=np.where(which >= 0, names, FAMILIAR).astype(str),
-                                seen_place=np.r_[looked > 0, False][which]))
+                   columns=columns)

@@ -114,7 +114,7 @@ NEAR = Cylinder("near", 5.0, 0.6, 0.25, start=8.0)
 
 
 def test_the_inspection_says_per_scan_whether_the_objects_place_was_learned(drive_log):
-    task = inspection_task(drive_log, [NEAR, FAR], learn=8 / 84, sectors=8)
+    task = inspection_task(drive_log, [NEAR, FAR], learn=8 / 84, places=True, sectors=8)
     objects = {o["name"]: o for o in task.metadata["objects"]}
     assert objects["near"]["seen_place"] and objects["near"]["place_looks"] > 0
     assert not objects["far"]["seen_place"] and objects["far"]["place_looks"] == 0
@@ -122,10 +122,15 @@ def test_the_inspection_says_per_scan_whether_the_objects_place_was_learned(driv
     assert {"near", "far"} <= set(names.tolist())
     assert seen_place.tolist() == (names == "near").tolist()   # familiar scans: no object, no place
     assert "seen_place" in task.metadata["labels"]
+    # unasked, a task is as it was: no column, nothing in the metadata
+    plain = inspection_task(drive_log, [NEAR, FAR], learn=8 / 84, sectors=8)
+    assert "seen_place" not in plain.columns and "seen_place" not in plain.metadata["labels"]
+    assert "place_looks" not in plain.metadata["objects"][0]
 
 
 def test_the_exploration_counts_the_scans_before_each_object_appears(drive_log):
-    task = exploration_task(drive_log, [NEAR, FAR], warmup=0.1, run_scans=4, min_passes=1, sectors=8)
+    task = exploration_task(drive_log, [NEAR, FAR], warmup=0.1, run_scans=4, min_passes=1, places=True,
+                            sectors=8)
     objects = {o["name"]: o for o in task.metadata["objects"]}
     assert objects["near"]["seen_place"] and not objects["far"]["seen_place"]
     assert task.columns["seen_place"].tolist() == (task.columns["object"] == "near").tolist()
