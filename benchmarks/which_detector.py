@@ -35,7 +35,7 @@ MAPS_INSPECTION = "maps-inspection"
 SUITES = (DETECTION, EXPLORATION, OBJECTS_INSPECTION, OBJECTS_EXPLORATION, MAPS_INSPECTION, MAPS_EXPLORATION,
           MAPS_DETECTION)
 #: the maps of the bar and the occupancy grid they must be ahead of: the form chosen by studies/maps/maps-grid.md
-MAPS, GRID = ("habituating-map", "map-explore"), "GRID-CHOSEN"
+MAPS, GRID = ("habituating-map", "map-explore"), "occupancy-grid-one-pass"
 #: the bar on objects in seen places: inspection ROC AUC and first-encounter AUC (and chance, on unseen places)
 BAR_INSPECTION, BAR_FIRST_SIGHT, CHANCE = 0.95, 0.90, 0.5
 #: the answer before the rule of studies/learning_answer/learning-answer.md (the sonar ring alone)
