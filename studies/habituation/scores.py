@@ -1,8 +1,8 @@
 """The scores of the habituation study (studies/habituation/rule.md) from its runs.
 
-    python studies/habituation/scores.py results/habituation-development
+    python studies/habituation/scores.py results/habituation-development-seen results/habituation-development-anywhere
 
-Reads the run's ``results.jsonl`` and prints, one line a candidate (its label) in the rule's order, H (the
+Reads the runs' ``results.jsonl`` (or the ``results.csv`` committed beside this file) and prints, one line a candidate (its label) in the rule's order, H (the
 ``-familiar`` tasks, objects where the robot had looked before, on which it habituates: 3rd/1st excess
 within +-0.25 with the first-exposure separation at least 0.5, as the exploration tables define it), its
 first sight (the mean first-encounter ROC AUC of the ``-familiar`` tasks), its false alarms (the mean
@@ -102,12 +102,12 @@ def _task_line(r, tasks) -> str:
 
 def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("run", help="the run's folder, as `novelty bench --out` wrote it (its results.jsonl)")
+    parser.add_argument("runs", nargs="+", help="the runs' folders, as `novelty bench --out` wrote them")
     parser.add_argument("--control", default="defaults", help="the candidate the guards compare with")
     args = parser.parse_args(argv)
-    rows = read_rows(f"{args.run}/results.jsonl")
+    rows = [row for run in args.runs for row in read_rows(f"{run}/results.jsonl")]
     if not rows:
-        parser.error(f"no rows in {args.run}/results.jsonl: give the folder that `novelty bench --out` wrote")
+        parser.error(f"no rows in {', '.join(args.runs)}: give the folders that `novelty bench --out` wrote")
     print(table(scores(rows, args.control)))
 
 
