@@ -16,7 +16,9 @@ task); then the per-task figures. Each figure is a mean over the seeds the run h
 from __future__ import annotations
 
 import argparse
+import csv
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -31,6 +33,17 @@ SEEN = tuple(f"{task}-familiar" for task in TASKS)
 FIRST_SIGHT_MARGIN, FALSE_ALARM_MARGIN = 0.02, 0.01
 #: item 6's first sight while learning, said beside the habituation bar
 FIRST_SIGHT_BAR = 0.90
+
+
+def read_results(folder) -> list[dict]:
+    """The rows of a run's folder: its ``results.jsonl`` as ``novelty bench`` wrote it, else its ``results.csv``
+    (the file committed beside this script; its values as text, which the scores read as numbers)."""
+    folder = Path(folder)
+    rows = read_rows(folder / "results.jsonl")
+    if rows or not (folder / "results.csv").exists():
+        return rows
+    with open(folder / "results.csv", newline="", encoding="utf-8") as fh:
+        return list(csv.DictReader(fh))
 
 
 def scores(rows, control: str = "defaults") -> list[dict]:
@@ -105,7 +118,7 @@ def main(argv=None) -> None:
     parser.add_argument("runs", nargs="+", help="the runs' folders, as `novelty bench --out` wrote them")
     parser.add_argument("--control", default="defaults", help="the candidate the guards compare with")
     args = parser.parse_args(argv)
-    rows = [row for run in args.runs for row in read_rows(f"{run}/results.jsonl")]
+    rows = [row for run in args.runs for row in read_results(run)]
     if not rows:
         parser.error(f"no rows in {', '.join(args.runs)}: give the folders that `novelty bench --out` wrote")
     print(table(scores(rows, args.control)))

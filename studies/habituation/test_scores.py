@@ -6,6 +6,8 @@ Rows are written by hand, so each score is checked against an answer known in ad
 
 from __future__ import annotations
 
+import csv
+
 import pytest
 
 from . import scores as hs
@@ -83,3 +85,15 @@ def test_the_table_has_a_line_per_candidate():
     assert "| `m` | yes (yes, yes) | 3 | 0.800 | 0.020 | yes |" in text
     assert "| `m` | 0.800 / 0.800 / 0.800 | 1.00 / 1.00 / 1.00 | 0.400 / 0.400 / 0.400 | 0.220 / 0.220 / 0.220 " \
            "| 0.040 / 0.040 / 0.040 | 0.10 / 0.10 / 0.10 | yes / yes / yes |" in text
+
+
+def test_a_committed_csv_scores_as_the_run_s_rows(tmp_path):
+    rows = _candidate("defaults") + _candidate("m", habituate=hs.SEEN[:1], auc=0.81)
+    with open(tmp_path / "results.csv", "w", newline="", encoding="utf-8") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    read = hs.read_results(tmp_path)
+    assert all(isinstance(r["excess_1"], str) for r in read)  # text, as a csv holds it
+    assert hs.table(hs.scores(read)) == hs.table(hs.scores(rows))
+    assert hs.read_results(tmp_path / "absent") == []
