@@ -182,7 +182,7 @@ def table(suite: str, name: str, rows: list[dict]) -> str:
     # this file's help or a region's key needs no numba compile
     from novelty.bench.exploration.summary import exploration_text
     from novelty.bench.holdout.summary import ranking_text
-    from novelty.bench.reports.places import places_text
+    from novelty.bench.reports.place_tables import places_text
     from novelty.bench.reports.ranking import per_task_text
     from novelty.bench.reports.statistics import paired_text
 

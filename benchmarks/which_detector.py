@@ -374,7 +374,7 @@ def _below_chance(found: dict) -> list[str]:
 
 
 def places_text(results: Callable[[str], list[dict]]) -> str:
-    from novelty.bench.reports.places import place_means
+    from novelty.bench.reports.place_tables import place_means
 
     inspection, exploration = place_means(results(MAPS_INSPECTION)), place_means(results(MAPS_EXPLORATION))
     detectors = list(dict.fromkeys([*inspection, *exploration]))

@@ -5,7 +5,7 @@
 - :mod:`~novelty.bench.reports.statistics`: the paired comparison, ranks per
   task and the tests between detectors;
 - :mod:`~novelty.bench.reports.summary`: ``summary.md``;
-- :mod:`~novelty.bench.reports.places`: objects tasks' scores on objects in
+- :mod:`~novelty.bench.reports.place_tables`: objects tasks' scores on objects in
   seen and in unseen places, apart;
 - :mod:`~novelty.bench.reports.figures` and
   :mod:`~novelty.bench.reports.critical_difference`: what the plots share,
