@@ -392,6 +392,8 @@ SHARED_NAMES = {
                "reproduce/experiments/ summarise a run of theirs",
     "exploration": "the exploration protocol (bench/exploration/, beside bench/holdout/) and its tasks "
                    "(tasks/exploration/)",
+    "places": "places a robot meets again from its poses (tasks/places.py) and whether an object's place was seen "
+              "before it appeared (tasks/objects/places.py, beside the other modules of objects)",
     "figures": "the figures of the paper's experiments (reproduce/) and of a benchmark's report (bench/reports/)",
     "protocol": "the paper's protocol (reproduce/) and the benchmark's protocols' interface (bench/)",
     "table1": "the paper's Table 1: its experiments (reproduce/experiments/) and its rows against the paper's "

@@ -18,6 +18,9 @@ again. From the poses alone (no scan is looked at):
   the warm-up are tracked features, a scan's exposure is its place's visits
   before it.
 
+This module shares its name with :mod:`novelty.tasks.objects.places` (whether an
+object's place was seen before it appeared): both are about places, one of a drive, one of an object.
+
 References
 ----------
 Hartigan, J. A. (1975). Clustering Algorithms. Wiley, New York.

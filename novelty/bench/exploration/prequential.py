@@ -172,7 +172,7 @@ def place_metrics(novelty, run, feature, exposure, warmup: int, seen_place) -> d
     """The first-encounter AUC and count of first sights of the objects in seen and in unseen places, apart.
 
     ``seen_place``: per scan, whether the place of the object it sees was
-    seen before the object appeared (:mod:`novelty.tasks.objects.seen_places`).
+    seen before the object appeared (:mod:`novelty.tasks.objects.places`).
     """
     seen_place = np.asarray(seen_place, dtype=bool)
     first = (np.asarray(run) >= warmup) & (np.asarray(exposure) == 0) & (np.asarray(feature) != FAMILIAR)

@@ -164,7 +164,7 @@ def place_metrics(novelty, y, seen_place) -> dict:
     """The ROC AUC and count of the novel scans whose object stands in a seen and in an unseen place, apart.
 
     ``seen_place``: per scan, whether the place of the object it sees was
-    seen while the detector learned (:mod:`novelty.tasks.objects.seen_places`);
+    seen while the detector learned (:mod:`novelty.tasks.objects.places`);
     each class is scored against every normal test scan.
     """
     seen_place = np.asarray(seen_place, dtype=bool)

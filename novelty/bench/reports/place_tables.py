@@ -1,7 +1,7 @@
 """Objects in seen and in unseen places, apart: each detector's mean score on each, per recording.
 
 The objects tasks say whether each object's place was seen before it appeared
-(:mod:`novelty.tasks.objects.seen_places`); a hold-out cell then reports the ROC AUC
+(:mod:`novelty.tasks.objects.places`); a hold-out cell then reports the ROC AUC
 of the objects in seen places and of those in unseen places, each against
 the same normal scans (``roc_auc_seen``, ``roc_auc_unseen``), an exploration
 cell their first-encounter AUC (``first_encounter_auc_seen``,

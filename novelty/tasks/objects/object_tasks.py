@@ -7,7 +7,7 @@ objects (the user's, or drawn by a seed beside the path:
 them into every sweep (:mod:`.raycast`) and label every scan with the object
 it sees (:mod:`novelty.tasks.objects.casting`) and, with ``places=True``,
 whether that object's place was seen before it appeared
-(:mod:`novelty.tasks.objects.seen_places`: the column ``seen_place``; each
+(:mod:`novelty.tasks.objects.places`: the column ``seen_place``; each
 object's ``seen_place`` and ``place_looks`` in the metadata). The rings are the paper's
 (:func:`object_rings`: sectors reduced to their nearest echo, thresholded,
 normalised, inverted), at one or several scales at once.
@@ -52,7 +52,7 @@ from ...sonar.preprocessing import PAPER_THRESHOLD, preprocess
 from ..exploration.runs import from_runs
 from .casting import cast_all, passes, sightings
 from .placement import check_objects, draw_objects, read_objects
-from .seen_places import PLACE_TOLERANCE, looks
+from .places import PLACE_TOLERANCE, looks
 
 __all__ = ["object_rings", "object_inputs", "INPUTS", "read_drive", "inspection_task", "exploration_task", "familiar_places",
            "LABEL_DEFAULTS"]
@@ -65,7 +65,7 @@ LABEL_DEFAULTS = {"margin": 0.1, "min_beams": 3, "leave": 4.0}
 #: What a scan's ``seen_place`` says (the metadata's ``labels``).
 SEEN_PLACE = ("whether the place of the object this scan sees was seen before the object appeared: a beam of the "
               "scans learned before it passed through or ended within place_tolerance of its footprint "
-              "(novelty.tasks.objects.seen_places); False for a scan that sees no object")
+              "(novelty.tasks.objects.places); False for a scan that sees no object")
 
 
 def read_drive(path, topic=None, *, pose_topic=None, base_frame=None, mounts=None, fragments="auto",
@@ -178,7 +178,7 @@ def _objects(sweeps, objects, first: int, seed: int, n_objects: int, min_passes:
 
 
 def _seen_places(sweeps, objects, threshold: float, places: bool) -> np.ndarray | None:
-    """How many of ``sweeps`` saw each object's place before it appeared (:func:`.seen_places.looks`); None unless
+    """How many of ``sweeps`` saw each object's place before it appeared (:func:`.places.looks`); None unless
     ``places``."""
     return looks(sweeps, objects, tolerance=PLACE_TOLERANCE, within=threshold) if places else None
 
@@ -245,12 +245,12 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
         once before they appear and ``min_passes`` times after.
     places : bool, default=False
         Label each object's place as seen or not while the robot learned
-        (:mod:`.seen_places`: the column ``seen_place``, each object's
+        (:mod:`.places`: the column ``seen_place``, each object's
         ``seen_place`` and ``place_looks`` in the metadata), for the
         benchmarks' scores on seen and unseen places apart.
     unseen_places : bool, default=False
         Draw the objects where no learned beam passed through or ended
-        (:mod:`.seen_places`): places the robot had never seen (implies ``places``).
+        (:mod:`.places`): places the robot had never seen (implies ``places``).
     learn : float, default=0.5
         The share of the scans learned as recorded.
     inputs : {"ring", "points"}, default="ring"
@@ -326,7 +326,7 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
         :func:`inspection_task`).
     unseen_places : bool, default=False
         Draw the objects where no beam before they appear passed through or
-        ended (:mod:`.seen_places`): places the robot had never seen (``seen_before``
+        ended (:mod:`.places`): places the robot had never seen (``seen_before``
         0; implies ``places``).
     warmup : float, default=0.3
         The share of the scans (whole runs) before the objects appear.

@@ -26,7 +26,7 @@ from typing import Sequence
 import numpy as np
 
 from .casting import cast_all, passes, sightings
-from .seen_places import PLACE_TOLERANCE, looks
+from .places import PLACE_TOLERANCE, looks
 from .raycast import world_beams
 from .shapes import SHAPES, Box, Cylinder
 
@@ -227,7 +227,7 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
     in at least ``before`` passes before ``start`` (had it stood there) and
     ``min_passes`` after. With ``unseen``, it is kept only where no beam of
     the scans before ``start`` passed through or ended in its footprint
-    grown by ``tolerance`` (:func:`.seen_places.looks`): a place the robot had
+    grown by ``tolerance`` (:func:`.places.looks`): a place the robot had
     never seen (``before`` must then be 0).
 
     Raises

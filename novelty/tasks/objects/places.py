@@ -12,6 +12,9 @@ A detector that learns places (a map of cells) can only tell a changed
 place from a new one when the place was seen: the objects tasks label each
 object with it (:func:`looks`), and the benchmarks report the objects in
 seen and unseen places apart.
+
+This module shares its name with :mod:`novelty.tasks.places` (places met
+again from the poses): both are about places, one of a drive, one of an object.
 """
 
 from __future__ import annotations

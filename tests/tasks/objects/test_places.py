@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from novelty.io.ros.messages import Sweep
-from novelty.tasks.objects.seen_places import grown, looks
+from novelty.tasks.objects.places import grown, looks
 from novelty.tasks.objects.shapes import Box, Cylinder, Wall
 
 #: A disc of radius 0.2 at (2, 0), appearing at t = 10: grown by 0.1 m its near edge is at x = 1.7.
