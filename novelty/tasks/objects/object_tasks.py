@@ -178,7 +178,7 @@ def _objects(sweeps, objects, first: int, seed: int, n_objects: int, min_passes:
 
 
 def _seen_places(sweeps, objects, threshold: float, places: bool) -> np.ndarray | None:
-    """How many of ``sweeps`` saw each object's place before it appeared (:func:`.places.looks`); None unless
+    """How many of ``sweeps`` saw each object's place before it appeared (:func:`novelty.tasks.objects.places.looks`); None unless
     ``places``."""
     return looks(sweeps, objects, tolerance=PLACE_TOLERANCE, within=threshold) if places else None
 
@@ -245,12 +245,12 @@ def inspection_task(path, objects=None, *, learn: float = 0.5, n_objects: int = 
         once before they appear and ``min_passes`` times after.
     places : bool, default=False
         Label each object's place as seen or not while the robot learned
-        (:mod:`.places`: the column ``seen_place``, each object's
+        (:mod:`novelty.tasks.objects.places`: the column ``seen_place``, each object's
         ``seen_place`` and ``place_looks`` in the metadata), for the
         benchmarks' scores on seen and unseen places apart.
     unseen_places : bool, default=False
         Draw the objects where no learned beam passed through or ended
-        (:mod:`.places`): places the robot had never seen (implies ``places``).
+        (:mod:`novelty.tasks.objects.places`): places the robot had never seen (implies ``places``).
     learn : float, default=0.5
         The share of the scans learned as recorded.
     inputs : {"ring", "points"}, default="ring"
@@ -326,7 +326,7 @@ def exploration_task(path, objects=None, *, warmup: float = 0.3, run_scans: int 
         :func:`inspection_task`).
     unseen_places : bool, default=False
         Draw the objects where no beam before they appear passed through or
-        ended (:mod:`.places`): places the robot had never seen (``seen_before``
+        ended (:mod:`novelty.tasks.objects.places`): places the robot had never seen (``seen_before``
         0; implies ``places``).
     warmup : float, default=0.3
         The share of the scans (whole runs) before the objects appear.

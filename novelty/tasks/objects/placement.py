@@ -227,7 +227,7 @@ def draw_objects(sweeps: Sequence, n: int, seed: int, *, start: float, sizes=(0.
     in at least ``before`` passes before ``start`` (had it stood there) and
     ``min_passes`` after. With ``unseen``, it is kept only where no beam of
     the scans before ``start`` passed through or ended in its footprint
-    grown by ``tolerance`` (:func:`.places.looks`): a place the robot had
+    grown by ``tolerance`` (:func:`novelty.tasks.objects.places.looks`): a place the robot had
     never seen (``before`` must then be 0).
 
     Raises
