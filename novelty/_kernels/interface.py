@@ -28,7 +28,11 @@ The methods (``X`` a C-contiguous float64 batch the filter checked, ``x`` one sc
   nearest unit (row), its squared distance and its efficacy;
 - ``score_one(x) -> bool``: ``score`` of one scan, into ``scored1``
   (efficacy, squared distance, row); False as ``learn_one``;
-- ``nearest(X) -> (rows, distances)``: the nearest units alone.
+- ``nearest(X) -> (rows, distances)``: the nearest units alone;
+- ``learn_calibrating(X, dt, stimulus, calibration, scale, distances=None) ->
+  (efficacy, scales, scale)``: ``learn`` while the match scale is calibrated, the new
+  scales given to the clusterer (:meth:`Engine.calibrate`), one loop for every engine
+  (:meth:`~novelty._kernels.reference.ReferenceEngine.learn_calibrating`).
 
 **Freshness.** An engine reads the parts when it is made; setting an
 attribute of a part (or of an object it was told to :meth:`Engine.watch`)
