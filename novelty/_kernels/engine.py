@@ -40,6 +40,7 @@ from typing import Callable
 
 import numpy as np
 
+from .._component import engine_writes
 from .drivers import driver_for
 from .handover import learn_handing_over
 from .interface import flat
@@ -166,11 +167,12 @@ class CompiledEngine(ReferenceEngine):
     def _show(self, n: int) -> None:
         """Give the parts views of the first ``n`` units of the engine's arrays (counted as
         changes, which the engine takes as seen)."""
-        _put(self.clusterer, "weights_", self._WT[:, :n].T)
-        for name, a, square in zip(self.c_spec.arrays, self._c_arrays, self._c_square):
-            _put(self.clusterer, name, a[:n, :n] if square else a[:n])
-        for name, a in zip(self.s_spec.arrays, self._s_arrays):
-            _put(self.synapse, name, a[:n])
+        with engine_writes(self.parts):
+            _put(self.clusterer, "weights_", self._WT[:, :n].T)
+            for name, a, square in zip(self.c_spec.arrays, self._c_arrays, self._c_square):
+                _put(self.clusterer, name, a[:n, :n] if square else a[:n])
+            for name, a in zip(self.s_spec.arrays, self._s_arrays):
+                _put(self.synapse, name, a[:n])
         self._shown = n
         self.seen()
 

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..distances import squared_distances
 from .._validation.scans import CLEARED
+from .._component import engine_writes
 from .interface import ONE, Engine
 
 __all__ = ["ReferenceEngine", "learn_stream"]
@@ -74,17 +75,19 @@ class ReferenceEngine(Engine):
     def adopt(self) -> None:
         """Make the parts' arrays writable where they are not (a read-only array set on a part
         is copied: the loop writes into them in place, as the compiled engine into its own)."""
-        for part in self.parts:
-            for name, value in list(vars(part).items()):
-                if type(value) is np.ndarray and name.endswith("_") and not value.flags.writeable:
-                    setattr(part, name, value.copy())
+        with engine_writes(self.parts):
+            for part in self.parts:
+                for name, value in list(vars(part).items()):
+                    if type(value) is np.ndarray and name.endswith("_") and not value.flags.writeable:
+                        setattr(part, name, value.copy())
         self.seen()
 
     # ------------------------------------------------------------- learning
     def learn(self, X, dt, stimulus, distances=None):
         self.check_scans(X)
         self.check_values()
-        novelty = learn_stream(self.clusterer, self.synapse, X, dt, stimulus, distances)
+        with engine_writes(self.parts):
+            novelty = learn_stream(self.clusterer, self.synapse, X, dt, stimulus, distances)
         self.seen()  # its own changes
         return novelty
 
@@ -92,8 +95,9 @@ class ReferenceEngine(Engine):
         if not self._takes(x):
             return False
         self.check_values()  # written in place since the last call: as every call checks them
-        self.novelty1[0] = learn_stream(self.clusterer, self.synapse, x[None, :], ONE, stimulus,
-                                        self.distance1)[0]
+        with engine_writes(self.parts):
+            self.novelty1[0] = learn_stream(self.clusterer, self.synapse, x[None, :], ONE, stimulus,
+                                            self.distance1)[0]
         self.seen()
         return True
 
