@@ -9,7 +9,9 @@ JSON values, which is what model files hold (never pickle).
 
 from __future__ import annotations
 
+import contextlib
 import numbers
+import warnings
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -17,7 +19,7 @@ from sklearn.base import BaseEstimator
 
 from ._validation import validate_parameters
 
-__all__ = ["Component", "KernelSpec", "StateError", "declares"]
+__all__ = ["Component", "KernelSpec", "StateError", "declares", "held_by_engine", "engine_writes"]
 
 #: the capabilities a component class may declare (``_capabilities``), and what each promises
 CAPABILITIES = {
@@ -126,7 +128,14 @@ class Component(BaseEstimator):
         compare one count instead of every value to know whether anything was replaced or set
         since they last read it. Changes made in place inside an array are not counted (nothing
         needs them to be: the engine reads arrays in place); the engine writes the counters it
-        owns back without counting (through ``vars``)."""
+        owns back without counting (through ``vars``).
+
+        A public attribute (a parameter or learned state) set on a fitted part, one an engine
+        holds (:func:`held_by_engine`), from outside the engine's own writes
+        (:func:`engine_writes`), is deprecated: a ``FutureWarning`` says what to do instead, and
+        a future release will raise. The engine is the one writer of what a filter learned."""
+        if vars(self).get("_held") and not vars(self).get("_writing") and not name.startswith("_"):
+            _warn_fitted_write(self, name)
         object.__setattr__(self, name, value)
         vars(self)["_changes"] = self._changes + 1
 
@@ -195,6 +204,39 @@ class Component(BaseEstimator):
 
     def _rebuild_scratch(self) -> None:
         """Recompute private caches (names starting with ``_``) from the state."""
+
+
+def held_by_engine(component) -> None:
+    """Mark ``component`` as a fitted part an engine holds: attributes set on it from outside the
+    engine's writes warn (:meth:`Component.__setattr__`). Kept in its ``__dict__`` (a copy of a
+    filter copies it; a model file, which holds learned state only, does not)."""
+    vars(component)["_held"] = True
+
+
+@contextlib.contextmanager
+def engine_writes(parts):
+    """The block in which an engine (or the checks it relies on) sets attributes on its
+    fitted ``parts``: no warning (:meth:`Component.__setattr__`). Re-entrant."""
+    before = [vars(part).get("_writing", False) for part in parts]
+    for part in parts:
+        vars(part)["_writing"] = True
+    try:
+        yield
+    finally:
+        for part, was in zip(parts, before):
+            vars(part)["_writing"] = was
+
+
+def _warn_fitted_write(component, name: str) -> None:
+    kind = component._kind or "part"
+    if name in component._get_param_names():
+        instead = (f"to learn with another value, set it on the filter (set_params({kind}__{name}=...)) "
+                   "and fit again")
+    else:
+        instead = "to start from another learned state, fit again (or load a model file)"
+    warnings.warn(f"Setting {type(component).__name__}.{name} on a fitted part (a filter's {kind}_) is "
+                  "deprecated and will raise an error in a future release: the filter's engine is the one "
+                  f"writer of what the filter learned; {instead}.", FutureWarning, stacklevel=3)
 
 
 def _is_json_value(value) -> bool:

@@ -124,6 +124,10 @@ class HabituatingFilter(NoveltyDetector):
     (``stimulus``, ``threshold``, ``novelty_rule``, ...) apply from the next
     call. The arithmetic is its engine's (:mod:`novelty._kernels`): compiled
     or the numpy reference, with the same results; :attr:`compiled_` says which.
+    The engine is the one writer of the fitted parts: setting an attribute on
+    ``clusterer_`` or ``synapse_`` (``det.synapse_.alpha = 1.5``) is
+    deprecated (a ``FutureWarning``; a future release raises): set the
+    parameter on the filter and fit again, or refit.
 
     References
     ----------

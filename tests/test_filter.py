@@ -40,7 +40,8 @@ def state(det):
     out = {"n_features_in_": det.n_features_in_, "last_time_": det.last_time_}
     for part in ("clusterer_", "synapse_"):
         for name, value in vars(getattr(det, part)).items():
-            if name != "_changes":  # not state: the count of attributes set
+            if name not in ("_changes", "_held", "_writing"):  # not state: the count of attributes set,
+                # the marks of the engine that holds and writes the part
                 out[f"{part}.{name}"] = value.copy() if isinstance(value, np.ndarray) else value
     return out
 

@@ -69,8 +69,10 @@ def all_state(det):
     for owner, obj in (("", det), ("clusterer_.", det.clusterer_), ("synapse_.", det.synapse_)):
         for name, value in vars(obj).items():
             # the compiled loop's engine is not state: built on first use (a loaded model builds
-            # its own); nor are the counts of attributes set (Component.__setattr__), nor the lock
-            if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen", "_lock"):
+            # its own); nor are the counts of attributes set (Component.__setattr__), a part's marks
+            # of the engine that holds it and writes it, nor the lock
+            if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen", "_lock", "_held",
+                        "_writing"):
                 continue
             out[owner + name] = value
     return out

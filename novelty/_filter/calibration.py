@@ -8,7 +8,10 @@ scored with the scale of the scans before it (none before two distinct scans:
 the efficacy alone), then added to the calibration. A clusterer that learns
 by the scale (``Clusterer.uses_match_scale``: GWR's ``"auto"`` radius) learns
 one scan at a time meanwhile, given each new scale; any other learns the
-batch in one call, since its learning does not read the scale.
+batch in one call, since its learning does not read the scale. The learning,
+and the scale given to the clusterer, are the engine's
+(:meth:`~novelty._kernels.reference.ReferenceEngine.learn_calibrating`); the
+novelty of each scan, combined with its own scale, is the filter's.
 """
 
 from __future__ import annotations
@@ -22,36 +25,25 @@ __all__ = ["learn_calibrating"]
 
 def learn_calibrating(detector, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
     """The novelty of the rows of ``X``, learned by ``detector`` while (and after) its
-    calibration (``detector._calibration``, not full) takes them."""
+    calibration (``detector._calibration``, not full) takes them: its engine learns them
+    (:meth:`~novelty._kernels.reference.ReferenceEngine.learn_calibrating`), and each
+    calibrating row's novelty is combined with the scale of the rows before it."""
     calibration = detector._calibration
-    at_once = not detector.clusterer_.uses_match_scale
     n = X.shape[0]
-    if at_once:
-        efficacy, distances = detector._learn_raw(X, dt)
-    else:
-        efficacy = np.empty(n)
-        distances = None if detector.novelty_rule == "efficacy" else np.empty(n)
-    scales = []  # each calibrating scan's scale, combined at the end
-    i = 0
-    while i < n and not calibration.full:
-        scales.append(detector.match_scale_)
-        if not at_once:
-            e, d = detector._learn_raw(X[i:i + 1], dt[i:i + 1])
-            efficacy[i] = e[0]
-            if distances is not None:
-                distances[i] = d[0]
-        if calibration.add(X[i]):
-            detector.match_scale_ = calibration.scale
-            if not at_once:
-                detector._current_engine().calibrate(detector.match_scale_)
-        i += 1
+    distances = None if detector.novelty_rule == "efficacy" else np.empty(n)
+    efficacy, scales, scale = detector._current_engine().learn_calibrating(
+        X, dt, float(detector.stimulus), calibration, detector.match_scale_, distances)
+    if scale is not detector.match_scale_:
+        detector.match_scale_ = scale
     detector.calibration_scans_ = calibration.scans
+    k, m = len(scales), efficacy.shape[0]
     out = np.empty(n)
-    out[:i] = _combine_each(detector.novelty_rule, efficacy[:i],
-                            None if distances is None else distances[:i], scales)
-    if i < n:
-        out[i:] = (detector._combine(efficacy[i:], distances[i:]) if at_once
-                   else detector._combine(*detector._learn_raw(X[i:], dt[i:])))
+    out[:k] = _combine_each(detector.novelty_rule, efficacy[:k], None if distances is None else distances[:k],
+                            scales)
+    if k < m:  # learned in the same call, the calibration full
+        out[k:m] = detector._combine(efficacy[k:], None if distances is None else distances[k:m])
+    if m < n:  # left to the engine chosen now
+        out[m:] = detector._learn(X[m:], dt[m:])
     return out
 
 

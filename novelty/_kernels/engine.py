@@ -26,7 +26,7 @@ them in and out on every call, saves a share of every single-scan call
 takes as seen; the counters are written back through ``vars``, uncounted.
 
 **Growth.** The driver stops when an input needs a unit it has no room for;
-:meth:`CompiledEngine._learn` then moves the state into buffers with more rows
+:meth:`CompiledEngine.learn` then moves the state into buffers with more rows
 (at least doubling, so few are wasted and few moves happen) and resumes.
 
 One module although just over 300 lines: holding the state, driving it and
@@ -40,8 +40,9 @@ from typing import Callable
 
 import numpy as np
 
+from .._component import engine_writes
 from .drivers import driver_for
-from .handover import handing_over
+from .handover import learn_handing_over
 from .interface import flat
 from .params import attribute, getter, pack, spec_of
 from .reference import ReferenceEngine
@@ -66,6 +67,12 @@ def driver_of(clusterer, synapse, records=None):
 class CompiledEngine(ReferenceEngine):
     """The engine interface (:mod:`.interface`) in compiled code (module docstring).
 
+    Each method of the interface is defined here and runs the compiled half that is ready,
+    else the reference's: ``learn`` and ``learn_one`` by the driver once it drives
+    (:attr:`driving`; while it compiles, ``learn`` hands over from the reference,
+    :mod:`.handover`), ``score``, ``nearest`` and ``score_one`` by the nearest-unit kernels
+    when the clusterer declares them.
+
     Parameters
     ----------
     clusterer, synapse : the fitted parts, their state checked (:mod:`.state`).
@@ -81,8 +88,9 @@ class CompiledEngine(ReferenceEngine):
     """
 
     why = "compiled"
-    #: the driver's ``score_one`` once it drives (:meth:`start_driving`)
-    _score_one = None
+    #: the driver's ``drive`` and ``score_one`` once it drives (:meth:`start_driving`): until
+    #: then the reference learns (handing over when ``_compiling`` is ready)
+    _drive = _score_one = None
 
     def __init__(self, clusterer, synapse, driver=None, compiling=None, scoring=None, pending=(),
                  records=None):
@@ -100,22 +108,17 @@ class CompiledEngine(ReferenceEngine):
             self._winner1 = np.empty(1, dtype=np.int64)
             self._one = (np.ones(1),)  # the driver's arguments for one scan, around stimulus and n
             self._out1 = (self._winner1, self.novelty1, self.distance1)
+        self._compiling = compiling
+        self._kernels = scoring
         if driver is not None:
             self.start_driving(driver, records)
-        elif compiling is not None:
-            self.learn = handing_over(compiling, self)
-        if scoring is not None:
-            self._kernels = scoring
-            self.nearest, self.score = self._nearest, self._score
-            if driver is not None:  # against the weights as learning holds them (else: the
-                self.score_one = self._score_held  # reference's, a batch of one by self.score)
 
     def start_driving(self, driver, records=None) -> None:
         """Learn by ``driver`` (loaded) from now on, on the state as the parts hold it now
         (``records``: the parts' records packed just now, by :func:`.choice.choose`)."""
-        self._drive, self._score_one = driver.module.drive, driver.module.score_one
         self.hold(records)
-        self.learn, self.learn_one = self._learn, self._learn_one
+        self._drive, self._score_one = driver.module.drive, driver.module.score_one
+        self._compiling = None
 
     # ------------------------------------------------------------- the state
     def hold(self, records=None) -> None:
@@ -164,11 +167,12 @@ class CompiledEngine(ReferenceEngine):
     def _show(self, n: int) -> None:
         """Give the parts views of the first ``n`` units of the engine's arrays (counted as
         changes, which the engine takes as seen)."""
-        _put(self.clusterer, "weights_", self._WT[:, :n].T)
-        for name, a, square in zip(self.c_spec.arrays, self._c_arrays, self._c_square):
-            _put(self.clusterer, name, a[:n, :n] if square else a[:n])
-        for name, a in zip(self.s_spec.arrays, self._s_arrays):
-            _put(self.synapse, name, a[:n])
+        with engine_writes(self.parts):
+            _put(self.clusterer, "weights_", self._WT[:, :n].T)
+            for name, a, square in zip(self.c_spec.arrays, self._c_arrays, self._c_square):
+                _put(self.clusterer, name, a[:n, :n] if square else a[:n])
+            for name, a in zip(self.s_spec.arrays, self._s_arrays):
+                _put(self.synapse, name, a[:n])
         self._shown = n
         self.seen()
 
@@ -194,10 +198,22 @@ class CompiledEngine(ReferenceEngine):
         if self._counter_names:
             self._write_counters(vars(self.clusterer), self._counters.tolist())
 
+    @property
+    def driving(self) -> bool:
+        """Whether the pair's driver learns (else the reference, handing over to the driver
+        once it is compiled when it was compiling)."""
+        return self._drive is not None
+
     # ------------------------------------------------------------- learning
-    def _learn(self, X, dt, stimulus, distances=None, winners=None):
-        """Learn the rows of ``X`` by the driver; ``winners`` (int64), if given, receives each
-        row's winner (its row at the time)."""
+    def learn(self, X, dt, stimulus, distances=None, winners=None):
+        """The interface's ``learn``, by the driver once it drives: while it compiles, the
+        reference learns block by block and hands over when it is ready (:mod:`.handover`);
+        without a driver, the reference. ``winners`` (int64, the driver's only), if given,
+        receives each row's winner (its row at the time)."""
+        if self._drive is None:
+            if self._compiling is not None:
+                return learn_handing_over(self, self._compiling, X, dt, stimulus, distances)
+            return ReferenceEngine.learn(self, X, dt, stimulus, distances)
         self.check_scans(X)
         self.check_values()
         X, dt = _c(X), _c(dt)
@@ -220,13 +236,16 @@ class CompiledEngine(ReferenceEngine):
         self._finish(n)
         return novelty
 
-    def _learn_one(self, x, stimulus) -> bool:
-        """One scan by the driver, which checks it first: as many features as the units have,
-        and a sum of squares within the norm bound with a margin
-        (``novelty._validation.scans.CLEARED``, far wider than rounding), so that NaN, infinity
-        and too large values all fail it (False, nothing learned); and the state's values, which
-        may have been written in place since the last call (False when one is not finite: the
-        general path's :meth:`check_values` then names it, as the reference's does)."""
+    def learn_one(self, x, stimulus) -> bool:
+        """The interface's ``learn_one``, by the driver once it drives (else the reference's),
+        which checks the scan first: as many features as the units have, and a sum of squares
+        within the norm bound with a margin (``novelty._validation.scans.CLEARED``, far wider
+        than rounding), so that NaN, infinity and too large values all fail it (False, nothing
+        learned); and the state's values, which may have been written in place since the last
+        call (False when one is not finite: the general path's :meth:`check_values` then names
+        it, as the reference's does)."""
+        if self._drive is None:
+            return ReferenceEngine.learn_one(self, x, stimulus)
         X = x[None, :]
         while True:
             done, n = self._drive(*self._head, X, *self._one, stimulus, self.n, *self._out1, True)
@@ -243,9 +262,30 @@ class CompiledEngine(ReferenceEngine):
         return True
 
     # -------------------------------------------------------------- scoring
-    def _nearest(self, X):
+    def nearest(self, X):
+        """The interface's ``nearest``, by the nearest-unit kernels when the clusterer
+        declares them (else the reference's)."""
+        if self._kernels is None:
+            return ReferenceEngine.nearest(self, X)
         rows, distances, _ = self._score(X)
         return rows, distances
+
+    def score(self, X):
+        """The interface's ``score``, by the nearest-unit kernels when the clusterer declares
+        them (else the reference's)."""
+        if self._kernels is None:
+            return ReferenceEngine.score(self, X)
+        return self._score(X)
+
+    def score_one(self, x) -> bool:
+        """The interface's ``score_one``: with the nearest-unit kernels and the driver, against
+        the weights as learning holds them (``WT``), checked first as :meth:`learn_one` checks
+        it, the state's values and the scan, by the driver module's ``score_one`` (one call: its
+        checks cost less than a second call from Python would); else the reference's, a batch
+        of one by :meth:`score`."""
+        if self._kernels is None or self._score_one is None:
+            return ReferenceEngine.score_one(self, x)
+        return self._score_one(*self._arrays, self.n, x, self.scored1) == 0
 
     def _score(self, X):
         self.check_scans(X)
@@ -275,12 +315,6 @@ class CompiledEngine(ReferenceEngine):
                 return None
             efficacy[i], distances[i], rows[i] = out
         return efficacy
-
-    def _score_held(self, x) -> bool:
-        """One scan against the weights as learning holds them (``WT``), checked first as
-        :meth:`_learn_one` checks it, the state's values and the scan, by the driver module's
-        ``score_one`` (one call: its checks cost less than a second call from Python would)."""
-        return self._score_one(*self._arrays, self.n, x, self.scored1) == 0
 
 
 def _c(a: np.ndarray) -> np.ndarray:

@@ -28,7 +28,11 @@ The methods (``X`` a C-contiguous float64 batch the filter checked, ``x`` one sc
   nearest unit (row), its squared distance and its efficacy;
 - ``score_one(x) -> bool``: ``score`` of one scan, into ``scored1``
   (efficacy, squared distance, row); False as ``learn_one``;
-- ``nearest(X) -> (rows, distances)``: the nearest units alone.
+- ``nearest(X) -> (rows, distances)``: the nearest units alone;
+- ``learn_calibrating(X, dt, stimulus, calibration, scale, distances=None) ->
+  (efficacy, scales, scale)``: ``learn`` while the match scale is calibrated, the new
+  scales given to the clusterer (:meth:`Engine.calibrate`), one loop for every engine
+  (:meth:`~novelty._kernels.reference.ReferenceEngine.learn_calibrating`).
 
 **Freshness.** An engine reads the parts when it is made; setting an
 attribute of a part (or of an object it was told to :meth:`Engine.watch`)
@@ -56,7 +60,7 @@ import operator
 
 import numpy as np
 
-from .._component import StateError
+from .._component import StateError, engine_writes, held_by_engine
 from .compiling import disabled
 from .params import spec_of
 from .._validation.scans import cleared
@@ -87,6 +91,8 @@ class Engine:
     def __init__(self, clusterer, synapse):
         self.clusterer, self.synapse = clusterer, synapse
         self.parts = parts_of(clusterer, synapse)
+        for part in self.parts:  # the engine is the one writer of what they learned
+            held_by_engine(part)
         #: the features of a scan: the weights' columns (checked against the filter's scans)
         self.width = clusterer.weights_.shape[1]
         self.novelty1, self.distance1 = np.empty(1), np.empty(1)
@@ -143,12 +149,13 @@ class Engine:
         others = [part for part in self.parts if part is not clusterer]  # the synapse, nested parts
         counts = tuple(map(_CHANGES, others))
         held = self.holds()
-        clusterer.calibrate(scale)
+        with engine_writes(self.parts):
+            clusterer.calibrate(scale)
         if not held or tuple(map(_CHANGES, others)) != counts:
             return
         after = vars(clusterer)
         changed = {name for name in before.keys() | after.keys()
-                   if name != "_changes" and before.get(name, _GONE) is not after.get(name, _GONE)}
+                   if name not in _BOOKKEEPING and before.get(name, _GONE) is not after.get(name, _GONE)}
         spec = spec_of(clusterer)
         fitted = {name for name, _ in spec.fitted} if spec is not None else set()
         if changed <= fitted and all(_finite_number(after.get(name)) for name in changed) \
@@ -243,6 +250,9 @@ class CheckedCopy:
 
 #: an attribute that is not there (``None`` may be one's value)
 _GONE = object()
+#: a component's own bookkeeping, not what it learned: its count of changes, the marks of the engine
+#: that holds and writes it (:func:`novelty._component.held_by_engine`, ``engine_writes``)
+_BOOKKEEPING = ("_changes", "_held", "_writing")
 
 
 def _finite_number(value) -> bool:

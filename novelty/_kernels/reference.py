@@ -23,6 +23,7 @@ import numpy as np
 
 from ..distances import squared_distances
 from .._validation.scans import CLEARED
+from .._component import engine_writes
 from .interface import ONE, Engine
 
 __all__ = ["ReferenceEngine", "learn_stream"]
@@ -74,17 +75,19 @@ class ReferenceEngine(Engine):
     def adopt(self) -> None:
         """Make the parts' arrays writable where they are not (a read-only array set on a part
         is copied: the loop writes into them in place, as the compiled engine into its own)."""
-        for part in self.parts:
-            for name, value in list(vars(part).items()):
-                if type(value) is np.ndarray and name.endswith("_") and not value.flags.writeable:
-                    setattr(part, name, value.copy())
+        with engine_writes(self.parts):
+            for part in self.parts:
+                for name, value in list(vars(part).items()):
+                    if type(value) is np.ndarray and name.endswith("_") and not value.flags.writeable:
+                        setattr(part, name, value.copy())
         self.seen()
 
     # ------------------------------------------------------------- learning
     def learn(self, X, dt, stimulus, distances=None):
         self.check_scans(X)
         self.check_values()
-        novelty = learn_stream(self.clusterer, self.synapse, X, dt, stimulus, distances)
+        with engine_writes(self.parts):
+            novelty = learn_stream(self.clusterer, self.synapse, X, dt, stimulus, distances)
         self.seen()  # its own changes
         return novelty
 
@@ -92,8 +95,9 @@ class ReferenceEngine(Engine):
         if not self._takes(x):
             return False
         self.check_values()  # written in place since the last call: as every call checks them
-        self.novelty1[0] = learn_stream(self.clusterer, self.synapse, x[None, :], ONE, stimulus,
-                                        self.distance1)[0]
+        with engine_writes(self.parts):
+            self.novelty1[0] = learn_stream(self.clusterer, self.synapse, x[None, :], ONE, stimulus,
+                                            self.distance1)[0]
         self.seen()
         return True
 
@@ -103,6 +107,41 @@ class ReferenceEngine(Engine):
         values all fail it (the general path then says which)."""
         with np.errstate(over="ignore", invalid="ignore"):
             return x.shape[0] == self.width and np.dot(x, x) <= CLEARED
+
+    def learn_calibrating(self, X, dt, stimulus, calibration, scale, distances=None):
+        """Learn the rows of ``X`` while ``calibration`` (a
+        :class:`~novelty.match_scale.ScaleCalibration`, not full) takes them, from the first.
+
+        Returns ``(efficacy, scales, scale)``: the efficacy novelty of each row learned
+        (``distances``, if given, receives its squared distance to its winner); for each row
+        the calibration took, the scale in force when it was learned (None before one is
+        known: the owner scores each calibrating row with the scale of the rows before it);
+        and the scale after them. A clusterer that learns by the scale
+        (``Clusterer.uses_match_scale``: GWR's ``"auto"`` radius) learns one row at a time,
+        given each new scale (:meth:`calibrate`), up to the row that fills the calibration or
+        after which this engine no longer :meth:`holds` the parts (a scale it could not take
+        in place, a kernel ready since): the owner learns the rest with the engine then
+        chosen. Any other clusterer learns every row in one call, since its learning does
+        not read the scale.
+        """
+        at_once = not self.clusterer.uses_match_scale
+        n = X.shape[0]
+        efficacy = self.learn(X, dt, stimulus, distances) if at_once else np.empty(n)
+        scales = []
+        i = 0
+        while i < n and not calibration.full:
+            scales.append(scale)
+            if not at_once:
+                efficacy[i] = self.learn(X[i:i + 1], dt[i:i + 1], stimulus,
+                                         None if distances is None else distances[i:i + 1])[0]
+            if calibration.add(X[i]):
+                scale = calibration.scale
+                if not at_once:
+                    self.calibrate(scale)
+            i += 1
+            if not (at_once or self.holds()):
+                break
+        return (efficacy if at_once else efficacy[:i]), scales, scale
 
     # -------------------------------------------------------------- scoring
     def nearest(self, X):

@@ -40,7 +40,7 @@ import numbers
 
 import numpy as np
 
-from .._component import MAX_COUNT, Component, StateError, check_int_state
+from .._component import MAX_COUNT, Component, StateError, check_int_state, engine_writes
 from .params import attribute, spec_of
 
 __all__ = ["check_state", "check_layout", "check_finite", "parts_of", "per_unit_arrays"]
@@ -145,7 +145,8 @@ def _unmap(component) -> None:
     """
     for name, value in list(vars(component).items()):
         if name.endswith("_") and type(value) is np.memmap:
-            setattr(component, name, value.view(np.ndarray))
+            with engine_writes((component,)):
+                setattr(component, name, value.view(np.ndarray))
 
 
 def _part(detector, name: str, kind: str):

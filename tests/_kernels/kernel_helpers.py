@@ -35,9 +35,9 @@ def kernel_learn(clusterer, synapse, X, dt, stimulus, distances=None):
     """The pair's compiled driver (waited for), also returning the winner of each row."""
     assert _kernels.wait(clusterer, synapse) is not None
     engine = _kernels.choose(clusterer, synapse)
-    assert engine.learn == engine._learn  # the driver, not the reference
+    assert engine.driving  # the driver, not the reference
     winners = np.empty(X.shape[0], dtype=np.int64)
-    out = engine._learn(X, dt, stimulus, distances=distances, winners=winners)
+    out = engine.learn(X, dt, stimulus, distances=distances, winners=winners)
     return out, winners
 
 

@@ -39,7 +39,7 @@ def test_learning_hands_over_to_the_kernel_mid_stream(monkeypatch):
     got = det.stream(X)
     assert calls == [100, 100, 100]
     engine = det._engine
-    assert type(engine) is CompiledEngine and engine.learn == engine._learn  # handed over
+    assert type(engine) is CompiledEngine and engine.driving  # handed over
     assert not engine.holds()  # the driver it waited for is ready: another engine is chosen
     monkeypatch.undo()
     with reference_only():

@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import contextlib
+import copy
+
 import numpy as np
 
 import novelty
 from novelty._kernels import reference_loops
 from novelty._kernels.reference import ReferenceEngine, learn_stream
+from novelty.match_scale import ScaleCalibration
 
 from .kernel_helpers import corridor
 
@@ -48,3 +52,22 @@ def test_a_read_only_array_is_copied_before_the_loop_writes_into_it():
         det.synapse_.efficacy_ = frozen
         det.stream(corridor(5, n_features=3, seed=1))
         assert det.synapse_.efficacy_ is not frozen and det.synapse_.efficacy_.flags.writeable
+
+
+def test_learn_calibrating_gives_each_row_the_scale_before_it():
+    """Scans 0, 2, 3, 7 into a calibration of four: no scale before two distinct scans, then the
+    median nearest-distinct distance of those before (2; then 2, 1, 1: 1; then 2, 1, 1, 4: 1.5);
+    the fifth row learned after it is full; the efficacies those of learning the rows in one call."""
+    X = np.array([[0.0], [2.0], [3.0], [7.0], [1.0]])
+    for kernels in (False, True):
+        with reference_loops() if not kernels else contextlib.nullcontext():
+            det = novelty.make("hsom", n_rows=1, n_columns=2, match_scale=1.0).fit(X[:1])
+            twin = copy.deepcopy(det)
+            calibration = ScaleCalibration(np.empty((0, 1)), 4, 0.5)
+            distances = np.empty(5)
+            efficacy, scales, scale = det._current_engine().learn_calibrating(
+                X, np.ones(5), 1.0, calibration, None, distances)
+            expected = np.empty(5)
+            np.testing.assert_array_equal(efficacy, twin._current_engine().learn(X, np.ones(5), 1.0, expected))
+        np.testing.assert_array_equal(distances, expected)
+        assert scales == [None, None, 2.0, 1.0] and scale == 1.5 and calibration.full

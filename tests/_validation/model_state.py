@@ -18,8 +18,9 @@ def fitted():
 
 #: not state: how many times attributes were set (novelty._component.Component.__setattr__), the
 #: counts the filter last checked its parts at, the detector's lock (a deep copy makes a new one)
-#: and its engine (scratch: a deep copy holds what its own is made from)
-BOOKKEEPING = ("_changes", "_parts_seen", "_lock", "_engine")
+#: and its engine (scratch: a deep copy holds what its own is made from), a fitted part's marks of the
+#: engine that holds and writes it (novelty._component.held_by_engine, engine_writes)
+BOOKKEEPING = ("_changes", "_parts_seen", "_lock", "_engine", "_held", "_writing")
 
 
 def snapshot(det):
