@@ -38,7 +38,7 @@ walk = compiled(walk_into)
 #: equation (2) of :mod:`novelty.maps.grid_walk`: the cells a ray passes through
 length = compiled(walk_length)
 #: the angle a sector of a scan stands for, and the rays a cone is read as (``sector_width``, ``cone_rays``)
-sector_width = compiled(_scan.sector_width)
+sector_width = compiled(_scan.sector_width, _sorted_turn=compiled(_scan._sorted_turn))
 cone_rays = compiled(_scan.cone_rays)
 _free = compiled(_scan._free)
 #: one scan's rays (``scan_rays`` compiled)
