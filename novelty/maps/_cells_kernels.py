@@ -20,7 +20,8 @@ import numpy as np
 from numba import njit
 
 from .._kernels.params import option_code
-from .grid_kernels import add, find, ray_count, rays, tile_key, unit, walk
+from .grid_kernels import add, find, ray_count, rays, sector_width, tile_key, unit, unit_in, walk
+from .tiles import TILE_CELLS
 from .cells import WorldCells
 
 __all__ = ["scan_cells", "meet", "readout", "learn_cells", "pass_scan", "N_TILES", "SCANS", "STAMP", "NEED",
@@ -51,13 +52,13 @@ def _unique_sorted(keys, n):
 
 
 @njit(cache=True, error_model="numpy")
-def scan_cells(x, n, p, hit, end_x, end_y, free_x, free_y, keys, seq_i, seq_j, walk_too):
-    """One scan's cells into ``seq``: the hit cells (sorted, each once), then, learning (``walk_too``), the cells
-    its rays pass, ray after ray, and (``p.neighbours``) the cells around the hits, none hit, sorted. Returns
-    their counts ``(hits, passed, neighbours)``."""
+def scan_cells(x, n, p, arc, hit, end_x, end_y, free_x, free_y, keys, seq, walk_too):
+    """One scan's cells into ``seq`` (cells, 2): the hit cells (sorted, each once), then, learning (``walk_too``),
+    the cells its rays pass, ray after ray, and (``p.neighbours``) the cells around the hits, none hit, sorted.
+    Returns their counts ``(hits, passed, neighbours)``. ``arc``: its cones' width (:func:`cone_width`)."""
     c = p.cell_size
+    seq_i, seq_j = seq[:, 0], seq[:, 1]
     near, ex, ey = x[3:3 + n], x[3 + n:3 + 2 * n], x[3 + 2 * n:]
-    arc = -1.0 if p.arc_is_sector else p.arc
     m, _ = rays(x[0], x[1], near, ex, ey, arc, c, p.max_range, c, hit, end_x, end_y, free_x, free_y)
     h = 0
     for k in range(m):
@@ -68,19 +69,10 @@ def scan_cells(x, n, p, hit, end_x, end_y, free_x, free_y, keys, seq_i, seq_j, w
     for q in range(h):
         seq_i[q], seq_j[q] = (keys[q] >> 32) - _SHIFT_I, (keys[q] & 0xFFFFFFFF) - _SHIFT_J
     at = h
-    if walk_too:
-        cells = np.empty((0, 2), dtype=np.int64)
+    if walk_too:   # seq has room for them all (the scan's bound, novelty.maps.grid_kernels.scan_bounds)
         for k in range(m):
-            if math.isnan(free_x[k]):
-                continue
-            size = abs(math.floor(free_x[k] / c) - math.floor(x[0] / c)) + abs(
-                math.floor(free_y[k] / c) - math.floor(x[1] / c)) + 1
-            if cells.shape[0] < size:
-                cells = np.empty((2 * size, 2), dtype=np.int64)
-            got = walk(x[0], x[1], free_x[k], free_y[k], c, cells)
-            for q in range(got):
-                seq_i[at], seq_j[at] = cells[q, 0], cells[q, 1]
-                at += 1
+            if not math.isnan(free_x[k]):
+                at += walk(x[0], x[1], free_x[k], free_y[k], c, seq[at:])
     passed = at - h
     q_around = 0
     if walk_too and p.neighbours and h:
@@ -110,28 +102,29 @@ def meet(seq_i, seq_j, count, table, bits, tiles, counters, max_tiles, units, ne
     room for, and each cell's unit into ``units`` (-1: its tile beyond ``max_tiles``). Returns 0, or (nothing
     made) the tiles the arrays need room for."""
     new = 0
-    last = -1
+    last, t = -1, -1
     set_mask = new_set.shape[0] - 1
     for q in range(count):
         key = tile_key(seq_i[q], seq_j[q])
-        if key == last:
-            continue
-        last = key
-        if find(table, bits, tiles, key) >= 0:
-            continue
-        slot = np.int64((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(64 - set_bits))
-        while new_set[slot] >= 0 and new_keys[new_set[slot]] != key:
-            slot = (slot + 1) & set_mask
-        if new_set[slot] < 0:
-            new_set[slot] = new
-            new_keys[new] = key
-            new += 1
+        if key != last:   # the cells of a ray mostly share a tile: looked up once
+            last, t = key, find(table, bits, tiles, key)
+            if t < 0:   # a tile to make, once
+                slot = np.int64((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(64 - set_bits))
+                while new_set[slot] >= 0 and new_keys[new_set[slot]] != key:
+                    slot = (slot + 1) & set_mask
+                if new_set[slot] < 0:
+                    new_set[slot] = new
+                    new_keys[new] = key
+                    new += 1
+        units[q] = unit_in(t, seq_i[q], seq_j[q])
     for q in range(new):   # the set emptied again
         key = new_keys[q]
         slot = np.int64((np.uint64(key) * np.uint64(0x9E3779B97F4A7C15)) >> np.uint64(64 - set_bits))
         while new_set[slot] >= 0:
             new_set[slot] = -1
             slot = (slot + 1) & set_mask
+    if new == 0:
+        return 0
     held = counters[N_TILES]
     made = min(new, max(max_tiles - held, 0))
     if held + made > tiles.shape[0]:
@@ -139,8 +132,14 @@ def meet(seq_i, seq_j, count, table, bits, tiles, counters, max_tiles, units, ne
     for q in range(made):
         add(table, bits, tiles, held + q, new_keys[q])
     counters[N_TILES] = held + made
-    for q in range(count):
-        units[q] = unit(table, bits, tiles, seq_i[q], seq_j[q])
+    last, t = -1, -1
+    for q in range(count):   # the cells of the tiles made now, and those beyond max_tiles
+        if units[q] >= 0:
+            continue
+        key = tile_key(seq_i[q], seq_j[q])
+        if key != last:
+            last, t = key, find(table, bits, tiles, key)
+        units[q] = unit_in(t, seq_i[q], seq_j[q])
         if units[q] < 0:
             counters[PASSED] += 1
     return 0
@@ -155,9 +154,14 @@ def readout(seq_i, seq_j, units, h, p, table, bits, tiles, passes, efficacy, fre
     t = p.tolerance
     for q in range(h):
         y = math.inf
+        own = tile_key(seq_i[q], seq_j[q])   # the cells around a hit cell mostly lie in its tile
+        held = units[q] // TILE_CELLS if units[q] >= 0 else -1
         for di in range(-t, t + 1):
             for dj in range(-t, t + 1):
-                u = units[q] if di == 0 and dj == 0 else unit(table, bits, tiles, seq_i[q] + di, seq_j[q] + dj)
+                i, j = seq_i[q] + di, seq_j[q] + dj
+                key = tile_key(i, j)
+                u = units[q] if di == 0 and dj == 0 else unit_in(held if key == own else find(table, bits, tiles, key),
+                                                                 i, j)
                 y = min(y, efficacy[u] if u >= 0 else fresh)
         f = passes[units[q]] if units[q] >= 0 else 0.0
         value = y
@@ -218,37 +222,44 @@ def add_passes(units, h, passed, passes, stamp, counters):
 
 @njit(cache=True, error_model="numpy")
 def pass_scan(x, n, p, table, bits, tiles, passes, stamp, counters, hit, end_x, end_y, free_x, free_y, keys,
-              seq_i, seq_j, units):
+              seq, units):
     """The passes of a scan learned ``evidence_lag`` scans ago (its tiles made then)."""
-    h, passed, _ = scan_cells(x, n, p, hit, end_x, end_y, free_x, free_y, keys, seq_i, seq_j, True)
+    h, passed, _ = scan_cells(x, n, p, cone_width(x, n, p), hit, end_x, end_y, free_x, free_y, keys, seq, True)
     for q in range(h + passed):
-        units[q] = unit(table, bits, tiles, seq_i[q], seq_j[q])
+        units[q] = unit(table, bits, tiles, seq[q, 0], seq[q, 1])
     add_passes(units, h, passed, passes, stamp, counters)
 
 
 @njit(cache=True, error_model="numpy")
-def score(X, n, p, table, bits, tiles, passes, efficacy, fresh, most_rays, out):
+def score(X, n, p, widths, table, bits, tiles, passes, efficacy, fresh, most_rays, out):
     """The novelty of each row of ``X`` against the map as it is (nothing learned)."""
     hit = np.empty(most_rays, dtype=np.bool_)
     end_x, end_y, free_x, free_y = (np.empty(most_rays), np.empty(most_rays), np.empty(most_rays),
                                     np.empty(most_rays))
     keys = np.empty(most_rays, dtype=np.int64)
-    seq_i, seq_j = np.empty(most_rays, dtype=np.int64), np.empty(most_rays, dtype=np.int64)
+    seq = np.empty((most_rays, 2), dtype=np.int64)
+    seq_i, seq_j = seq[:, 0], seq[:, 1]
     units = np.empty(most_rays, dtype=np.int64)
     v = np.empty(most_rays)
     for r in range(X.shape[0]):
-        h, _, _ = scan_cells(X[r], n, p, hit, end_x, end_y, free_x, free_y, keys, seq_i, seq_j, False)
+        h, _, _ = scan_cells(X[r], n, p, widths[r], hit, end_x, end_y, free_x, free_y, keys, seq, False)
         for q in range(h):
             units[q] = unit(table, bits, tiles, seq_i[q], seq_j[q])
         out[r] = readout(seq_i, seq_j, units, h, p, table, bits, tiles, passes, efficacy, fresh, v)
 
 
 @njit(cache=True, error_model="numpy")
-def most_rays(X, n, p):
-    """The most rays a row of ``X`` is read as."""
-    arc = -1.0 if p.arc_is_sector else p.arc
+def cone_width(x, n, p):
+    """The width of a scan's cones: ``p.arc``, or (``"sector"``) as wide as one of its sectors stands for."""
+    return sector_width(x[0], x[1], x[3 + n:3 + 2 * n], x[3 + 2 * n:]) if p.arc_is_sector else p.arc
+
+
+@njit(cache=True, error_model="numpy")
+def most_rays(X, n, p, widths):
+    """The most rays a row of ``X`` is read as, its cones ``widths[r]`` wide."""
     most = 1
     for r in range(X.shape[0]):
         x = X[r]
-        most = max(most, ray_count(x[0], x[1], x[3 + n:3 + 2 * n], x[3 + 2 * n:], arc, p.cell_size, p.max_range))
+        most = max(most, ray_count(x[0], x[1], x[3 + n:3 + 2 * n], x[3 + 2 * n:], widths[r], p.cell_size,
+                                   p.max_range))
     return most

@@ -60,17 +60,18 @@ def fresh(start, stop, {s_args}sp):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def drive(X, start, dt, stimulus, n, cp, tiles, table, bits, passes, last_hit, counters, max_tiles, {s_args}sp,
+def drive(X, widths, start, dt, stimulus, n, cp, tiles, table, bits, passes, last_hit, counters, max_tiles, {s_args}sp,
           fresh_efficacy, pending, stamp, mark, rows, most_rays, most_cells, novelty):
-    """Learn the rows X[start:] in order, each one's novelty (before it is learned) into novelty; returns the
-    first row not learned: X.shape[0], or one whose tiles need more room (counters[NEED] says how much)."""
+    """Learn the rows X[start:] in order (their cones widths[r] wide), each one's novelty (before it is learned)
+    into novelty; returns the first row not learned: X.shape[0], or one whose tiles need more room (counters[NEED] says how much)."""
     c = cp.view(C_PARAMS)[0]
     s = sp.view(S_PARAMS)[0]
     sstate = ({s_tuple})
     hit = np.empty(most_rays, dtype=np.bool_)
     end_x, end_y, free_x, free_y = np.empty(most_rays), np.empty(most_rays), np.empty(most_rays), np.empty(most_rays)
     keys = np.empty(most_rays, dtype=np.int64)
-    seq_i, seq_j = np.empty(most_cells, dtype=np.int64), np.empty(most_cells, dtype=np.int64)
+    seq = np.empty((most_cells, 2), dtype=np.int64)
+    seq_i, seq_j = seq[:, 0], seq[:, 1]
     units = np.empty(most_cells, dtype=np.int64)
     new_keys = np.empty(most_cells, dtype=np.int64)
     set_bits = 4
@@ -81,7 +82,7 @@ def drive(X, start, dt, stimulus, n, cp, tiles, table, bits, passes, last_hit, c
     winners = np.empty(most_rays, dtype=np.int64)
     nb = np.empty(most_cells, dtype=np.int64)
     for r in range(start, X.shape[0]):
-        h, passed, around = scan_cells(X[r], n, c, hit, end_x, end_y, free_x, free_y, keys, seq_i, seq_j, True)
+        h, passed, around = scan_cells(X[r], n, c, widths[r], hit, end_x, end_y, free_x, free_y, keys, seq, True)
         need = meet(seq_i, seq_j, h + passed + around, table, bits, tiles, counters, max_tiles, units, new_keys,
                     new_set, set_bits)
         if need:
@@ -97,7 +98,7 @@ def drive(X, start, dt, stimulus, n, cp, tiles, table, bits, passes, last_hit, c
             if back >= 0 or pending.shape[0] + back >= 0:
                 old = X[back] if back >= 0 else pending[pending.shape[0] + back]
                 pass_scan(old, n, c, table, bits, tiles, passes, stamp, counters, hit, end_x, end_y, free_x, free_y,
-                          keys, seq_i, seq_j, units)
+                          keys, seq, units)
     return X.shape[0]
 '''
 

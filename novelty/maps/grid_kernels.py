@@ -13,7 +13,9 @@ cached on disk after, cost about a second).
   tile, placed by Knuth's multiplicative hash of its key with linear probing:
   :func:`table_of` builds it from the tiles' keys, :func:`find` and
   :func:`add` look up and insert, :func:`unit` gives a cell's unit by
-  equation (1) of :mod:`novelty.maps.tiles`.
+  equation (1) of :mod:`novelty.maps.tiles` (:func:`unit_in` when its tile's
+  order is known: the cells of a ray or of a neighbourhood mostly share a
+  tile, whose order a loop looks up once).
 """
 
 from __future__ import annotations
@@ -28,19 +30,20 @@ from .grid_walk import walk_into, walk_length
 from . import scan_rays as _scan
 from .tiles import TILE_CELLS, TILE_SHIFT
 
-__all__ = ["walk", "length", "rays", "ray_count", "table_of", "find", "add", "unit", "tile_key", "bits_for",
-           "tiles_crossed", "scan_sizes", "check_costs"]
+__all__ = ["walk", "length", "rays", "ray_count", "sector_width", "cone_rays", "table_of", "find", "add", "unit", "unit_in", "tile_key", "bits_for",
+           "tiles_crossed", "scan_sizes", "scan_bounds", "check_costs"]
 
 #: the cells of one ray into ``out[:n]``, in order; returns n (``walk_into`` compiled)
 walk = compiled(walk_into)
 #: equation (2) of :mod:`novelty.maps.grid_walk`: the cells a ray passes through
 length = compiled(walk_length)
-_sector_width = compiled(_scan.sector_width)
-_cone_rays = compiled(_scan.cone_rays)
+#: the angle a sector of a scan stands for, and the rays a cone is read as (``sector_width``, ``cone_rays``)
+sector_width = compiled(_scan.sector_width, _sorted_turn=compiled(_scan._sorted_turn))
+cone_rays = compiled(_scan.cone_rays)
 _free = compiled(_scan._free)
 #: one scan's rays (``scan_rays`` compiled)
-rays = compiled(_scan.scan_rays, sector_width=_sector_width, cone_rays=_cone_rays, _free=_free)
-ray_count = compiled(_scan.ray_count, sector_width=_sector_width, cone_rays=_cone_rays)
+rays = compiled(_scan.scan_rays, sector_width=sector_width, cone_rays=cone_rays, _free=_free)
+ray_count = compiled(_scan.ray_count, sector_width=sector_width, cone_rays=cone_rays)
 
 _MASK = (1 << TILE_SHIFT) - 1
 _GOLDEN = np.uint64(0x9E3779B97F4A7C15)   # 2**64 / the golden ratio: Knuth's multiplier
@@ -100,12 +103,18 @@ def table_of(tiles, n, bits):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def unit(table, bits, tiles, i, j):
-    """The unit of cell (i, j) by equation (1) of :mod:`novelty.maps.tiles`; -1 when its tile is not held."""
-    t = find(table, bits, tiles, tile_key(i, j))
+def unit_in(t, i, j):
+    """The unit of cell (i, j) in the tile held ``t``-th, by equation (1) of :mod:`novelty.maps.tiles`; -1 when
+    ``t`` is (the tile is not held)."""
     if t < 0:
         return -1
     return t * TILE_CELLS + ((i & _MASK) << TILE_SHIFT) + (j & _MASK)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def unit(table, bits, tiles, i, j):
+    """The unit of cell (i, j) by equation (1) of :mod:`novelty.maps.tiles`; -1 when its tile is not held."""
+    return unit_in(find(table, bits, tiles, tile_key(i, j)), i, j)
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -144,15 +153,57 @@ def scan_sizes(X, n_sectors, c, max_range, arc, margin, most, out):
     return longest, cut
 
 
-def check_costs(X, grid, arc: float, margin: float, what: str = "rays") -> tuple[np.ndarray, int]:
+@njit(cache=True, error_model="numpy")
+def scan_bounds(X, n_sectors, c, max_range, arc, margin, most, sizes, widths):
+    """Each row's cone width into ``widths`` (``arc``; where it is negative, as wide as a sector stands for) and
+    at most how many cells its rays touch into ``sizes``; returns ``(the most rays of a row, at most how many
+    cells a ray's walk passes, sectors cut)``: what a scan will cost, known before any is learned.
+
+    A ray of length ``L`` passes at most ``1.5 L / c + 3`` cells by equation (2) (``|di| + |dj| <= sqrt(2) L /
+    c + 2``, whatever the rounding of coordinates within :data:`~novelty.io.scans.points.MAX_COORDINATE`), and
+    hits one: each sector's ``cone_rays`` rays are as long as it. Where that bound exceeds ``most``, the row's
+    cells are counted exactly (:func:`scan_sizes`: at least ``most + 1`` where they are more than ``most``), so
+    a row over ``most`` is one whose scan would touch more cells.
+    """
+    most_rays, longest, cut = 1, 0, 0
+    for r in range(X.shape[0]):
+        x, y = X[r, 0], X[r, 1]
+        ex, ey = X[r, 3 + n_sectors:3 + 2 * n_sectors], X[r, 3 + 2 * n_sectors:]
+        widths[r] = sector_width(x, y, ex, ey) if arc < 0.0 else arc
+        reach, walks, ray_walk = 0.0, 0.0, 0
+        for k in range(n_sectors):
+            dx, dy = ex[k] - x, ey[k] - y
+            length = np.sqrt(dx * dx + dy * dy)   # as scan_rays measures a sector, cut at max_range
+            if length > max_range:
+                length = max_range
+                cut += 1
+            reach = max(reach, length)
+            walk = np.floor(1.5 * length / c) + 4.0
+            walks += walk + 1.0
+            ray_walk = max(ray_walk, np.int64(min(walk, 2.0**62)))
+        cones = cone_rays(widths[r], reach, c)
+        most_rays = max(most_rays, n_sectors * cones)
+        if cones * walks <= most:
+            sizes[r] = np.int64(cones * walks)
+            longest = max(longest, ray_walk)
+        else:
+            exact, _ = scan_sizes(X[r:r + 1], n_sectors, c, max_range, arc, margin, most, sizes[r:r + 1])
+            longest = max(longest, exact)
+    return most_rays, longest, cut
+
+
+def check_costs(X, grid, arc: float, margin: float, what: str = "rays", widths=None) -> tuple[np.ndarray, int]:
     """Refuse rows with a scan that would touch more than ``grid.max_scan_cells`` cells, before anything is
     learned (a ValueError naming the row), and warn of sectors cut at ``grid.max_range``
     (:class:`~novelty.maps.scan_rays.MapRangeWarning`). ``grid``: the component whose bounds these are (its
-    ``cell_size``, ``max_range``, ``max_scan_cells``). Returns each row's cells and the longest walk of a ray."""
+    ``cell_size``, ``max_range``, ``max_scan_cells``). Returns at most how many cells each row's scan touches
+    and a ray's walk passes (:func:`scan_bounds`: what to make room for); ``widths``, an array of a value a
+    row, receives each row's cone width, by which a map reads it."""
     n = (X.shape[1] - 3) // 3
     sizes = np.empty(X.shape[0], dtype=np.int64)
-    longest, cut = scan_sizes(X, n, float(grid.cell_size), float(grid.max_range), arc, margin,
-                              int(grid.max_scan_cells), sizes)
+    widths = np.empty(X.shape[0]) if widths is None else widths
+    _, longest, cut = scan_bounds(X, n, float(grid.cell_size), float(grid.max_range), arc, margin,
+                                  int(grid.max_scan_cells), sizes, widths)
     name = type(grid).__name__
     over = np.flatnonzero(sizes > grid.max_scan_cells)
     if over.size:

@@ -229,17 +229,17 @@ class HabituatingMap(NoveltyDetector):
         vars(self).pop("_map_engine", None)
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
-        self._check_rows(X)
+        costs = self._check_rows(X)
         engine = self._engine()
-        out = engine.learn(X, dt, float(self.stimulus))
+        out = engine.learn(X, dt, float(self.stimulus), costs)
         self._seen()
         warn_full(self.clusterer_, engine.passed_by, stacklevel=5)
         engine.passed_by = 0
         return out
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
-        self._check_rows(X)
-        return self._engine().score(X)
+        costs = self._check_rows(X)
+        return self._engine().score(X, costs)
 
     def _engine(self):
         """The engine of the parts as they are (:mod:`novelty.maps.map_engine`): the one held while nothing was set
@@ -266,14 +266,18 @@ class HabituatingMap(NoveltyDetector):
         self._check_fitted()
         return self._engine().why
 
-    def _check_rows(self, X: np.ndarray) -> None:
+    def _check_rows(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Refuse rows with a scan that would touch more than ``max_scan_cells`` cells, before anything is
-        learned; warn of sectors cut at ``max_range``."""
+        learned; warn of sectors cut at ``max_range``. Returns at most how many cells each row touches and its
+        cones' widths (what the engine makes room by and reads the rows with)."""
         from . import grid_kernels as grid  # numba: imported when a map first reads rows (a second, once)
 
         cells = self.clusterer_
         split_points(X, type(self).__name__, bounded=True)
-        grid.check_costs(X, cells, -1.0 if isinstance(cells.arc, str) else float(cells.arc), float(cells.cell_size))
+        widths = np.empty(X.shape[0])
+        sizes, _ = grid.check_costs(X, cells, -1.0 if isinstance(cells.arc, str) else float(cells.arc),
+                                    float(cells.cell_size), widths=widths)
+        return sizes, widths
 
     # ------------------------------------------------------------------ what a score is made of
     def explain(self, x) -> dict:

@@ -4,12 +4,17 @@ A :class:`~novelty.maps.habituating_map.HabituatingMap` holds one engine for its
 fitted parts, as the habituating filter does (:mod:`novelty._kernels`), and
 asks it two things:
 
-- ``learn(X, dt, stimulus) -> novelty``: the rows in order, each scored by the
+- ``learn(X, dt, stimulus, costs) -> novelty``: the rows in order, each scored by the
   map as it is (equations (1) and (2) of :mod:`novelty.maps.cells`), then
   learned: its tiles made as its cells meet them, its winners and neighbours
   stimulated by the synapse's own step (``Synapse.step`` with several winners),
   the passes of its rays counted (``evidence_lag`` scans later);
-- ``score(X) -> novelty``: the same novelty, nothing learned.
+- ``score(X, costs) -> novelty``: the same novelty, nothing learned.
+
+``costs`` are what the rows' check worked out (:func:`novelty.maps.grid_kernels.check_costs`):
+at most how many cells each row touches and its cones' widths, which the
+compiled loops make room by and read the rows with (None: worked out again);
+the reference reads each scan whole.
 
 :class:`MapReference` is the readable loop, scan by scan in numpy: the
 specification. :class:`MapCompiled` does the same operations in the same order
@@ -48,7 +53,7 @@ class MapReference:
         self.passed_by = 0
 
     # ------------------------------------------------------------------ learning
-    def learn(self, X: np.ndarray, dt: np.ndarray, stimulus: float) -> np.ndarray:
+    def learn(self, X: np.ndarray, dt: np.ndarray, stimulus: float, costs=None) -> np.ndarray:
         self.flush()
         out = np.empty(X.shape[0])
         lag = int(self.cells.evidence_lag)
@@ -106,7 +111,7 @@ class MapReference:
         self.cells.passes_[passed] += 1.0
 
     # ------------------------------------------------------------------ scoring
-    def score(self, X: np.ndarray) -> np.ndarray:
+    def score(self, X: np.ndarray, costs=None) -> np.ndarray:
         return np.array([self._readout(self.cells.scan_cells(X[r], walk=False).hits) for r in range(X.shape[0])])
 
     def _readout(self, hits: np.ndarray) -> float:
@@ -178,9 +183,7 @@ class MapCompiled(MapReference):
         self.index = self.cells.index()
 
     # ------------------------------------------------------------------ learning
-    def _learn_compiled(self, X: np.ndarray, dt: np.ndarray, stimulus: float) -> np.ndarray:
-        from . import grid_kernels as grid  # numba, as above
-
+    def _learn_compiled(self, X: np.ndarray, dt: np.ndarray, stimulus: float, costs=None) -> np.ndarray:
         cells, k = self.cells, self._kernels
         self.flush()
         n = (X.shape[1] - 3) // 3
@@ -189,18 +192,14 @@ class MapCompiled(MapReference):
             self._hold()   # a parameter's type changed, or the state was replaced: read it again
         self._c_record = c
         self._counters[k.SCANS] = cells.scans_
-        sizes = np.empty(X.shape[0], dtype=np.int64)
-        arc = -1.0 if isinstance(cells.arc, str) else float(cells.arc)
-        grid.scan_sizes(X, n, float(cells.cell_size), float(cells.max_range), arc, float(cells.cell_size),
-                        int(cells.max_scan_cells), sizes)
-        most_rays = int(k.most_rays(X, n, c[0])) if X.shape[0] else 1
-        most_cells = int(sizes.max(initial=0)) + 8 * most_rays + 1
+        most_cells, widths, most_rays = self._costs(X, n, costs)
+        most_cells += 8 * most_rays + 1
         out = np.empty(X.shape[0])
         done = 0
         self._counters[k.PASSED] = 0
         while True:
             done = self.driver.module.drive(
-                X, done, dt, float(stimulus), n, c.view(np.uint8), self._tiles, self._table, self._bits,
+                X, widths, done, dt, float(stimulus), n, c.view(np.uint8), self._tiles, self._table, self._bits,
                 self._passes, self._last_hit, self._counters, cells.max_tiles, *self._s_arrays,
                 self._s_record.view(np.uint8), float(self.synapse.fresh_efficacy), cells.pending_, self._stamp,
                 self._mark, self._rows, most_rays, most_cells, out)
@@ -217,8 +216,34 @@ class MapCompiled(MapReference):
             cells.pending_ = np.vstack([cells.pending_, X])[-lag:]
         return out
 
+    def _costs(self, X: np.ndarray, n: int, costs) -> tuple[int, np.ndarray, int]:
+        """At most how many cells a row touches, the rows' cones' widths (``costs``, as the rows' check worked
+        them out, else worked out here) and the most rays of a row, the pending scans' included (walked again
+        for their passes): what the loops make room for."""
+        if costs is None:
+            costs = self._bounds(X, n)
+        sizes, widths = costs
+        most_rays = int(self._kernels.most_rays(X, n, pack(self.cells)[0], widths)) if X.shape[0] else 1
+        most_cells = int(sizes.max(initial=0))
+        pending = self.cells.pending_
+        if pending.shape[0]:
+            sizes, held = self._bounds(pending, n)
+            most_rays = max(most_rays, int(self._kernels.most_rays(pending, n, pack(self.cells)[0], held)))
+            most_cells = max(most_cells, int(sizes.max()))
+        return most_cells, widths, most_rays
+
+    def _bounds(self, X: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+        from . import grid_kernels as grid  # numba, as above
+
+        cells = self.cells
+        sizes, widths = np.empty(X.shape[0], dtype=np.int64), np.empty(X.shape[0])
+        grid.scan_bounds(X, n, float(cells.cell_size), float(cells.max_range),
+                         -1.0 if isinstance(cells.arc, str) else float(cells.arc), float(cells.cell_size),
+                         int(cells.max_scan_cells), sizes, widths)
+        return sizes, widths
+
     # ------------------------------------------------------------------ scoring
-    def score(self, X: np.ndarray) -> np.ndarray:
+    def score(self, X: np.ndarray, costs=None) -> np.ndarray:
         from . import grid_kernels as grid  # numba, as above
 
         cells, k = self.cells, self._kernels
@@ -228,8 +253,8 @@ class MapCompiled(MapReference):
         bits = grid.bits_for(max(tiles.size, 1))
         out = np.empty(X.shape[0])
         if X.shape[0]:
-            most = int(k.most_rays(X, n, c[0]))
-            k.score(X, n, c[0], grid.table_of(tiles, tiles.size, bits), bits, tiles,
+            _, widths, most = self._costs(X, n, costs)
+            k.score(X, n, c[0], widths, grid.table_of(tiles, tiles.size, bits), bits, tiles,
                     np.ascontiguousarray(cells.passes_), np.ascontiguousarray(self.synapse.efficacy_, dtype=np.float64),
                     float(self.synapse.fresh_efficacy), most, out)
         return out

@@ -63,7 +63,7 @@ def sector_width(x, y, ex, ey):
             n += 1
     if n < 2:
         return 0.0
-    bearing = np.sort(bearings[:n])
+    bearing = _sorted_turn(bearings[:n])
     gaps = np.empty(n)
     for k in range(n - 1):
         gaps[k] = bearing[k + 1] - bearing[k]
@@ -71,6 +71,22 @@ def sector_width(x, y, ex, ey):
     gaps = np.sort(gaps)
     median = gaps[n // 2] if n % 2 else (gaps[n // 2 - 1] + gaps[n // 2]) / 2.0
     return min(median, math.pi)
+
+
+def _sorted_turn(a):
+    """``a`` sorted: as it is, or turned at its one descent, when it is the bearings of a scan in order (the
+    turn crossing +-pi at most once); else sorted."""
+    n = a.shape[0]
+    descents, at = 0, 0
+    for k in range(n - 1):
+        if a[k + 1] < a[k]:
+            descents += 1
+            at = k + 1
+    if descents == 0:
+        return a
+    if descents == 1 and a[n - 1] <= a[0]:
+        return np.concatenate((a[at:], a[:at]))
+    return np.sort(a)
 
 
 def cone_rays(arc, longest, cell_size):

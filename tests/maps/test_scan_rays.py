@@ -6,8 +6,9 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from novelty._jit import compiled
 from novelty.maps import grid_kernels as kernels
-from novelty.maps.scan_rays import cone_rays, ray_count, scan_rays, sector_width
+from novelty.maps.scan_rays import _sorted_turn, cone_rays, ray_count, scan_rays, sector_width
 
 
 def rays(x, y, near, ex, ey, arc=0.0, c=1.0, max_range=10.0, margin=1.0, run=scan_rays):
@@ -71,3 +72,20 @@ def test_the_compiled_rays_are_the_rays_of_python(sectors, x, y, arc, c, max_ran
         else:
             np.testing.assert_array_equal(a, b)
     assert kernels.ray_count(x, y, ex, ey, arc, c, max_range) == ray_count(x, y, ex, ey, arc, c, max_range)
+
+
+compiled_turn = compiled(_sorted_turn)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.floats(-math.pi, math.pi), min_size=1, max_size=40), st.integers(0, 39),
+       st.sampled_from(["sorted", "turned", "as drawn"]))
+def test_bearings_are_sorted_as_numpy_sorts_them_whether_in_order_turned_or_not(values, at, how):
+    a = np.array(values)
+    if how != "as drawn":
+        a = np.sort(a)
+    if how == "turned":
+        a = np.concatenate([a[at % a.size:], a[:at % a.size]])
+    expected = np.sort(a)
+    assert _sorted_turn(a.copy()).tolist() == expected.tolist()
+    assert compiled_turn(a.copy()).tolist() == expected.tolist()

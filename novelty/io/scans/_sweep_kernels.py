@@ -5,7 +5,13 @@
   readable reference, used for CARMEN logs and the transformers) makes
   them; the tests compare the two.
 - :func:`offset_nearest`: each sector's nearest range seen from the robot's
-  centre, of beams from offset origins.
+  centre, of beams from offset origins;
+- :func:`world_ends`: each sector's end point of the ``points`` input in the
+  world frame, for many sweeps of one geometry, as
+  :meth:`novelty.io.scans.points.PointsMaker.rows` needs them: the same
+  operations as the numpy reference (``_Beams.ends``, then the pose's
+  rotation and translation), element by element, so the two agree bit for
+  bit (``hypot`` is the C library's in both); the tests compare them.
 
 :meth:`novelty.io.scans.sweep_rings.RingMaker` calls :func:`offset_nearest` for a
 sweep whose sensor is off the centre and whose ring is each sector's
@@ -28,7 +34,7 @@ from numba import njit
 
 from .sectors import SNAP
 
-__all__ = ["clean_into", "offset_nearest"]
+__all__ = ["clean_into", "offset_nearest", "world_ends"]
 
 _TURN = 2 * math.pi
 
@@ -84,3 +90,44 @@ def offset_nearest(ranges, origins, cos, sin, index, safe, bounds, low, high, n_
                     k = -1
         if k >= 0 and d < ring[k]:
             ring[k] = d
+
+
+@njit(cache=True, error_model="numpy")
+def world_ends(ranges, origins, unit, order, starts, middle, threshold, pose, out_x, out_y):
+    """Each sector's end point in the world frame, one row a sweep, into ``out_x`` and ``out_y`` (m, n_sectors).
+
+    A sweep's beams ``ranges[r]`` start at ``origins[r]`` (``origins[0]`` for all when it holds one) along
+    ``unit``; sector ``k``'s beams are ``order[starts[k]:starts[k + 1]]``, its middle beam ``middle[k]``.
+    Its end point is that of its first beam at the least distance from the centre, within ``threshold``,
+    else ``threshold`` along that beam (along its middle beam where no beam returned); then
+    ``x + c e_x - s e_y``, ``y + s e_x + c e_y`` with ``pose[r] = (x, y, c, s)``.
+    """
+    n = starts.shape[0]
+    for r in range(ranges.shape[0]):
+        o = origins[r if origins.shape[0] > 1 else 0]
+        x, y, c, s = pose[r, 0], pose[r, 1], pose[r, 2], pose[r, 3]
+        for k in range(n):
+            stop = starts[k + 1] if k + 1 < n else order.shape[0]
+            least, j, lost = math.inf, -1, False
+            for q in range(starts[k], stop):
+                i = order[q]
+                rr = ranges[r, i]
+                if not math.isfinite(rr):
+                    continue
+                d = math.hypot(o[i, 0] + rr * unit[i, 0], o[i, 1] + rr * unit[i, 1])
+                if d != d:
+                    lost = True   # NaN: the least is NaN, as numpy's minimum says
+                elif d < least:
+                    least, j = d, i
+            if lost or j < 0:
+                j = middle[k]
+            rj = ranges[r, j]
+            echo = math.isfinite(rj)
+            ex, ey = o[j, 0] + (rj if echo else 0.0) * unit[j, 0], o[j, 1] + (rj if echo else 0.0) * unit[j, 1]
+            d = math.hypot(ex, ey) if echo else math.inf
+            if not d <= threshold:
+                dx, dy = (ex, ey) if echo else (unit[j, 0], unit[j, 1])
+                h = math.hypot(dx, dy)
+                ex, ey = threshold * dx / h, threshold * dy / h
+            out_x[r, k] = x + c * ex - s * ey
+            out_y[r, k] = y + s * ex + c * ey

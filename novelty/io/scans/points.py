@@ -51,7 +51,7 @@ from .sectors import sector_index
 from .sweep_rings import RingMaker
 
 __all__ = ["POSE_COLUMNS", "POINTS_SECTORS", "MAX_COORDINATE", "PointsMaker", "points_columns", "split_points",
-           "check_points", "ring_points", "sweep_points", "example_rows"]
+           "check_points", "ring_points", "sweep_points", "reference_points", "example_rows"]
 
 #: The pose's columns, first in every row.
 POSE_COLUMNS = ("x", "y", "heading")
@@ -165,20 +165,27 @@ def sweep_points(sweeps: Sequence, sectors: int = 16, threshold: float = 4.0) ->
     >>> sweep_points([ahead], sectors=2).round(3).tolist()   # facing +y: 1 m to its right, 3 m ahead-left
     [[10.0, 5.0, 1.571, 0.75, 0.25, 10.924, 7.228, 5.383, 6.148]]
     """
-    maker = PointsMaker(sectors, threshold)
-    return np.array([maker(sweep) for sweep in sweeps], dtype=np.float64).reshape(-1, 3 + 3 * int(sectors))
+    return PointsMaker(sectors, threshold).rows(sweeps)
+
+
+#: Sweeps made into rows together (:meth:`PointsMaker.rows`): a block's ranges stay about a MB at 1,080 beams
+BLOCK = 128
 
 
 class PointsMaker:
-    """:func:`sweep_points` of one sweep at a time, its sectors and threshold fixed, keeping each geometry's sectors.
+    """:func:`sweep_points` with its sectors and threshold fixed, keeping each geometry's sectors.
 
     The beams' sectors depend on their directions alone: for a geometry (the
     same ``angles`` array, or equal ones) they are worked out once, with each
     sector's beams in order and its middle beam, and the ring's
-    (:class:`~novelty.io.scans.sweep_rings.RingMaker`) kept too, so that a
-    recording's sweeps, which share a few geometries, cost a few vector
-    operations each. Each sector's end point is its nearest beam's (the first
-    of the nearest, in the beams' order), as the module docstring says.
+    (:class:`~novelty.io.scans.sweep_rings.RingMaker`) kept too. Each sector's
+    end point is its nearest beam's (the first of the nearest, in the beams'
+    order), as the module docstring says. :meth:`rows` makes many sweeps' rows
+    at once, the sweeps of a geometry together (a recording's sweeps share a
+    few geometries): their rings reduced in one array operation, their end
+    points placed in the world by one compiled pass
+    (:func:`novelty.io.scans._sweep_kernels.world_ends`), with the values of
+    :func:`reference_points`, the numpy specification, bit for bit.
     """
 
     def __init__(self, sectors: int = 16, threshold: float = 4.0):
@@ -187,20 +194,56 @@ class PointsMaker:
         self.sectors, self.threshold = int(sectors), float(threshold)
         self.rings = RingMaker(self.sectors, "min")
         self._known: list[_Beams] = []
+        self.world_ends = None   # compiled, imported at the first rows
 
     def __call__(self, sweep) -> np.ndarray:
         """The sweep's ``points`` row (``3 + 3 sectors`` values)."""
-        if sweep.pose is None:
-            raise ValueError(f"The sweep at t={sweep.time} has no pose: the points input places each echo in the "
-                             "world frame (give the recording's poses, pose_topic=).")
-        near = preprocess(self.rings(sweep), self.threshold)
-        ends = self._geometry(sweep.angles).ends(sweep, self.threshold)
-        x, y, yaw = (float(v) for v in sweep.pose)
-        c, s = math.cos(yaw), math.sin(yaw)
-        world_x = x + c * ends[:, 0] - s * ends[:, 1]
-        world_y = y + s * ends[:, 0] + c * ends[:, 1]
-        heading = (yaw + math.pi) % (2 * math.pi) - math.pi
-        return np.r_[x, y, heading, near, world_x, world_y]
+        return self.rows([sweep])[0]
+
+    def rows(self, sweeps: Sequence) -> np.ndarray:
+        """The ``points`` rows of ``sweeps``, one a sweep, in their order: shape (len(sweeps), 3 + 3 sectors)."""
+        sweeps = list(sweeps)
+        out = np.empty((len(sweeps), 3 + 3 * self.sectors))
+        for start in range(0, len(sweeps), BLOCK):
+            block = sweeps[start:start + BLOCK]
+            for beams, at in self._by_geometry(block).values():
+                out[start + np.asarray(at)] = self._rows(beams, [block[q] for q in at])
+        return out
+
+    def _by_geometry(self, sweeps: list) -> dict:
+        """The sweeps' places grouped by geometry, each sweep checked in order (a pose, sectors its beams fill)."""
+        groups: dict[int, tuple[_Beams, list[int]]] = {}
+        angles = at = None
+        for q, sweep in enumerate(sweeps):
+            if sweep.pose is None:
+                raise ValueError(f"The sweep at t={sweep.time} has no pose: the points input places each echo in "
+                                 "the world frame (give the recording's poses, pose_topic=).")
+            if sweep.angles is not angles:   # a reader's sweeps share their geometry's arrays
+                angles = sweep.angles
+                beams = self._geometry(angles)
+                at = groups.setdefault(id(beams), (beams, []))[1]
+            at.append(q)
+        return groups
+
+    def _rows(self, beams: "_Beams", sweeps: list) -> np.ndarray:
+        """The rows of sweeps of one geometry."""
+        n = self.sectors
+        out = np.empty((len(sweeps), 3 + 3 * n))
+        out[:, 3:3 + n] = preprocess(self.rings.stack(sweeps), self.threshold)
+        out[:, :2] = [sweep.pose[:2] for sweep in sweeps]
+        yaw = np.array([sweep.pose[2] for sweep in sweeps], dtype=np.float64).tolist()
+        out[:, 2] = [(a + math.pi) % (2 * math.pi) - math.pi for a in yaw]
+        # the rotation by the C library's cosine and sine, as one sweep's row has it
+        pose = np.c_[out[:, :2], [math.cos(a) for a in yaw], [math.sin(a) for a in yaw]]
+        if self.world_ends is None:
+            # deferred: numba's import and the kernel's first compilation, paid where points rows are made
+            from ._sweep_kernels import world_ends
+
+            self.world_ends = world_ends
+        ranges = np.stack([np.asarray(sweep.ranges, dtype=np.float64) for sweep in sweeps])
+        self.world_ends(ranges, _origins(sweeps), beams.unit, beams.order, beams.starts, beams.middle,
+                        self.threshold, pose, out[:, 3 + n:3 + 2 * n], out[:, 3 + 2 * n:])
+        return out
 
     def _geometry(self, angles) -> "_Beams":
         for known in self._known:
@@ -210,6 +253,33 @@ class PointsMaker:
         beams = _Beams(np.asarray(angles, dtype=np.float64), self.sectors)
         self._known = [beams] + self._known[:3]   # a few sensors' geometries
         return beams
+
+
+def _origins(sweeps: list) -> np.ndarray:
+    """The sweeps' beams' origins, (1, beams, 2) where they share one array, else (m, beams, 2)."""
+    shared = all(sweep.origins is sweeps[0].origins for sweep in sweeps)
+    return np.stack([np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
+                     for sweep in (sweeps[:1] if shared else sweeps)])
+
+
+def reference_points(sweeps: Sequence, sectors: int = 16, threshold: float = 4.0) -> np.ndarray:
+    """The rows of :func:`sweep_points` in numpy, one sweep at a time: the readable specification of the
+    compiled :meth:`PointsMaker.rows`, which gives the same values bit for bit (tested)."""
+    rings = RingMaker(int(sectors), "min")
+    rows = []
+    for sweep in sweeps:
+        if sweep.pose is None:
+            raise ValueError(f"The sweep at t={sweep.time} has no pose.")
+        near = preprocess(rings(sweep), threshold)
+        beams = _Beams(np.asarray(sweep.angles, dtype=np.float64), int(sectors))
+        origins = np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
+        ends = beams.ends(np.asarray(sweep.ranges, dtype=np.float64), origins, threshold)
+        x, y, yaw = (float(v) for v in sweep.pose)
+        c, s = math.cos(yaw), math.sin(yaw)
+        world_x = x + c * ends[:, 0] - s * ends[:, 1]
+        world_y = y + s * ends[:, 0] + c * ends[:, 1]
+        rows.append(np.r_[x, y, (yaw + math.pi) % (2 * math.pi) - math.pi, near, world_x, world_y])
+    return np.array(rows, dtype=np.float64).reshape(-1, 3 + 3 * int(sectors))
 
 
 class _Beams:
@@ -226,10 +296,9 @@ class _Beams:
         self.starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
         self.middle = self.order[self.starts + counts // 2]
 
-    def ends(self, sweep, threshold: float) -> np.ndarray:
-        """Each sector's end point in the base frame: its nearest beam's echo, or ``threshold`` along it."""
-        ranges = np.asarray(sweep.ranges, dtype=np.float64)
-        origins = np.asarray(sweep.origins, dtype=np.float64).reshape(-1, 2)
+    def ends(self, ranges: np.ndarray, origins: np.ndarray, threshold: float) -> np.ndarray:
+        """Each sector's end point in the base frame, of one sweep's ``ranges`` from its beams' ``origins``: its
+        nearest beam's echo, or ``threshold`` along it."""
         echo = np.isfinite(ranges)
         ends = origins + np.where(echo, ranges, 0.0)[:, None] * self.unit
         distance = np.where(echo, np.hypot(ends[:, 0], ends[:, 1]), np.inf)

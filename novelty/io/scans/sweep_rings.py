@@ -69,14 +69,44 @@ class RingMaker:
 
     def __call__(self, sweep: Sweep) -> np.ndarray:
         geometry = self._geometry(sweep.angles)
-        origins = sweep.origins
-        offsets = geometry.known(origins)   # a reader's shared origins, met before off the centre
-        if offsets is None:
-            if origins is geometry.zero or not np.count_nonzero(origins):
-                if not getattr(origins, "flags", origins).writeable:   # a reader's shared, read-only origins:
-                    geometry.zero = origins                              # the next sweep's need no test
-                return self._reduce(geometry, sweep.ranges, geometry.index)
-            offsets = geometry.offsets(origins, self.front)
+        if self._centred(geometry, sweep.origins):
+            return self._reduce(geometry, sweep.ranges, geometry.index)
+        return self._offset(geometry, sweep)
+
+    def stack(self, sweeps) -> np.ndarray:
+        """The rings of ``sweeps``, one a row: each the ring the maker gives it alone, those of a centred sensor
+        of the same geometry reduced together (one array operation for all of them)."""
+        out = np.empty((len(sweeps), self.n_sectors))
+        centred: dict[int, tuple[_Sectors, list[int]]] = {}
+        angles = origins = geometry = None
+        for q, sweep in enumerate(sweeps):
+            if sweep.angles is not angles:   # a reader's sweeps share their geometry's arrays
+                angles, origins, geometry = sweep.angles, None, self._geometry(sweep.angles)
+            if sweep.origins is not origins:
+                origins, at_centre = sweep.origins, self._centred(geometry, sweep.origins)
+            if at_centre:
+                centred.setdefault(id(geometry), (geometry, []))[1].append(q)
+            else:
+                out[q] = self._offset(geometry, sweep)
+        for geometry, at in centred.values():
+            ranges = np.stack([np.asarray(sweeps[q].ranges, dtype=np.float64) for q in at])
+            out[at] = self._reduce(geometry, ranges, geometry.index)
+        return out
+
+    @staticmethod
+    def _centred(geometry: "_Sectors", origins) -> bool:
+        """Whether the beams start at the base frame's origin (each bearing its beam's direction)."""
+        if geometry.known(origins) is not None:   # a reader's shared origins, met before off the centre
+            return False
+        if origins is geometry.zero or not np.count_nonzero(origins):
+            if not getattr(origins, "flags", origins).writeable:   # a reader's shared, read-only origins:
+                geometry.zero = origins                              # the next sweep's need no test
+            return True
+        return False
+
+    def _offset(self, geometry: "_Sectors", sweep: Sweep) -> np.ndarray:
+        """The ring of a sweep whose beams start off the base frame's origin (module docstring)."""
+        offsets = geometry.offsets(sweep.origins, self.front)
         r = np.asarray(sweep.ranges, dtype=np.float64)
         if self.reduce == "min":
             # deferred: numba's import and the kernel's first compilation, paid only for an offset sensor
@@ -167,9 +197,10 @@ class _Sectors:
         return np.clip(margin, 0.0, math.pi / 2)
 
     def nearest(self, ranges: np.ndarray, clip: float | None) -> np.ndarray:
-        """Each sector's nearest valid range (``+inf`` where none): ``reduce_sectors(..., "min")``'s values."""
-        r = ranges if self.order is None else ranges[self.order]
-        ring = np.fmin.reduceat(r, self.starts)   # fmin passes NaN (no information) over
+        """Each sector's nearest valid range (``+inf`` where none): ``reduce_sectors(..., "min")``'s values, of
+        one sweep's ranges or of several (a row each)."""
+        r = ranges if self.order is None else ranges[..., self.order]
+        ring = np.fmin.reduceat(r, self.starts, axis=-1)   # fmin passes NaN (no information) over
         ring[np.isnan(ring)] = np.inf
         return ring if clip is None else np.minimum(ring, clip)
 

@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 
 from novelty.io.ros.messages import Sweep
-from novelty.io.scans.points import PointsMaker, check_points, points_columns, ring_points, split_points, sweep_points
+from novelty.io.scans import points
+from novelty.io.scans.points import (PointsMaker, check_points, points_columns, reference_points, ring_points,
+                                      split_points, sweep_points)
 from novelty.io.scans.sectors import sector_index
 
 
@@ -119,6 +121,45 @@ def test_each_sectors_end_point_is_the_one_by_one_readings_exactly(beams, sector
         c, s = math.cos(yaw), math.sin(yaw)
         assert np.array_equal(row[3 + sectors:3 + 2 * sectors], x + c * ends[:, 0] - s * ends[:, 1])
         assert np.array_equal(row[3 + 2 * sectors:], y + s * ends[:, 0] + c * ends[:, 1])
+
+
+def mixed_sweeps(rng, count):
+    """Sweeps of two interleaved geometries, from shared, own, centred and offset origins, with ties, no echo,
+    no information, an echo at the centre, and poses in float32 and beyond a half turn."""
+    wide, narrow = np.linspace(-math.pi, math.pi, 360, endpoint=False), np.linspace(-2.0, 2.0, 90)
+    shared = {id(a): np.zeros((a.size, 2)) for a in (wide, narrow)}
+    sweeps = []
+    for q in range(count):
+        angles = wide if rng.random() < 0.5 else narrow
+        ranges = rng.choice([0.0, 0.5, 1.0, 2.0, 3.5, 4.0, 6.0, np.inf, np.nan], size=angles.size)
+        origins = (shared[id(angles)] if q % 3 == 0 else np.zeros((angles.size, 2)) if q % 3 == 1
+                   else np.tile(rng.uniform(-0.3, 0.3, 2), (angles.size, 1)))
+        pose = np.array([*rng.uniform(-50, 50, 2), rng.uniform(-7, 7)], dtype=np.float32 if q % 4 else np.float64)
+        sweeps.append(Sweep(float(q), origins, angles, ranges, pose))
+    return sweeps
+
+
+@pytest.mark.parametrize("block", [1, 7, 512])
+def test_the_rows_of_many_sweeps_are_the_numpy_references_one_by_one_bit_for_bit(block, monkeypatch):
+    monkeypatch.setattr(points, "BLOCK", block)
+    sweeps = mixed_sweeps(np.random.default_rng(block), 60)
+    for sectors in (1, 16, 90):
+        rows = sweep_points(sweeps, sectors, 4.0)
+        expected = reference_points(sweeps, sectors, 4.0)
+        assert rows.tobytes() == expected.tobytes()   # bit for bit, signed zeros included
+        maker = PointsMaker(sectors, 4.0)
+        assert np.stack([maker(sweep) for sweep in sweeps]).tobytes() == expected.tobytes()
+
+
+def test_no_sweeps_make_no_rows():
+    assert sweep_points([], 5).shape == (0, 18)
+
+
+def test_a_sweep_without_a_pose_among_many_is_refused_naming_its_time():
+    sweeps = mixed_sweeps(np.random.default_rng(0), 5)
+    sweeps[3] = Sweep(7.5, sweeps[3].origins, sweeps[3].angles, sweeps[3].ranges, None)
+    with pytest.raises(ValueError, match="The sweep at t=7.5 has no pose"):
+        sweep_points(sweeps, 4)
 
 
 def test_more_sectors_than_beams_is_refused_saying_which_hold_no_beam():
