@@ -57,7 +57,7 @@ import tempfile
 import numpy as np
 
 from .._atomic import write_atomically
-from .._validation.scans import CLEARED
+from .._validation.scans import CLEARED, MAX_SCAN_NORM
 from . import tricks
 from .children import run_self_check
 from .compiling import Compiled, cache_files
@@ -99,13 +99,15 @@ def _delete_rows(a, gone, n):
 
 #: a sum of squares at most this clears a scan of the norm bound (novelty._validation.scans)
 CLEARED = {cleared!r}
+#: the largest magnitude of a state value the single-scan calls take without the general check
+BOUND = {bound!r}
 
 
 @njit(cache=True, error_model="numpy", inline="always")
 def _finite_units(a, n):
     bad = 0
     for j in range(n):
-        bad += not a[j] - a[j] == 0.0  # NaN and infinity
+        bad += not abs(a[j]) <= BOUND  # NaN, infinity and values beyond the scans' norm bound
     return bad == 0
 
 
@@ -113,16 +115,17 @@ def _finite_units(a, n):
 def _finite_rows(a, n):
     bad = 0
     for v in a[:n].flat:
-        bad += not v - v == 0.0
+        bad += not abs(v) <= BOUND
     return bad == 0
 
 
 @njit(FINITE_SIGNATURE, cache=True, nogil=True, error_model="numpy")
 def finite(WT, {c_args}{s_args}n):
-    """Whether the float state of the first n units besides the weights is finite (values
-    written in place are not counted as changes): the single-scan calls refuse a state that
-    is not, and the caller's general check then says what is wrong. The weights are checked
-    by the scan's distances to them (``units_cleared``)."""
+    """Whether the float state of the first n units besides the weights is finite and within the
+    scans' norm bound in magnitude (values written in place are not counted as changes): the
+    single-scan calls refuse a state that is not, and the caller's general check then says
+    what is wrong (or, for a value only beyond the bound, learns the scan as a batch). The
+    weights are checked by the scan's distances to them (``units_cleared``)."""
     return True{float_checks}
 
 
@@ -292,7 +295,7 @@ def _source(c_steps: str, s_steps: str, label: str, sig: str, finite_sig: str, c
                            float_checks="".join(f" and _finite_{'units' if ndim == 1 else 'rows'}({name}, n)"
                                                 for name, ndim in floats),
                            delete_rows=rows.rstrip("\n"), c_params=c_params, s_params=s_params,
-                           cleared=CLEARED, c_args="".join(name + ", " for name in c_names),
+                           cleared=CLEARED, bound=MAX_SCAN_NORM, c_args="".join(name + ", " for name in c_names),
                            s_args="".join(name + ", " for name in s_names),
                            c_tuple="".join(name + ", " for name in c_names).rstrip(" "),
                            s_tuple="".join(name + ", " for name in s_names).rstrip(" "))

@@ -64,7 +64,7 @@ from .._component import StateError, engine_writes, held_by_engine
 from .compiling import disabled
 from .params import spec_of
 from .._validation.scans import cleared
-from .state import check_finite, parts_of
+from .state import check_efficacies, check_finite, parts_of
 
 __all__ = ["Engine", "CheckedCopy", "ONE"]
 
@@ -182,7 +182,8 @@ class Engine:
                 if name.endswith("_") and type(value) is np.ndarray and value.dtype.kind == "f"]
 
     def check_values(self) -> None:
-        """:func:`check_finite` of the state, and the units within the norm bound
+        """:func:`check_finite` of the state, every synapse's efficacies within the scans' norm
+        bound (:func:`~.state.check_efficacies`) and the units within the norm bound
         (``Clusterer._check_norm``): before every call, for values written in place (the
         compiled single-scan calls check them in the driver, and leave a state that fails to
         the general path, which calls this).
@@ -201,6 +202,7 @@ class Engine:
         if all(map(cleared, self._values)):
             return
         check_finite(self.state_arrays())
+        check_efficacies(self.parts)
         self.clusterer._check_norm()
 
     def value_arrays(self) -> list:

@@ -41,9 +41,10 @@ import numbers
 import numpy as np
 
 from .._component import MAX_COUNT, Component, StateError, check_int_state, engine_writes
+from .._validation.scans import MAX_SCAN_NORM
 from .params import attribute, spec_of
 
-__all__ = ["check_state", "check_layout", "check_finite", "parts_of", "per_unit_arrays"]
+__all__ = ["check_state", "check_layout", "check_finite", "check_efficacies", "parts_of", "per_unit_arrays"]
 
 
 def parts_of(clusterer, synapse) -> tuple:
@@ -132,6 +133,23 @@ def check_finite(arrays) -> None:
         if a.dtype.kind == "f" and not np.isfinite(a).all():
             raise StateError(f"{name} holds NaN or infinity, values that are not finite (written "
                              "into it in place?): the learned state is damaged. Refit, or set finite values.")
+
+
+def check_efficacies(parts) -> None:
+    """Raise :class:`StateError` if a synapse among ``parts`` (a nested one too, such as a growing
+    network's firing counters) holds an efficacy beyond the scans' norm bound (``MAX_SCAN_NORM``),
+    finite but written into it in place: an efficacy is a rate of learning and a novelty, near
+    ``[0, 1]`` for every synapse here, and one as large as 1e300 would carry the weights past what
+    a float holds within the call, where the compiled winner search and numpy's ``argmin`` part
+    ways on what overflowed."""
+    for part in parts:
+        if part._kind != "synapse":
+            continue
+        efficacy = vars(part).get("efficacy_")
+        if type(efficacy) is np.ndarray and efficacy.size and np.abs(efficacy).max() > MAX_SCAN_NORM:
+            raise StateError(f"{type(part).__name__}.efficacy_ holds a value beyond {MAX_SCAN_NORM:g} in "
+                             "magnitude (written into it in place?): an efficacy lies near [0, 1]; the "
+                             "learned state is damaged. Refit, or set values within the bound.")
 
 
 def _unmap(component) -> None:

@@ -185,6 +185,7 @@ def _exact_verdict(engine) -> str | None:
     try:
         check_finite(engine.state_arrays())
         _exact_norm(engine.clusterer)
+        _exact_efficacies(engine.parts)
     except StateError as exc:
         return str(exc)
     return None
@@ -197,6 +198,15 @@ def _exact_norm(clusterer) -> None:
 
     if _largest_norm(clusterer.weights_) > MAX_SCAN_NORM * (1 + 1e-9):
         raise StateError("beyond the bound")
+
+
+def _exact_efficacies(parts) -> None:
+    """Every synapse's efficacy within the scans' norm bound in magnitude, value by value."""
+    from novelty._validation import MAX_SCAN_NORM
+
+    for part in parts:
+        if part._kind == "synapse" and any(abs(float(e)) > MAX_SCAN_NORM for e in part.efficacy_):
+            raise StateError("an efficacy beyond the bound")
 
 
 def _write(det, where: str, value: float, every: bool) -> None:

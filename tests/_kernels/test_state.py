@@ -133,6 +133,27 @@ def test_values_written_in_place_are_checked_before_every_batch_call(reference):
 
 
 @pytest.mark.parametrize("reference", [False, True])
+def test_an_efficacy_beyond_the_bound_written_in_place_is_refused(reference):
+    """A firing counter's efficacy of 1e300 written in place (finite, so check_finite passes) would
+    carry a growing network's weights past what a float holds within the call, where the compiled
+    winner search and numpy's argmin part ways: every call refuses it, single scans too."""
+    X = corridor(60, n_features=5)
+    det = novelty.make("habituating", clusterer="gwr", synapse="stanley").fit(X)
+    if not reference:
+        _kernels.wait()
+    with reference_only() if reference else contextlib.nullcontext():
+        det.score_learn_one(X[0].copy())
+        det.clusterer_.firing_.efficacy_[0] = 1e300
+        message = r"StanleySynapse\.efficacy_ holds a value beyond 1e\+100"
+        for call in (det.stream, det.novelty, det.partial_fit):
+            with pytest.raises(StateError, match=message):
+                call(X[1:4])
+        for call in (det.score_learn_one, det.score_one):
+            with pytest.raises(StateError, match=message):
+                call(X[1].copy())
+
+
+@pytest.mark.parametrize("reference", [False, True])
 @pytest.mark.parametrize("value, message", [(np.nan, r"SOM\.weights_ holds NaN or infinity"),
                                             (1e300, r"SOM\.weights_ reach a norm of 1e\+300, beyond the bound")])
 def test_values_written_in_place_are_checked_before_a_single_scan(reference, value, message):
