@@ -182,7 +182,13 @@ def _construct(cls: type, params: Any) -> Component:
     unknown = sorted(set(params) - set(valid))
     if unknown:
         raise ModelFileError(f"Model file gives {cls.__name__} unknown parameters {unknown}.")
-    obj = cls(**{k: _decode_value(v) for k, v in params.items()})
+    decoded = {k: _decode_value(v) for k, v in params.items()}
+    for name, value in decoded.items():
+        # a count no run reaches, which the compiled steps could not hold either
+        if isinstance(value, int) and not isinstance(value, bool) and not -2**63 <= value < 2**63:
+            raise ModelFileError(f"Model file gives {cls.__name__}.{name} = {value}, beyond the 64-bit "
+                                 "integers a parameter holds.")
+    obj = cls(**decoded)
     try:
         obj._validate_params()
     except ValueError as exc:

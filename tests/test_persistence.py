@@ -683,6 +683,15 @@ def test_counters_beyond_any_run_are_refused(saved, tmp_path, field, value):
         novelty.load(bad)
 
 
+def test_a_parameter_beyond_int64_is_refused_at_load(saved, tmp_path):
+    """A count no run reaches (2**70 clusters) is a model file's error at load, not a ValueError
+    when the compiled steps first read the parameters."""
+    bad = tamper_meta(saved, tmp_path, lambda m: m["root"]["children"]["clusterer_"]["params"].update(
+        {next(iter(m["root"]["children"]["clusterer_"]["params"])): 2**70}))
+    with pytest.raises(ModelFileError, match=r"= 1180591620717411303424, beyond the 64-bit integers"):
+        novelty.load(bad)
+
+
 def test_efficacy_range_follows_the_stimulus(tmp_path):
     """Under a stimulus S, Stanley's efficacy stays in [y0 - S/alpha, y0]: S = alpha y0 reaches 0."""
     det = fitted(stimulus=1.05)
