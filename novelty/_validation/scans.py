@@ -133,12 +133,15 @@ def cleared(a: np.ndarray) -> bool:
     if a.dtype == np.float64 and 0 < a.size <= 4096 and a.flags.c_contiguous:
         flat = a.reshape(-1)
         return _ddot()(flat, flat) <= CLEARED
+    # summed in float64 at least: a float32 array's squares overflow float32 from about 1.8e19,
+    # far inside the bound
+    wide = np.result_type(a.dtype, np.float64)
     with np.errstate(over="ignore", invalid="ignore"):
         if a.ndim == 2 and not a.flags.c_contiguous:
-            total = np.einsum("ij,ij->", a, a)
+            total = np.einsum("ij,ij->", a, a, dtype=wide)
         else:
             flat = a.reshape(-1)  # a view where the memory is contiguous
-            total = np.einsum("i,i->", flat, flat)
+            total = np.einsum("i,i->", flat, flat, dtype=wide)
     # compared as a Python float: a float32 sum against CLEARED would turn CLEARED into
     # float32's infinity (NEP 50), and clear an array holding infinity
     return float(total) <= CLEARED

@@ -4,7 +4,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from sklearn.exceptions import NotFittedError
 
@@ -266,6 +266,7 @@ _LAYOUTS = ["plain", "transposed", "long", "big-endian", "float32", "read-only"]
 
 
 @given(st.lists(st.lists(_VALUES, min_size=3, max_size=3), min_size=1, max_size=6), st.sampled_from(_LAYOUTS))
+@example([[0.0, 0.0, 1.8446743523953738e+19]], "float32")  # its square overflows float32: summed in float64
 @settings(max_examples=300, deadline=None)
 def test_an_array_cleared_is_finite_and_within_the_norm_bound_row_by_row(rows, layout):
     """``cleared`` is the fast half of the state's value checks: what it clears, the exact
