@@ -47,6 +47,7 @@ __all__ = [
     "SOM",
     "StanleySynapse",
     "ModelFileError",
+    "FittedPartError",
     "ScanRangeWarning",
 ]
 
@@ -62,6 +63,7 @@ _LAZY = {
     "SOM": "novelty.clusterers.som",
     "StanleySynapse": "novelty.habituation.stanley",
     "ModelFileError": "novelty.persistence",
+    "FittedPartError": "novelty._component",
     "ScanRangeWarning": "novelty.filter",
 }
 

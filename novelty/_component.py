@@ -9,9 +9,7 @@ JSON values, which is what model files hold (never pickle).
 
 from __future__ import annotations
 
-import contextlib
 import numbers
-import warnings
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -19,7 +17,8 @@ from sklearn.base import BaseEstimator
 
 from ._validation import validate_parameters
 
-__all__ = ["Component", "KernelSpec", "StateError", "declares", "held_by_engine", "engine_writes"]
+__all__ = ["Component", "FittedPartError", "KernelSpec", "StateError", "declares", "held_by_engine",
+           "engine_writes"]
 
 #: the capabilities a component class may declare (``_capabilities``), and what each promises
 CAPABILITIES = {
@@ -126,20 +125,22 @@ class Component(BaseEstimator):
         """Set an attribute and count the change: a compiled engine holding this component's
         state and parameters (:mod:`novelty._kernels.engine`), and a filter holding it as a part,
         compare one count instead of every value to know whether anything was replaced or set
-        since they last read it. Changes made in place inside an array are not counted (nothing
-        needs them to be: the engine reads arrays in place); the engine writes the counters it
-        owns back without counting (through ``vars``).
+        since they last read it. The engine writes the counters it owns back without counting
+        (through ``vars``).
 
-        A public attribute (a parameter or learned state) set on a fitted part, one an engine
-        holds (:func:`held_by_engine`), from outside the engine's own writes
-        (:func:`engine_writes`), is deprecated: a ``FutureWarning`` says what to do instead, and
-        a future release will raise. The engine is the one writer of what a filter learned."""
+        A fitted part, one an engine holds (:func:`held_by_engine`), is read-only from outside
+        the engine's own writes (:func:`engine_writes`): setting a public attribute (a parameter
+        or learned state) on it raises :class:`FittedPartError`, which says what to do instead,
+        and its learned arrays are read-only. The engine is the one writer of what a filter
+        learned."""
         if vars(self).get("_held") and not vars(self).get("_writing") and not name.startswith("_"):
-            _warn_fitted_write(self, name)
+            raise _fitted_write_error(self, name)
         object.__setattr__(self, name, value)
         vars(self)["_changes"] = self._changes + 1
 
     def __delattr__(self, name: str) -> None:
+        if vars(self).get("_held") and not vars(self).get("_writing") and not name.startswith("_"):
+            raise _fitted_write_error(self, name)
         object.__delattr__(self, name)
         vars(self)["_changes"] = self._changes + 1
 
@@ -206,37 +207,108 @@ class Component(BaseEstimator):
         """Recompute private caches (names starting with ``_``) from the state."""
 
 
+class FittedPartError(AttributeError):
+    """An attribute set on a fitted part (a filter's ``clusterer_`` or ``synapse_``) from outside
+    its engine, the one writer of what the filter learned (:meth:`Component.__setattr__`)."""
+
+
 def held_by_engine(component) -> None:
-    """Mark ``component`` as a fitted part an engine holds: attributes set on it from outside the
-    engine's writes warn (:meth:`Component.__setattr__`). Kept in its ``__dict__`` (a copy of a
-    filter copies it; a model file, which holds learned state only, does not)."""
+    """Mark ``component`` as a fitted part an engine holds: an attribute set on it from outside
+    the engine's writes raises (:meth:`Component.__setattr__`), and its learned arrays are
+    read-only (:func:`engine_writes` makes them writable while the engine writes). Kept in its
+    ``__dict__`` (a copy of a filter copies it; a model file, which holds learned state only,
+    does not)."""
     vars(component)["_held"] = True
+    if not vars(component).get("_writing"):
+        _lock(component)
 
 
-@contextlib.contextmanager
-def engine_writes(parts):
-    """The block in which an engine (or the checks it relies on) sets attributes on its
-    fitted ``parts``: no warning (:meth:`Component.__setattr__`). Re-entrant."""
-    before = [vars(part).get("_writing", False) for part in parts]
-    for part in parts:
-        vars(part)["_writing"] = True
-    try:
-        yield
-    finally:
-        for part, was in zip(parts, before):
-            vars(part)["_writing"] = was
+class engine_writes:
+    """The block in which an engine (or the checks it relies on) writes its fitted ``parts``:
+    their attributes may be set, and the learned arrays they were locked with are writable;
+    on leaving, every learned array of a held part is read-only again. Re-entrant. A class,
+    not a generator: the reference engine enters one at every call."""
+
+    __slots__ = ("parts", "before")
+
+    def __init__(self, parts):
+        self.parts = parts
+
+    def __enter__(self) -> None:
+        self.before = before = []
+        for part in self.parts:
+            d = vars(part)
+            was = d.get("_writing", False)
+            before.append(was)
+            if not was:
+                _unlock(part)
+            d["_writing"] = True
+
+    def __exit__(self, *exc) -> bool:
+        for part, was in zip(self.parts, self.before):
+            d = vars(part)
+            d["_writing"] = was
+            if not was and d.get("_held"):
+                _lock(part)
+        return False
 
 
-def _warn_fitted_write(component, name: str) -> None:
+def _lock(component) -> None:
+    """Make the part's learned arrays (plain ndarrays) read-only, remembering those it made so in
+    ``_locked``: ``(count, {name: array})``, the part's count of changes then and the arrays (a
+    deep copy of the part copies them with its attributes). An array that was read-only already (a
+    memory map's, a caller's) is not the part's to unlock. While no attribute was set since (the
+    count), the arrays are the same ones: they are locked again without a look at the others."""
+    d = vars(component)
+    changes = d.get("_changes", 0)
+    at, locked = d.get("_locked", (None, {}))
+    if at == changes:
+        for value in locked.values():
+            value.setflags(write=False)
+        return
+    locked = {name: value for name, value in locked.items() if d.get(name) is value}
+    for name, value in d.items():
+        if type(value) is np.ndarray and name[-1] == "_" and name[0] != "_":
+            if value.flags.writeable:
+                value.setflags(write=False)
+                locked[name] = value
+            elif locked.get(name) is not value:
+                locked.pop(name, None)
+    d["_locked"] = (changes, locked)
+
+
+def _unlock(component) -> None:
+    """Make writable again the arrays :func:`_lock` made read-only that the part still holds (a view
+    only once its base is: those that fail are tried again after the others)."""
+    d = vars(component)
+    at, locked = d.get("_locked", (None, None))
+    if not locked:
+        return
+    same = at == d.get("_changes", 0)  # else an attribute was set since: only those it still holds
+    later = []
+    for name, value in locked.items():
+        if same or d.get(name) is value:
+            try:
+                value.setflags(write=True)
+            except ValueError:  # a view of another of its arrays, not writable yet
+                later.append(value)
+    for value in later:
+        try:
+            value.setflags(write=True)
+        except ValueError:  # a view of memory locked elsewhere: the reference engine copies it (adopt)
+            pass
+
+
+def _fitted_write_error(component, name: str) -> FittedPartError:
     kind = component._kind or "part"
     if name in component._get_param_names():
         instead = (f"to learn with another value, set it on the filter (set_params({kind}__{name}=...)) "
                    "and fit again")
     else:
         instead = "to start from another learned state, fit again (or load a model file)"
-    warnings.warn(f"Setting {type(component).__name__}.{name} on a fitted part (a filter's {kind}_) is "
-                  "deprecated and will raise an error in a future release: the filter's engine is the one "
-                  f"writer of what the filter learned; {instead}.", FutureWarning, stacklevel=3)
+    return FittedPartError(f"{type(component).__name__}.{name} cannot be set on a fitted part (a filter's "
+                           f"{kind}_): the filter's engine is the one writer of what the filter learned; "
+                           f"{instead}.")
 
 
 def _is_json_value(value) -> bool:

@@ -125,9 +125,9 @@ class HabituatingFilter(NoveltyDetector):
     call. The arithmetic is its engine's (:mod:`novelty._kernels`): compiled
     or the numpy reference, with the same results; :attr:`compiled_` says which.
     The engine is the one writer of the fitted parts: setting an attribute on
-    ``clusterer_`` or ``synapse_`` (``det.synapse_.alpha = 1.5``) is
-    deprecated (a ``FutureWarning``; a future release raises): set the
-    parameter on the filter and fit again, or refit.
+    ``clusterer_`` or ``synapse_`` (``det.synapse_.alpha = 1.5``) raises
+    :class:`novelty.FittedPartError`, and their learned arrays are
+    read-only: set the parameter on the filter and fit again, or refit.
 
     References
     ----------

@@ -3,6 +3,7 @@ names, the first perception before any learning; and what the base class
 guarantees every detector (bounded scans, transactional fits, finite novelty,
 thread safety)."""
 
+import contextlib
 import threading
 import warnings
 
@@ -16,6 +17,7 @@ from novelty._component import StateError
 from novelty._validation import MAX_SCAN_NORM
 from novelty.registry import detectors
 from novelty.testing.conformance import _assert_same_state, _state_arrays
+from tests.damaged import damaging
 
 from .registered import detector_params
 
@@ -456,7 +458,8 @@ def damaged(name: str):
         for child in children.values():
             poison(child)
 
-    poison(det)
+    with damaging(det) if hasattr(det, "synapse_") else contextlib.nullcontext():
+        poison(det)
     det._rebuild_scratch() if hasattr(det, "reference_") else None
     return det
 

@@ -17,6 +17,7 @@ from novelty._component import StateError
 from novelty.clusterers.som import SOM
 from novelty.filter import HabituatingFilter
 from novelty.habituation.stanley import StanleySynapse
+from tests.damaged import damaging
 
 TAU, ALPHA = 3.33, 1.05
 REST = 1 - 1 / ALPHA
@@ -40,8 +41,8 @@ def state(det):
     out = {"n_features_in_": det.n_features_in_, "last_time_": det.last_time_}
     for part in ("clusterer_", "synapse_"):
         for name, value in vars(getattr(det, part)).items():
-            if name not in ("_changes", "_held", "_writing"):  # not state: the count of attributes set,
-                # the marks of the engine that holds and writes the part
+            if name not in ("_changes", "_held", "_writing", "_locked"):  # not state: the count of
+                # attributes set, the marks of the engine that holds, writes and locks the part
                 out[f"{part}.{name}"] = value.copy() if isinstance(value, np.ndarray) else value
     return out
 
@@ -118,7 +119,8 @@ def test_a_long_repeated_scan_never_goes_below_the_resting_value():
 
 def test_novelty_is_the_winners_efficacy_before_learning():
     det = small().fit(data(10))
-    det.synapse_.efficacy_[:] = np.linspace(0.1, 0.9, 20)
+    with damaging(det):
+        det.synapse_.efficacy_[:] = np.linspace(0.1, 0.9, 20)
     x = data(1, seed=9)[0]
     winner = det.clusterer_.match(x).winner
     before = det.synapse_.efficacy_[winner]
@@ -130,8 +132,9 @@ def test_novelty_is_the_winners_efficacy_before_learning():
 def test_neighbours_habituate_others_hold_inside_the_filter():
     det = novelty.make("hsom", n_rows=3, n_columns=3)
     det.fit(np.zeros((1, 2)))  # one scan learned; reset the bank for a clean count
-    det.synapse_.efficacy_[:] = 1.0
-    det.clusterer_.weights_[:] = [[r, c] for r in range(3) for c in range(3)]
+    with damaging(det):
+        det.synapse_.efficacy_[:] = 1.0
+        det.clusterer_.weights_[:] = [[r, c] for r in range(3) for c in range(3)]
     det.score_learn_one(np.array([0.0, 0.0]))  # corner unit 0 wins
     eff = det.synapse_.efficacy_
     assert eff[0] == pytest.approx(1 - 1 / 3.33)
@@ -237,8 +240,9 @@ def test_timestamps_integrate_the_elapsed_time():
 # ---------------------------------------------------- scikit-learn conventions
 def test_score_samples_decision_function_and_predict_at_the_threshold():
     det = novelty.make("hsom", n_rows=1, n_columns=4, threshold=0.5).fit(np.zeros((1, 1)))
-    det.clusterer_.weights_[:] = [[0.0], [1.0], [2.0], [3.0]]
-    det.synapse_.efficacy_[:] = [0.2, 0.5, 0.5000001, 0.9]
+    with damaging(det):
+        det.clusterer_.weights_[:] = [[0.0], [1.0], [2.0], [3.0]]
+        det.synapse_.efficacy_[:] = [0.2, 0.5, 0.5000001, 0.9]
     X = np.array([[0.0], [1.0], [2.0], [3.0]])
     nov = det.novelty(X)
     np.testing.assert_array_equal(nov, [0.2, 0.5, 0.5000001, 0.9])
@@ -319,8 +323,9 @@ def mismatch(**params):
 
 def test_mismatch_rule_by_hand():
     det = mismatch(match_scale=0.5).fit(data(10, 2))
-    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
-    det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
+    with damaging(det):
+        det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+        det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
     X = np.array([[0.0, 0.0], [0.0, 0.25], [0.9, 1.0], [0.6, 0.0]])
     # winners 0, 0, 3, 1; d^2 = 0, 1/16, 1/100, 4/25; sigma^2 = 1/4
     expected = [0.25, 1 - 0.75 * np.exp(-0.125), 1 - np.exp(-0.02), 1.0]
@@ -330,8 +335,9 @@ def test_mismatch_rule_by_hand():
 
 def test_product_rule_by_hand():
     det = mismatch(match_scale=0.5).set_params(novelty_rule="product").fit(data(10, 2))
-    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
-    det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
+    with damaging(det):
+        det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+        det.synapse_.efficacy_[:] = [0.25, 1.0, 0.5, 0.0]
     X = np.array([[0.0, 0.0], [0.0, 0.25], [0.9, 1.0], [0.6, 0.0]])
     # winners 0, 0, 3, 1; d^2 = 0, 1/16, 1/100, 4/25; sigma^2 = 1/4: y (1 - exp(-2 d^2))
     expected = [0.0, 0.25 * (1 - np.exp(-0.125)), 0.0, 1 - np.exp(-0.32)]
@@ -343,8 +349,9 @@ def test_product_rule_by_hand():
 def test_product_rule_while_learning_a_repeated_scan():
     """Learning on: the efficacy before the scan is learned times the mismatch to the winner then."""
     det = mismatch(match_scale=0.5, radius=0).set_params(novelty_rule="product").fit(data(10, 2))
-    det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
-    det.synapse_.efficacy_[:] = 1.0
+    with damaging(det):
+        det.clusterer_.weights_[:] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]]
+        det.synapse_.efficacy_[:] = 1.0
     x = np.array([0.0, 0.5])
     out = [det.score_learn_one(x) for _ in range(3)]
     # unit 0 wins each time and moves a quarter of the way: d = 0.5, 0.375, 0.28125
@@ -448,7 +455,8 @@ def test_an_efficacy_written_in_place_outside_its_range_is_refused_in_every_call
     X = np.random.default_rng(0).random((20, 4))
     for call in ("novelty", "score_one", "score_learn_one", "stream", "predict"):
         det = novelty.make("hsom", n_rows=2, n_columns=2).fit(X)
-        det.synapse_.efficacy_[:] = written
+        with damaging(det):
+            det.synapse_.efficacy_[:] = written
         before = det.synapse_.efficacy_.copy()
         message = (r"outside the \[0.047619, 1\] its synapse keeps" if abs(written) <= 1e100
                    else r"efficacy_ holds a value beyond 1e\+100")  # refused before the call reads it

@@ -24,6 +24,7 @@ from novelty._component import StateError
 from novelty.clusterers.som import SOM
 from novelty.filter import HabituatingFilter
 from novelty.persistence import FORMAT_VERSION, ModelFileError
+from tests.damaged import damaging
 
 from ._kernels.kernel_helpers import within_fixed_point
 from .registered import missing_requirements
@@ -72,7 +73,7 @@ def all_state(det):
             # its own); nor are the counts of attributes set (Component.__setattr__), a part's marks
             # of the engine that holds it and writes it, nor the lock
             if name in ("clusterer_", "synapse_", "_engine", "_changes", "_parts_seen", "_lock", "_held",
-                        "_writing"):
+                        "_writing", "_locked"):
                 continue
             out[owner + name] = value
     return out
@@ -744,12 +745,14 @@ def test_a_state_that_would_not_load_is_not_saved(tmp_path):
     good.save(path)
     before = path.read_bytes()
     bad = fitted()
-    bad.clusterer_.weights_[0, 0] = np.nan
+    with damaging(bad):
+        bad.clusterer_.weights_[0, 0] = np.nan
     with pytest.raises(StateError, match=r"Not saved to .*m.npz.*NaN"):
         bad.save(path)
     assert path.read_bytes() == before and os.listdir(tmp_path) == ["m.npz"]
-    bad.clusterer_.weights_[0, 0] = 0.5
-    bad.synapse_.efficacy_[1] = 7.0
+    with damaging(bad):
+        bad.clusterer_.weights_[0, 0] = 0.5
+        bad.synapse_.efficacy_[1] = 7.0
     with pytest.raises(StateError, match=r"efficacy_ must lie in"):
         bad.save(path)
     assert path.read_bytes() == before and os.listdir(tmp_path) == ["m.npz"]

@@ -3,9 +3,9 @@
 A filter's ``clusterer`` and ``synapse`` parameters are templates: ``fit``
 builds ``clusterer_`` and ``synapse_`` from them. Set after fitting
 (``set_params(synapse__alpha=1.5)``, a new ``clusterer``, or an attribute set
-on a template or, deprecated, on a fitted part: the engine is the one writer
-of the fitted parts, :meth:`novelty._component.Component.__setattr__`), they
-take effect at the next ``fit``:
+on a template; never on a fitted part, whose one writer is the engine:
+:meth:`novelty._component.Component.__setattr__`), they take effect at the
+next ``fit``:
 learning on (``stream``, ``partial_fit``, ``learn_one``) is refused until the
 model is refitted or the values are set back, so that no scan is learned
 under parameters other than those it reports. Scoring reads the fitted state.

@@ -13,9 +13,9 @@ passes in.
 **Who sees the state.** Learning compiled, the engine holds the state in
 arrays of its own, with room for more units: the parts' attributes
 (``weights_``, ``efficacy_``, the declared arrays and counters) always show
-it, the arrays as views of the first ``n`` units of the engine's, the counters
-written back after every call. Writing into those arrays in place is seen by
-the next call, which reads them in place. The engine holds the weights
+it, the arrays as read-only views of the first ``n`` units of the engine's
+(:func:`novelty._component.held_by_engine`), the counters written back after
+every call; the driver writes the engine's own arrays. The engine holds the weights
 transposed, ``WT`` (features, capacity), as the driver works on them (the
 distances to every unit vectorise over the units): ``weights_`` is the view
 ``WT[:, :n].T``, so it is not C-contiguous (numpy reads and writes it as any

@@ -34,12 +34,20 @@ The methods (``X`` a C-contiguous float64 batch the filter checked, ``x`` one sc
   scales given to the clusterer (:meth:`Engine.calibrate`), one loop for every engine
   (:meth:`~novelty._kernels.reference.ReferenceEngine.learn_calibrating`).
 
-**Freshness.** An engine reads the parts when it is made; setting an
-attribute of a part (or of an object it was told to :meth:`Engine.watch`)
-counts a change (:meth:`novelty._component.Component.__setattr__`), so
+**Freshness.** An engine reads the parts when it is made. The parts are
+read-only outside its writes (:func:`novelty._component.engine_writes`), but
+the objects it watches besides them (the filter that owns it, the templates
+of its parts) are set at will, as scikit-learn's contract allows; setting an
+attribute of any of them counts a change
+(:meth:`novelty._component.Component.__setattr__`), so
 :meth:`Engine.holds` compares one count per part with those it saw (and
 :meth:`Engine.fresh` one per object it watches: the owner's too). Its own
-writes (the counters, a grown state's views) it takes as seen.
+writes (the counters, a grown state's views) it takes as seen. On the parts,
+a count moves only by the engine's writes, the checks it calls and a write
+made past the lock on purpose (``vars``, ``engine_writes``); the compiled
+engine still notices the last, one comparison a call, because it reads its own
+copies of the arrays (a replaced array it did not notice would otherwise be
+scored against, or read past, by the scoring kernels).
 
 Two predicates, not one, because they answer two questions. ``holds``: may
 this engine go on reading the parts (every call, :func:`~.choice.engine_for`);
@@ -254,7 +262,7 @@ class CheckedCopy:
 _GONE = object()
 #: a component's own bookkeeping, not what it learned: its count of changes, the marks of the engine
 #: that holds and writes it (:func:`novelty._component.held_by_engine`, ``engine_writes``)
-_BOOKKEEPING = ("_changes", "_held", "_writing")
+_BOOKKEEPING = ("_changes", "_held", "_writing", "_locked")
 
 
 def _finite_number(value) -> bool:

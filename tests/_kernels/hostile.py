@@ -41,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 import novelty
-from novelty._component import declares
+from novelty._component import declares, engine_writes
 from novelty._kernels.params import attribute, spec_of
 from novelty._kernels.state import parts_of, per_unit_arrays
 from novelty.registry import of_kind
@@ -195,7 +195,13 @@ def _number(text: str):
 
 
 def mutate(det, target: str, kind: str, arg, seed: int) -> None:
-    """Make ``target`` of the fitted filter ``det`` hostile (module docstring)."""
+    """Make ``target`` of the fitted filter ``det`` hostile (module docstring), past the fitted
+    parts' lock, as tests.damaged does (this module also runs as a script, outside the package)."""
+    with engine_writes(parts_of(det.clusterer_, det.synapse_)):
+        _mutate(det, target, kind, arg, seed)
+
+
+def _mutate(det, target: str, kind: str, arg, seed: int) -> None:
     owner_path, _, leaf = target.rpartition(".")
     owner = attribute(det, owner_path) if owner_path else det
     rng = np.random.default_rng(seed)

@@ -16,6 +16,8 @@ from novelty._kernels.reference import ReferenceEngine
 from novelty.clusterers.gwr import GrowWhenRequired
 from novelty.filter import HabituatingFilter
 
+from tests.damaged import damaging
+
 from .kernel_helpers import assert_same_filter, corridor, reference_only
 
 pytestmark = pytest.mark.skipif(not _kernels.kernels_enabled(), reason="numba kernels unavailable")
@@ -66,7 +68,8 @@ def test_the_reasons_and_the_engines(monkeypatch):
 def test_a_layout_the_driver_does_not_take_is_copied():
     X = corridor(50)
     hsom = novelty.make("hsom").fit(X)
-    hsom.clusterer_.weights_ = np.asfortranarray(hsom.clusterer_.weights_)
+    with damaging(hsom):
+        hsom.clusterer_.weights_ = np.asfortranarray(hsom.clusterer_.weights_)
     got = hsom.stream(X)
     ref = novelty.make("hsom").fit(X)
     with reference_only():
@@ -103,7 +106,8 @@ def test_another_engine_once_a_part_is_replaced_or_set():
     det = novelty.make("hsom").fit(X[:20])
     engine = det._current_engine()
     assert det._current_engine() is engine
-    det.clusterer_.learning_rate = 0.5  # a parameter set on a fitted part: read again
+    with damaging(det):
+        det.clusterer_.learning_rate = 0.5  # a parameter set on a fitted part: read again
     assert det._current_engine() is not engine
     engine = det._current_engine()
     det.synapse_ = copy.deepcopy(det.synapse_)

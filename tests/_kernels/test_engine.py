@@ -23,6 +23,8 @@ from novelty import _kernels, registry
 from novelty.clusterers.base import Clusterer
 from novelty.filter import HabituatingFilter
 
+from tests.damaged import damaging
+
 from .kernel_helpers import (assert_same_filter, assert_same_state, both, corridor, finite,
                             kernel_learn, reference_learn, reference_only, rules, streams,
                             within_fixed_point)
@@ -396,8 +398,10 @@ def _counter(det):
 
 
 def _another_synapse(det):
-    det.synapse_ = copy.deepcopy(det.synapse_)
-    det.synapse_.tau_neighbour = 20.0
+    synapse = copy.deepcopy(det.synapse_)  # a copy of a fitted part is one
+    with damaging((synapse,)):
+        synapse.tau_neighbour = 20.0
+    det.synapse_ = synapse
 
 
 def _firing_counters(det):
@@ -432,8 +436,9 @@ def test_what_changed_between_two_compiled_calls_is_used(preset, params, change)
         fast.partial_fit(block)
         with reference_only():
             slow.partial_fit(block)
-    change(fast)
-    with reference_only():
+    with damaging(fast):  # the state changed as nothing in the library may (tests.damaged)
+        change(fast)
+    with reference_only(), damaging(slow):
         change(slow)
     got = fast.stream(X[60:])
     with reference_only():
@@ -496,8 +501,9 @@ def test_weights_written_in_place_are_what_the_next_compiled_call_reads():
     slow = copy.deepcopy(det)
     far = np.full(5, 0.9)
     for d in (det, slow):  # unit 4 moved onto the next scan, unit 7 far along feature 2
-        d.clusterer_.weights_[4] = X[11]
-        d.clusterer_.weights_[7, 2] = 0.0
+        with damaging(d):
+            d.clusterer_.weights_[4] = X[11]
+            d.clusterer_.weights_[7, 2] = 0.0
     assert det.clusterer_.weights_[4].tolist() == X[11].tolist()
     assert det.winners(X[11:12])[0][0] == det.clusterer_.unit_ids_[4]
     with reference_only():
@@ -576,7 +582,8 @@ def test_short_batches_scored_scan_by_scan_equal_the_batch_kernel(clusterer_name
     assert len(calls) == len(batches) + 3
     far = X[203].copy()
     far[:] = 0.99999999e100 / np.sqrt(far.size)  # within the bound, beyond the driver's check from X
-    W[0] = far
+    with damaging(det):
+        W[0] = far
     got = engine.score(X[204:205])
     assert len(calls) == len(batches) + 4
     monkeypatch.setattr(engine_module, "FEW", 0)

@@ -16,6 +16,8 @@ from novelty import _kernels
 from novelty._kernels.engine import CompiledEngine
 from novelty._kernels.interface import CheckedCopy
 
+from tests.damaged import damaging
+
 from .kernel_helpers import corridor
 
 
@@ -26,7 +28,8 @@ def test_an_engine_holds_the_parts_until_one_is_set(reference):
         engine = det._current_engine()
         det.stream(corridor(10, n_features=4, seed=1))  # its own writes, taken as seen
         assert engine.holds() and det._current_engine() is engine
-        det.synapse_.tau_winner = 5.0
+        with damaging(det):
+            det.synapse_.tau_winner = 5.0
         assert not engine.holds()
         assert det._current_engine() is not engine
 
@@ -51,7 +54,8 @@ def test_a_copy_or_a_pickle_makes_its_own_engine():
     assert isinstance(copied._engine, CheckedCopy) and copied._engine.clusterer is copied.clusterer_
     assert copied._current_engine() is not engine and copied._current_engine().clusterer is copied.clusterer_
     assert pickle.loads(pickle.dumps(det))._engine is None
-    det.synapse_.alpha = 1.2  # set after the engine read it: a copy's state is not taken as checked
+    with damaging(det):
+        det.synapse_.alpha = 1.2  # set after the engine read it: a copy's state is not taken as checked
     assert copy.deepcopy(det)._engine is None
 
 
@@ -100,10 +104,12 @@ def test_a_deep_copy_changed_before_its_first_call_is_checked(monkeypatch, chang
     calls = _counting_checks(monkeypatch)
     copied = copy.deepcopy(det)
     if change == "a part's attribute":
-        copied.clusterer_.weights_ = np.zeros((copied.clusterer_.n_units_, 9))
+        with damaging(copied):
+            copied.clusterer_.weights_ = np.zeros((copied.clusterer_.n_units_, 9))
         error = "clusterer_.weights_ has shape"
     elif change == "a nested part's":
-        copied.clusterer_.firing_.efficacy_ = copied.clusterer_.firing_.efficacy_[:-1]
+        with damaging(copied):
+            copied.clusterer_.firing_.efficacy_ = copied.clusterer_.firing_.efficacy_[:-1]
         error = "firing_.efficacy_ has shape"
     elif change == "n_features_in_":
         vars(copied)["n_features_in_"] = 9
@@ -213,10 +219,11 @@ def _write(det, where: str, value: float, every: bool) -> None:
     """Write ``value`` in place into the fitted part's ``where``: into one value, or into every
     value (the weights halved: each row within 2x the value, their sum beyond it)."""
     array = getattr(det.clusterer_ if where == "weights_" else det.synapse_, where)
-    if every:
-        array[...] = value / (2.0 if where == "weights_" else 1.0)
-    else:
-        array.flat[3] = value
+    with damaging(det):
+        if every:
+            array[...] = value / (2.0 if where == "weights_" else 1.0)
+        else:
+            array.flat[3] = value
 
 
 _WRITTEN = [np.nan, np.inf, -np.inf, 1e300, 1e155, 1e150, 1.0000001e100, 1e100, 9.9e99, 1e99, -1e99, 0.5]
@@ -292,6 +299,7 @@ def test_check_values_reads_the_arrays_the_parts_hold_after_the_engine_grew():
     units = det.clusterer_.n_units_
     det.stream(X[3:])  # grows, past the room the engine had
     assert det.clusterer_.n_units_ > units and det._current_engine() is engine
-    det.clusterer_.weights_[-1, 0] = np.nan
+    with damaging(det):
+        det.clusterer_.weights_[-1, 0] = np.nan
     with pytest.raises(StateError, match="NaN or infinity"):
         det.stream(X[:2])

@@ -20,6 +20,8 @@ from novelty import _kernels
 from novelty._component import StateError
 from novelty._kernels.state import check_state
 
+from tests.damaged import damaging
+
 from .kernel_helpers import corridor, reference_only
 
 #: what the child runs: a fitted hsom (kernels ready), each case's state set on a copy, each
@@ -29,6 +31,8 @@ import copy, json, sys
 import numpy as np
 import novelty
 from novelty import _kernels
+from novelty._component import engine_writes
+from novelty._kernels.state import parts_of
 
 X = np.random.default_rng(0).uniform(0, 1, (200, 16))
 fitted = novelty.make("hsom").fit(X)
@@ -59,7 +63,8 @@ for case, hostile in CASES.items():
     for call, run in CALLS.items():
         det = copy.deepcopy(fitted)
         det.score_learn_one(X[0])  # the single-scan calls' engine confirmed
-        hostile(det)
+        with engine_writes(parts_of(det.clusterer_, det.synapse_)):  # as tests.damaged does
+            hostile(det)
         scans = X[:, :8] if case == "n_features_in_" else X
         try:
             run(det, scans)
@@ -113,7 +118,8 @@ def test_the_checks_name_what_is_wrong():
     ]
     for change, message in cases:
         hostile = copy.deepcopy(det)
-        change(hostile)
+        with damaging(hostile):
+            change(hostile)
         with pytest.raises(StateError, match=message):
             check_state(hostile)
 
@@ -124,7 +130,8 @@ def test_values_written_in_place_are_checked_before_every_batch_call(reference):
     det = novelty.make("hsom", n_rows=3, n_columns=3).fit(X)
     with reference_only() if reference else contextlib.nullcontext():
         det.stream(X[:10])
-        det.clusterer_.weights_[2, 1] = np.nan  # in place: no change counted
+        with damaging(det):
+            det.clusterer_.weights_[2, 1] = np.nan  # in place: no change counted
         with pytest.raises(StateError, match=r"SOM\.weights_ holds NaN or infinity"):
             det.stream(X[10:20])
         with pytest.raises(StateError, match=r"SOM\.weights_ holds NaN or infinity"):
@@ -143,7 +150,8 @@ def test_an_efficacy_beyond_the_bound_written_in_place_is_refused(reference):
         _kernels.wait()
     with reference_only() if reference else contextlib.nullcontext():
         det.score_learn_one(X[0].copy())
-        det.clusterer_.firing_.efficacy_[0] = 1e300
+        with damaging(det):
+            det.clusterer_.firing_.efficacy_[0] = 1e300
         message = r"StanleySynapse\.efficacy_ holds a value beyond 1e\+100"
         for call in (det.stream, det.novelty, det.partial_fit):
             with pytest.raises(StateError, match=message):
@@ -168,7 +176,8 @@ def test_values_written_in_place_are_checked_before_a_single_scan(reference, val
         _kernels.wait()
     with reference_only() if reference else contextlib.nullcontext():
         det.score_learn_one(X[0].copy())  # the single-scan protocol's engine confirmed
-        det.clusterer_.weights_[4, 2] = value
+        with damaging(det):
+            det.clusterer_.weights_[4, 2] = value
         for call in (det.score_learn_one, det.score_one):
             with pytest.raises(StateError, match=message):
                 call(X[1].copy())

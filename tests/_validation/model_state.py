@@ -5,6 +5,7 @@ import copy
 import numpy as np
 
 import novelty
+from tests.damaged import damaging
 
 N_FEATURES = 4
 
@@ -12,7 +13,8 @@ N_FEATURES = 4
 def fitted():
     det = novelty.make("hsom", n_rows=3, n_columns=3)
     det.fit(np.random.default_rng(0).uniform(size=(20, N_FEATURES)))
-    det.synapse_.efficacy_[:] = np.linspace(0.1, 0.9, 9)  # not all equal, so any change shows
+    with damaging(det):
+        det.synapse_.efficacy_[:] = np.linspace(0.1, 0.9, 9)  # not all equal, so any change shows
     return det
 
 
@@ -20,7 +22,7 @@ def fitted():
 #: counts the filter last checked its parts at, the detector's lock (a deep copy makes a new one)
 #: and its engine (scratch: a deep copy holds what its own is made from), a fitted part's marks of the
 #: engine that holds and writes it (novelty._component.held_by_engine, engine_writes)
-BOOKKEEPING = ("_changes", "_parts_seen", "_lock", "_engine", "_held", "_writing")
+BOOKKEEPING = ("_changes", "_parts_seen", "_lock", "_engine", "_held", "_writing", "_locked")
 
 
 def snapshot(det):

@@ -8,6 +8,7 @@ import pytest
 import novelty
 from novelty._validation import Bounds, Interval, Options, validate_parameters
 from novelty.registry import clusterers
+from tests.damaged import damaging
 
 from .model_state import N_FEATURES, assert_equal_deep, fitted, snapshot
 
@@ -236,23 +237,30 @@ def test_a_part_parameter_set_directly_after_fitting_is_noticed_as_set_params_no
 
 @pytest.mark.parametrize("method", ["score_learn_one", "partial_fit"])
 def test_an_invalid_parameter_set_on_a_fitted_part_is_refused_with_its_rule(method):
-    """``det.synapse_.alpha = x`` (the fitted part) is checked against its rule at the next
-    call, which leaves the model as it was; a valid value is learned with."""
+    """A fitted part's parameter cannot be set (``FittedPartError``); one set all the same, past
+    the lock (tests.damaged), is checked against its rule at the next call, which leaves the
+    model as it was; a valid value is learned with."""
     det = fitted()
     X = np.full((2, N_FEATURES), 0.5)
     det.learn_one(X[0])
     arg = X[0] if method == "score_learn_one" else X
     before = snapshot(det)
-    det.synapse_.alpha = -1.0
+    with pytest.raises(novelty.FittedPartError, match="synapse__alpha"):
+        det.synapse_.alpha = -1.0
+    assert_equal_deep(before, snapshot(det))
+    with damaging(det):
+        det.synapse_.alpha = -1.0
     with pytest.raises(ValueError, match=r"^The 'alpha' parameter of StanleySynapse must be a float"):
         getattr(det, method)(arg)
-    det.clusterer_.learning_rate = 2.0
-    det.synapse_.alpha = before["synapse_"]["alpha"]
+    with damaging(det):
+        det.clusterer_.learning_rate = 2.0
+        det.synapse_.alpha = before["synapse_"]["alpha"]
     with pytest.raises(ValueError, match=r"^The 'learning_rate' parameter of SOM must be a float in \[0, 1\]"):
         getattr(det, method)(arg)
     after = snapshot(det)
     after["clusterer_"]["learning_rate"] = before["clusterer_"]["learning_rate"]
     assert_equal_deep(before, after)
-    det.clusterer_.learning_rate = 0.5
+    with damaging(det):
+        det.clusterer_.learning_rate = 0.5
     getattr(det, method)(arg)
     assert det.clusterer_.learning_rate == 0.5
