@@ -208,8 +208,9 @@ class Component(BaseEstimator):
 
 
 class FittedPartError(AttributeError):
-    """An attribute set on a fitted part (a filter's ``clusterer_`` or ``synapse_``) from outside
-    its engine, the one writer of what the filter learned (:meth:`Component.__setattr__`)."""
+    """An attribute set on a fitted part (a filter's or a map's ``clusterer_`` or ``synapse_``)
+    from outside its engine, the one writer of what the detector learned
+    (:meth:`Component.__setattr__`)."""
 
 
 def held_by_engine(component) -> None:
@@ -306,8 +307,8 @@ def _fitted_write_error(component, name: str) -> FittedPartError:
                    "and fit again")
     else:
         instead = "to start from another learned state, fit again (or load a model file)"
-    return FittedPartError(f"{type(component).__name__}.{name} cannot be set on a fitted part (a filter's "
-                           f"{kind}_): the filter's engine is the one writer of what the filter learned; "
+    return FittedPartError(f"{type(component).__name__}.{name} cannot be set on a fitted part (a detector's "
+                           f"{kind}_): the detector's engine is the one writer of what it learned; "
                            f"{instead}.")
 
 

@@ -45,7 +45,7 @@ import numbers
 
 import numpy as np
 
-from .._component import Component, StateError, check_int_state, declares
+from .._component import Component, StateError, check_int_state, declares, engine_writes, held_by_engine
 from .._filter import efficacy_range, routing
 from .._kernels.compiling import disabled
 from .._validation import Instance, Interval
@@ -188,7 +188,8 @@ class HabituatingMap(NoveltyDetector):
             part, _, name = key.partition("__")
             fitted = getattr(self, f"{part}_", None) if name and part in routing.PARTS else None
             if isinstance(fitted, Component):
-                fitted.set_params(**{name: value})
+                with engine_writes((fitted,)):  # the map's own write: its engine reads it again (_engine)
+                    fitted.set_params(**{name: value})
         return self
 
     @classmethod
@@ -230,8 +231,9 @@ class HabituatingMap(NoveltyDetector):
 
     def _learn(self, X: np.ndarray, dt: np.ndarray) -> np.ndarray:
         costs = self._check_rows(X)
-        engine = self._engine()
-        out = engine.learn(X, dt, float(self.stimulus), costs)
+        with self._own_call():
+            engine = self._engine()
+            out = engine.learn(X, dt, float(self.stimulus), costs)
         self._seen()
         warn_full(self.clusterer_, engine.passed_by, stacklevel=5)
         engine.passed_by = 0
@@ -239,7 +241,14 @@ class HabituatingMap(NoveltyDetector):
 
     def _novelty(self, X: np.ndarray) -> np.ndarray:
         costs = self._check_rows(X)
-        return self._engine().score(X, costs)
+        with self._own_call():
+            return self._engine().score(X, costs)
+
+    def _own_call(self):
+        """The block of one of the map's own calls on its fitted parts, which are read-only outside such
+        blocks (:func:`novelty._component.held_by_engine`): its engine writes them, and the compiled kernels
+        read them as writable arrays (numba types a read-only array as another type, compiled again)."""
+        return engine_writes((self.clusterer_, self.synapse_))
 
     def _engine(self):
         """The engine of the parts as they are (:mod:`novelty.maps.map_engine`): the one held while nothing was set
@@ -251,6 +260,8 @@ class HabituatingMap(NoveltyDetector):
             return engine
         self._check_parts()
         engine = vars(self)["_map_engine"] = choose(self.clusterer_, self.synapse_)
+        for part in (self.clusterer_, self.synapse_):  # the engine is the one writer of what the map learned
+            held_by_engine(part)
         self._seen()
         return engine
 
@@ -305,12 +316,13 @@ class HabituatingMap(NoveltyDetector):
             return empty.explain(x[0])
         self._check_rows(np.ascontiguousarray(x))
         cells, synapse = self.clusterer_, self.synapse_
-        scan = cells.scan_cells(x[0])
-        index = cells.index()
-        fresh = synapse.fresh_efficacy
-        v, score = cells.readout(scan.hits, index.units, synapse.efficacy_, fresh)
-        block = cells.readout_efficacy(scan.hits, index.units, synapse.efficacy_, fresh)
-        state = self.read_cells(scan.hits)
+        with self._own_call():
+            scan = cells.scan_cells(x[0])
+            index = cells.index()
+            fresh = synapse.fresh_efficacy
+            v, score = cells.readout(scan.hits, index.units, synapse.efficacy_, fresh)
+            block = cells.readout_efficacy(scan.hits, index.units, synapse.efficacy_, fresh)
+            state = self.read_cells(scan.hits)
         k = v.size if cells.top is None else min(int(cells.top), v.size)
         scoring = np.zeros(v.size, dtype=bool)
         scoring[np.argsort(-v, kind="stable")[:k]] = True
@@ -361,7 +373,8 @@ class HabituatingMap(NoveltyDetector):
         none), ``passes`` and ``last_hit`` (0 where it met none)."""
         self._check_fitted()
         cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
-        units = self.clusterer_.index().units(cells[:, 0], cells[:, 1])
+        with self._own_call():
+            units = self.clusterer_.index().units(cells[:, 0], cells[:, 1])
         held, at = units >= 0, np.maximum(units, 0)
         c, s = self.clusterer_, self.synapse_
         return {"efficacy": np.where(held, s.efficacy_[at] if s.efficacy_.size else 0.0, s.fresh_efficacy),

@@ -20,6 +20,7 @@ from novelty.habituation.stanley import StanleySynapse
 from novelty.maps.cells import WorldCells
 from novelty.io.scans.points import example_rows
 from novelty.persistence import load, save
+from tests.damaged import damaging
 
 ROBOT = (0.1, 0.1, 0.0)
 EXACT = {"cell_size": 1.0, "tau": 2.0, "alpha": 1.0, "top": 1, "tolerance": 0, "unseen": 0.0, "arc": 0.0,
@@ -442,14 +443,16 @@ def test_a_saved_map_keeps_its_visits_and_goes_on_as_the_map_it_was(tmp_path):
 @pytest.mark.parametrize("last, scans", [(31, 30), (-1, 30)])
 def test_a_last_hit_outside_the_scans_learned_is_refused_as_a_bad_state(last, scans):
     det = habituating_map(visit_gap=2).fit(example_rows(n=30))
-    det.clusterer_.last_hit_[0], det.clusterer_.scans_ = last, scans
+    with damaging(det):
+        det.clusterer_.last_hit_[0], det.clusterer_.scans_ = last, scans
     with pytest.raises(StateError, match="last_hit_"):
         det._check_state()
 
 
 def test_pending_scans_of_another_width_are_refused_as_a_bad_state():
     det = habituating_map(evidence_lag=2).fit(example_rows(n=10))
-    det.clusterer_.pending_ = det.clusterer_.pending_[:, :-1]
+    with damaging(det):
+        det.clusterer_.pending_ = det.clusterer_.pending_[:, :-1]
     with pytest.raises(StateError, match="pending_"):
         det._check_state()
 

@@ -1,5 +1,6 @@
 """The map's compiled loop against its numpy reference, with every registered synapse; its state and its bounds."""
 
+import contextlib
 import copy
 import pickle
 
@@ -12,6 +13,7 @@ from novelty.maps.map_engine import wait
 from novelty.io.scans.points import example_rows
 from novelty.maps.tiles import GridFullWarning
 from novelty.registry import synapses
+from tests.damaged import damaging
 
 
 def drive(n=150, shift=0.0, seed=3):
@@ -106,8 +108,38 @@ def test_a_state_replaced_behind_the_maps_back_is_read_again_or_refused():
     det = HabituatingMap().fit(X[:100])
     wait(det.clusterer_, det.synapse_)
     reference = copy.deepcopy(det)
-    det.clusterer_.passes_ = det.clusterer_.passes_.copy()    # replaced, same values: read again
+    with damaging(det):  # past the lock, as nothing in the library may (tests.damaged)
+        det.clusterer_.passes_ = det.clusterer_.passes_.copy()    # replaced, same values: read again
     np.testing.assert_array_equal(det.stream(X[100:]), reference.stream(X[100:]))
-    det.clusterer_.passes_ = det.clusterer_.passes_[:-1]       # a cell short: refused by name
+    with damaging(det):
+        det.clusterer_.passes_ = det.clusterer_.passes_[:-1]       # a cell short: refused by name
     with pytest.raises(ValueError, match="passes_"):
         det.novelty(X)
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_fitted_map_s_parts_are_read_only_and_its_own_calls_write_them(reference):
+    import novelty
+
+    X = drive()
+    with _kernels.reference_loops() if reference else contextlib.nullcontext():
+        det = HabituatingMap.from_params().fit(X[:100])  # parts as instances: set_params reaches them
+        before = det.novelty(X[100:])
+        with pytest.raises(novelty.FittedPartError, match=r"WorldCells\.top cannot be set.*clusterer__top"):
+            det.clusterer_.top = 3
+        with pytest.raises(novelty.FittedPartError, match=r"StanleySynapse\.efficacy_ cannot be set"):
+            det.synapse_.efficacy_ = det.synapse_.efficacy_.copy()
+        for part in (det.clusterer_, det.synapse_):
+            for name, value in vars(part).items():
+                if type(value) is np.ndarray and name.endswith("_") and not name.startswith("_") and value.size:
+                    assert not value.flags.writeable, f"{type(part).__name__}.{name}"
+                    with pytest.raises(ValueError, match="read-only"):
+                        value.flat[0] = 0
+        np.testing.assert_array_equal(det.novelty(X[100:]), before)
+        det.partial_fit(X[100:120])  # its engine writes them, and reads them again after the map's set_params
+        det.set_params(top=3)
+        assert det.clusterer_.top == 3
+        twin = HabituatingMap.from_params(top=3).fit(X[:100])
+        twin.partial_fit(X[100:120])
+        np.testing.assert_array_equal(det.novelty(X[120:]), twin.novelty(X[120:]))
+        assert not det.synapse_.efficacy_.flags.writeable
