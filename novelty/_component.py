@@ -131,7 +131,7 @@ class Component(BaseEstimator):
         A fitted part, one an engine holds (:func:`held_by_engine`), is read-only from outside
         the engine's own writes (:func:`engine_writes`): setting a public attribute (a parameter
         or learned state) on it raises :class:`FittedPartError`, which says what to do instead,
-        and its learned arrays are read-only. The engine is the one writer of what a filter
+        and its learned arrays are read-only. The engine is the one writer of what a detector
         learned."""
         if vars(self).get("_held") and not vars(self).get("_writing") and not name.startswith("_"):
             raise _fitted_write_error(self, name)
@@ -303,7 +303,7 @@ def _unlock(component) -> None:
 def _fitted_write_error(component, name: str) -> FittedPartError:
     kind = component._kind or "part"
     if name in component._get_param_names():
-        instead = (f"to learn with another value, set it on the filter (set_params({kind}__{name}=...)) "
+        instead = (f"to learn with another value, set it on the detector (set_params({kind}__{name}=...)) "
                    "and fit again")
     else:
         instead = "to start from another learned state, fit again (or load a model file)"
